@@ -1,0 +1,117 @@
+//! The shared driver of the incremental DEM tangential laws.
+//!
+//! A DEM code advances a contact by increments: the normal force comes from Hertz at the new
+//! approach, and a tangential law updates the tangential force from the old one, the tangential
+//! displacement increment Δδt and the change of normal state. This driver walks a scene's path
+//! that way for any [`TangentialLaw`], so every law sees exactly the same increments.
+//!
+//! Contact rules, the same for every law: while the gap is open the force is zero and the law's
+//! history is cleared; on the increment that closes the gap the contact starts with Q = 0 (the
+//! contact had zero radius, hence zero stiffness, at the increment's start).
+
+use crate::history::{History, Metadata, StepResult};
+use crate::scene::Scene;
+use crate::solver::{SolveError, Solver};
+
+/// The Hertz normal state at one end of an increment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalState {
+    /// Normal force P [N].
+    pub force: f64,
+    /// Contact radius c [m].
+    pub radius: f64,
+}
+
+/// One increment of a contact that is closed at both of its ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Increment {
+    /// The normal state at the start.
+    pub before: NormalState,
+    /// The normal state at the end.
+    pub after: NormalState,
+    /// The tangential displacement increment Δδt [m].
+    pub delta_t: f64,
+}
+
+/// An incremental tangential force–displacement law.
+pub trait TangentialLaw {
+    /// Advances the law over `increment` and returns the tangential force at its end [N].
+    fn advance(&mut self, increment: &Increment) -> f64;
+
+    /// Forgets the contact's history (the gap opened).
+    fn reset(&mut self);
+}
+
+/// An incremental law driven along a scene's path: Hertz normal force, the law's tangential force.
+pub struct IncrementalSolver {
+    /// The command-line name.
+    pub name: &'static str,
+    /// One line: the law and its source.
+    pub description: &'static str,
+    /// Makes the law for a scene (its material constants and friction).
+    pub make_law: fn(&Scene) -> Box<dyn TangentialLaw>,
+}
+
+impl Solver for IncrementalSolver {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn description(&self) -> &'static str {
+        self.description
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        let hertz = scene.hertz();
+        let mut law = (self.make_law)(scene);
+        let normal_at = |delta_n: f64| NormalState {
+            force: hertz.force(delta_n),
+            radius: hertz.contact_radius(delta_n),
+        };
+        let steps = scene.steps();
+        let mut rows = Vec::with_capacity(steps.len());
+        let mut previous: Option<(f64, f64)> = None; // (δn, δt) of the previous step
+        for step in &steps {
+            let after = normal_at(step.delta_n);
+            let tangential = match previous {
+                Some((delta_n, delta_t)) if delta_n > 0.0 && step.delta_n > 0.0 => {
+                    law.advance(&Increment {
+                        before: normal_at(delta_n),
+                        after,
+                        delta_t: step.delta_t - delta_t,
+                    })
+                }
+                _ => {
+                    law.reset();
+                    0.0
+                }
+            };
+            previous = Some((step.delta_n, step.delta_t));
+            rows.push(StepResult {
+                normal_force: Some(after.force),
+                tangential_force: Some(tangential),
+                contact_radius: Some(after.radius),
+                peak_pressure: Some(hertz.peak_pressure(step.delta_n)),
+                ..StepResult::at(step)
+            });
+        }
+        Ok(History {
+            metadata: Metadata {
+                model: format!(
+                    "Hertz normal force; incremental tangential law: {}",
+                    self.description
+                ),
+                resolution: format!("{} increments", steps.len().saturating_sub(1)),
+                ..Metadata::default()
+            },
+            steps: rows,
+            fields: Vec::new(),
+        })
+    }
+}
+
+/// Clamps a tangential force to the Coulomb limit |Q| ≤ μP.
+pub fn coulomb_cap(force: f64, friction: f64, normal_force: f64) -> f64 {
+    let limit = friction * normal_force.max(0.0);
+    force.clamp(-limit, limit)
+}

@@ -1,0 +1,64 @@
+//! The case file as written: serde structures that reject unknown fields and keep the byte
+//! spans of the values that validation judges.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A case file as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCase {
+    pub name: Option<String>,
+    pub description: Option<String>,
+    pub friction: Spanned<f64>,
+    pub solvers: Spanned<Vec<Spanned<String>>>,
+    pub body1: RawBody,
+    pub body2: Option<RawBody>,
+    pub path: RawPath,
+    #[serde(default)]
+    pub checks: Vec<RawCheck>,
+}
+
+/// A body as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBody {
+    pub radius: Spanned<f64>,
+    pub young: Spanned<f64>,
+    pub poisson: Spanned<f64>,
+}
+
+/// The loading path as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPath {
+    pub unit: Spanned<String>,
+    pub delta_n: Spanned<Vec<Spanned<f64>>>,
+    pub delta_t: Spanned<Vec<Spanned<f64>>>,
+    pub substeps: Spanned<toml::Value>,
+}
+
+/// A check as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCheck {
+    pub solver: Spanned<String>,
+    pub quantity: Spanned<String>,
+    pub at: Spanned<toml::Value>,
+    pub reference: Spanned<toml::Value>,
+    pub error: Option<Spanned<String>>,
+    pub tolerance: Option<Spanned<f64>>,
+    pub reason: Option<String>,
+    #[serde(default)]
+    pub informational: bool,
+}
+
+/// One stored reference value in a `reference/*.toml` file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawReferenceValue {
+    pub quantity: String,
+    pub value: f64,
+    pub unit: String,
+    pub source: String,
+}

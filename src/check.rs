@@ -1,0 +1,393 @@
+//! Checks: a solver's quantity, where along the path, against what reference, within what
+//! tolerance and why — judged OK, NOOK, INFO (measured, never judged) or N/A (not installed).
+//!
+//! Modelled on MOOSE's test specs and Code_Aster's TEST_RESU: a check states its requirement,
+//! reference and tolerance with a reason, and its result prints with value, reference and error.
+
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+use crate::history::{History, Quantity, StepResult};
+use crate::solver::SolveError;
+
+/// Where along the path a check looks.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Where {
+    /// Every step, substeps included.
+    EveryStep,
+    /// Every path position.
+    EveryPosition,
+    /// One path position.
+    Position(usize),
+    /// The path positions from the first to the second, inclusive.
+    Positions(usize, usize),
+}
+
+impl Where {
+    /// Whether a row is looked at.
+    pub fn selects(&self, row: &StepResult) -> bool {
+        match (*self, row.position) {
+            (Where::EveryStep, _) => true,
+            (Where::EveryPosition, p) => p.is_some(),
+            (Where::Position(k), Some(p)) => p == k,
+            (Where::Positions(a, b), Some(p)) => (a..=b).contains(&p),
+            _ => false,
+        }
+    }
+}
+
+impl std::fmt::Display for Where {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Where::EveryStep => write!(f, "every step"),
+            Where::EveryPosition => write!(f, "every position"),
+            Where::Position(k) => write!(f, "position {k}"),
+            Where::Positions(a, b) => write!(f, "positions {a}–{b}"),
+        }
+    }
+}
+
+/// What a value is compared with.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reference {
+    /// The same quantity from another solver at the same step.
+    Solver(String),
+    /// A stored value with its provenance.
+    Value {
+        /// The value, SI.
+        value: f64,
+        /// The reference file and key (`file#key`).
+        key: String,
+        /// Where the value comes from, in words.
+        source: String,
+    },
+}
+
+impl std::fmt::Display for Reference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Reference::Solver(name) => write!(f, "{name}"),
+            Reference::Value { key, .. } => write!(f, "{key}"),
+        }
+    }
+}
+
+/// How the difference between value and reference is measured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ErrorMeasure {
+    /// |v − r| / |r| at each step.
+    Relative,
+    /// |v − r| / max |r| over the looked-at steps: for quantities that pass through zero.
+    RelativeToPeak,
+    /// |v − r| in the quantity's unit.
+    Absolute,
+}
+
+impl ErrorMeasure {
+    /// The name used in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ErrorMeasure::Relative => "relative",
+            ErrorMeasure::RelativeToPeak => "relative-to-peak",
+            ErrorMeasure::Absolute => "absolute",
+        }
+    }
+
+    /// The measure named `name`, if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [
+            ErrorMeasure::Relative,
+            ErrorMeasure::RelativeToPeak,
+            ErrorMeasure::Absolute,
+        ]
+        .into_iter()
+        .find(|m| m.name() == name)
+    }
+}
+
+/// One validated check of a case.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CheckSpec {
+    /// The solver whose result is judged.
+    pub solver: String,
+    /// The quantity judged.
+    pub quantity: Quantity,
+    /// Where along the path.
+    pub at: Where,
+    /// Compared with what.
+    pub reference: Reference,
+    /// How the difference is measured.
+    pub measure: ErrorMeasure,
+    /// The largest acceptable error; `None` for an informational check.
+    pub tolerance: Option<f64>,
+    /// Why the tolerance is what it is (or what an informational check shows).
+    pub reason: String,
+}
+
+/// The judgement of one check.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Verdict {
+    /// Within tolerance.
+    Ok,
+    /// Outside tolerance, or the solver failed or gave no value.
+    Nook,
+    /// Informational: measured and reported, never judged.
+    Info,
+    /// A solver it needs is not installed.
+    Unavailable,
+}
+
+impl Verdict {
+    /// The label printed in the result table.
+    pub fn label(self) -> &'static str {
+        match self {
+            Verdict::Ok => "OK",
+            Verdict::Nook => "NOOK",
+            Verdict::Info => "INFO",
+            Verdict::Unavailable => "N/A",
+        }
+    }
+}
+
+/// The result of one check: the verdict and, at the worst step, the value, reference and error.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Outcome {
+    /// The check.
+    pub spec: CheckSpec,
+    /// The judgement.
+    pub verdict: Verdict,
+    /// The solver's value at the worst step.
+    pub value: Option<f64>,
+    /// The reference at the worst step.
+    pub reference: Option<f64>,
+    /// The worst error over the looked-at steps (may be +∞, never NaN).
+    pub error: Option<f64>,
+    /// The step where the error was worst.
+    pub worst_step: Option<usize>,
+    /// Why there is no error to show (solver failed, value missing, nothing to compare).
+    pub message: Option<String>,
+}
+
+/// The histories of a case's solvers, by name.
+pub type Histories = BTreeMap<String, Result<History, SolveError>>;
+
+impl CheckSpec {
+    /// Judges this check on the histories of a case's solvers.
+    pub fn evaluate(&self, histories: &Histories) -> Outcome {
+        let subject = match lookup(histories, &self.solver) {
+            Ok(history) => history,
+            Err((verdict, message)) => return self.outcome_without_error(verdict, message),
+        };
+        let reference_history = match &self.reference {
+            Reference::Solver(name) => match lookup(histories, name) {
+                Ok(history) => Some(history),
+                Err((verdict, message)) => return self.outcome_without_error(verdict, message),
+            },
+            Reference::Value { .. } => None,
+        };
+        let mut pairs = Vec::new();
+        for row in subject.steps.iter().filter(|r| self.at.selects(r)) {
+            let reference = match (&self.reference, reference_history) {
+                (Reference::Value { value, .. }, _) => Some(*value),
+                (_, Some(h)) => h.steps.get(row.step).and_then(|r| self.quantity.of(r)),
+                (_, None) => None,
+            };
+            let Some(reference) = reference else { continue };
+            let Some(value) = self.quantity.of(row) else {
+                let message = format!(
+                    "{} gives no {} at step {}",
+                    self.solver, self.quantity, row.step
+                );
+                return self.outcome_without_error(Verdict::Nook, message);
+            };
+            pairs.push((row.step, value, reference));
+        }
+        if pairs.is_empty() {
+            return self.outcome_without_error(
+                Verdict::Nook,
+                format!("nothing to compare at {}", self.at),
+            );
+        }
+        let peak = pairs.iter().map(|p| p.2.abs()).fold(0.0, f64::max);
+        let (worst_step, value, reference, error) = pairs
+            .into_iter()
+            .map(|(step, v, r)| (step, v, r, self.error(v, r, peak)))
+            .fold(
+                None,
+                |worst: Option<(usize, f64, f64, f64)>, candidate| match worst {
+                    Some(w) if w.3 >= candidate.3 => Some(w),
+                    _ => Some(candidate),
+                },
+            )
+            .expect("pairs is not empty");
+        let verdict = match self.tolerance {
+            None => Verdict::Info,
+            Some(tolerance) if error <= tolerance => Verdict::Ok,
+            Some(_) => Verdict::Nook,
+        };
+        Outcome {
+            spec: self.clone(),
+            verdict,
+            value: Some(value),
+            reference: Some(reference),
+            error: Some(error),
+            worst_step: Some(worst_step),
+            message: None,
+        }
+    }
+
+    /// The error of `value` against `reference`, `peak` being max |r| over the looked-at steps.
+    /// A zero denominator gives 0 when the difference is zero and +∞ otherwise, never NaN.
+    fn error(&self, value: f64, reference: f64, peak: f64) -> f64 {
+        let difference = (value - reference).abs();
+        let scale = match self.measure {
+            ErrorMeasure::Absolute => return difference,
+            ErrorMeasure::Relative => reference.abs(),
+            ErrorMeasure::RelativeToPeak => peak,
+        };
+        if difference == 0.0 {
+            0.0
+        } else if scale == 0.0 {
+            f64::INFINITY
+        } else {
+            difference / scale
+        }
+    }
+
+    fn outcome_without_error(&self, verdict: Verdict, message: String) -> Outcome {
+        Outcome {
+            spec: self.clone(),
+            verdict,
+            value: None,
+            reference: None,
+            error: None,
+            worst_step: None,
+            message: Some(message),
+        }
+    }
+}
+
+/// The history of `name`, or the verdict and message of its absence.
+fn lookup<'a>(histories: &'a Histories, name: &str) -> Result<&'a History, (Verdict, String)> {
+    match histories.get(name) {
+        Some(Ok(history)) => Ok(history),
+        Some(Err(error @ SolveError::Unavailable(_))) => {
+            Err((Verdict::Unavailable, format!("{name}: {error}")))
+        }
+        Some(Err(error)) => Err((Verdict::Nook, format!("{name}: {error}"))),
+        None => Err((Verdict::Nook, format!("{name} was not run"))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::history::Metadata;
+
+    fn history(values: &[Option<f64>]) -> History {
+        History {
+            metadata: Metadata::default(),
+            fields: Vec::new(),
+            steps: values
+                .iter()
+                .enumerate()
+                .map(|(i, v)| StepResult {
+                    step: i,
+                    position: Some(i),
+                    normal_force: *v,
+                    ..StepResult::default()
+                })
+                .collect(),
+        }
+    }
+
+    fn spec(measure: ErrorMeasure, tolerance: Option<f64>) -> CheckSpec {
+        CheckSpec {
+            solver: "a".into(),
+            quantity: Quantity::NormalForce,
+            at: Where::EveryStep,
+            reference: Reference::Solver("b".into()),
+            measure,
+            tolerance,
+            reason: "test".into(),
+        }
+    }
+
+    fn histories(a: &[Option<f64>], b: &[Option<f64>]) -> Histories {
+        [
+            ("a".to_string(), Ok(history(a))),
+            ("b".to_string(), Ok(history(b))),
+        ]
+        .into_iter()
+        .collect()
+    }
+
+    #[test]
+    fn worst_relative_error_decides() {
+        let h = histories(
+            &[Some(0.0), Some(1.01), Some(2.0)],
+            &[Some(0.0), Some(1.0), Some(2.0)],
+        );
+        let ok = spec(ErrorMeasure::Relative, Some(0.02)).evaluate(&h);
+        assert_eq!(ok.verdict, Verdict::Ok);
+        assert_eq!(ok.worst_step, Some(1));
+        assert!((ok.error.unwrap() - 0.01).abs() < 1e-12);
+        assert_eq!(
+            spec(ErrorMeasure::Relative, Some(0.005))
+                .evaluate(&h)
+                .verdict,
+            Verdict::Nook
+        );
+    }
+
+    #[test]
+    fn zero_reference_gives_infinite_not_nan() {
+        let h = histories(&[Some(1e-9)], &[Some(0.0)]);
+        let outcome = spec(ErrorMeasure::Relative, Some(0.1)).evaluate(&h);
+        assert_eq!(outcome.error, Some(f64::INFINITY));
+        assert_eq!(outcome.verdict, Verdict::Nook);
+    }
+
+    #[test]
+    fn relative_to_peak_divides_by_the_largest_reference() {
+        let h = histories(&[Some(0.1), Some(4.0)], &[Some(0.0), Some(4.0)]);
+        let outcome = spec(ErrorMeasure::RelativeToPeak, Some(0.03)).evaluate(&h);
+        assert!((outcome.error.unwrap() - 0.025).abs() < 1e-12);
+        assert_eq!(outcome.verdict, Verdict::Ok);
+    }
+
+    #[test]
+    fn missing_value_and_failed_solver_are_nook_and_unavailable_is_na() {
+        let h = histories(&[None], &[Some(1.0)]);
+        assert_eq!(
+            spec(ErrorMeasure::Relative, Some(1.0)).evaluate(&h).verdict,
+            Verdict::Nook
+        );
+        let mut h = histories(&[Some(1.0)], &[Some(1.0)]);
+        h.insert("a".into(), Err(SolveError::Failed("boom".into())));
+        assert_eq!(
+            spec(ErrorMeasure::Relative, Some(1.0)).evaluate(&h).verdict,
+            Verdict::Nook
+        );
+        h.insert(
+            "a".into(),
+            Err(SolveError::Unavailable("not installed".into())),
+        );
+        assert_eq!(
+            spec(ErrorMeasure::Relative, Some(1.0)).evaluate(&h).verdict,
+            Verdict::Unavailable
+        );
+    }
+
+    #[test]
+    fn informational_checks_are_never_judged() {
+        let h = histories(&[Some(5.0)], &[Some(1.0)]);
+        assert_eq!(
+            spec(ErrorMeasure::Relative, None).evaluate(&h).verdict,
+            Verdict::Info
+        );
+    }
+}

@@ -1,0 +1,174 @@
+//! What a solver returns: one row of contact quantities per path step, and how it was obtained.
+
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::fmt;
+
+use crate::path::Step;
+
+/// The contact quantities of one path step, in SI units. A quantity the solver does not produce
+/// is `None` (an empty CSV cell), never NaN or zero.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct StepResult {
+    /// Step index, 0 for the start.
+    pub step: usize,
+    /// The path position this step reaches; `None` between positions.
+    pub position: Option<usize>,
+    /// Relative normal approach δn [m].
+    pub delta_n: f64,
+    /// Relative tangential displacement δt [m].
+    pub delta_t: f64,
+    /// Normal force P [N].
+    pub normal_force: Option<f64>,
+    /// Tangential force Q along δt [N].
+    pub tangential_force: Option<f64>,
+    /// Contact radius c [m].
+    pub contact_radius: Option<f64>,
+    /// Peak contact pressure p0 [Pa].
+    pub peak_pressure: Option<f64>,
+    /// Radius of the stick zone [m]: equal to c in full stick, 0 in gross sliding.
+    pub stick_radius: Option<f64>,
+}
+
+impl StepResult {
+    /// A row for `step` with every quantity still absent.
+    pub fn at(step: &Step) -> Self {
+        Self {
+            step: step.index,
+            position: step.position,
+            delta_n: step.delta_n,
+            delta_t: step.delta_t,
+            ..Self::default()
+        }
+    }
+}
+
+/// A contact quantity that checks and reports can name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quantity {
+    /// Normal force P [N].
+    NormalForce,
+    /// Tangential force Q [N].
+    TangentialForce,
+    /// Contact radius c [m].
+    ContactRadius,
+    /// Peak pressure p0 [Pa].
+    PeakPressure,
+    /// Stick radius [m].
+    StickRadius,
+}
+
+impl Quantity {
+    /// Every quantity, in CSV column order.
+    pub const ALL: [Quantity; 5] = [
+        Quantity::NormalForce,
+        Quantity::TangentialForce,
+        Quantity::ContactRadius,
+        Quantity::PeakPressure,
+        Quantity::StickRadius,
+    ];
+
+    /// The name used in case files and CSV headers.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::NormalForce => "normal_force",
+            Quantity::TangentialForce => "tangential_force",
+            Quantity::ContactRadius => "contact_radius",
+            Quantity::PeakPressure => "peak_pressure",
+            Quantity::StickRadius => "stick_radius",
+        }
+    }
+
+    /// The SI unit.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Quantity::NormalForce | Quantity::TangentialForce => "N",
+            Quantity::ContactRadius | Quantity::StickRadius => "m",
+            Quantity::PeakPressure => "Pa",
+        }
+    }
+
+    /// The quantity named `name`, if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|q| q.name() == name)
+    }
+
+    /// This quantity's value in a step row.
+    pub fn of(self, row: &StepResult) -> Option<f64> {
+        match self {
+            Quantity::NormalForce => row.normal_force,
+            Quantity::TangentialForce => row.tangential_force,
+            Quantity::ContactRadius => row.contact_radius,
+            Quantity::PeakPressure => row.peak_pressure,
+            Quantity::StickRadius => row.stick_radius,
+        }
+    }
+}
+
+impl fmt::Display for Quantity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How a history was obtained.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Metadata {
+    /// The solver's command-line name.
+    pub solver: String,
+    /// The solver's version (the crate's for in-crate solvers, the tool's for external ones).
+    pub version: String,
+    /// The model actually solved (e.g. "half-space, 1D springs" or "axisymmetric, one sphere").
+    pub model: String,
+    /// The resolution (springs, mesh size, grid), in words.
+    pub resolution: String,
+    /// Wall time of the solve [s].
+    pub wall_time_s: f64,
+    /// Warnings a reader must see (validity limits, assumptions that do not hold).
+    pub warnings: Vec<String>,
+    /// Solver-specific facts (DOFs, iterations, ...).
+    pub extra: BTreeMap<String, serde_json::Value>,
+}
+
+/// Surface fields on the contact plane at one path position.
+///
+/// Frame: origin at the contact centre, x along δt, y across it, both on the contact plane.
+/// Axisymmetric and 1D solvers sample the x axis (y = 0).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SurfaceField {
+    /// The path position.
+    pub position: usize,
+    /// Sample points (x, y) [m].
+    pub points: Vec<[f64; 2]>,
+    /// Contact pressure p [Pa], compressive positive.
+    pub pressure: Vec<f64>,
+    /// Tangential traction (q_x, q_y) [Pa] on body 1, signed so that ∫ q_x dA = Q; `None` for
+    /// frictionless solvers.
+    pub traction: Option<Vec<[f64; 2]>>,
+    /// Stick (true) or slip (false) at each point in contact (p > 0); `None` where not resolved.
+    pub stick: Option<Vec<bool>>,
+}
+
+/// A solver's result along a whole path.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct History {
+    /// How it was obtained.
+    pub metadata: Metadata,
+    /// One row per path step, step 0 first.
+    pub steps: Vec<StepResult>,
+    /// Surface fields at path positions, for solvers that resolve them.
+    pub fields: Vec<SurfaceField>,
+}
+
+impl History {
+    /// The rows that reach path positions, in order.
+    pub fn at_positions(&self) -> impl Iterator<Item = &StepResult> {
+        self.steps.iter().filter(|r| r.position.is_some())
+    }
+
+    /// The row reaching path position `position`, if the path has it.
+    pub fn at_position(&self, position: usize) -> Option<&StepResult> {
+        self.steps.iter().find(|r| r.position == Some(position))
+    }
+}

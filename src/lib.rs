@@ -1,0 +1,36 @@
+//! # spherecontact
+//!
+//! A verification harness for the contact of two elastic spheres: Hertz normal contact and
+//! Mindlin–Deresiewicz frictional tangential contact under an arbitrary loading history.
+//!
+//! The way through the crate follows the data:
+//!
+//! ```text
+//! cases/*.toml ─▶ case::Case ─▶ scene::Scene ─▶ solver::Solver ─▶ history::History ─▶ check ─▶ report
+//! ```
+//!
+//! - [`case`] reads and validates a case file (bodies, friction, loading path, solvers, checks);
+//! - [`scene`] is the solver-independent problem it describes, with [`pair`] (effective
+//!   properties) and [`path`] (the steps of the loading path);
+//! - [`solver`] is the one trait every model implements; [`analytic`] holds the closed forms
+//!   (Hertz, Cattaneo–Mindlin), the exact path reference (MDR) and the incremental DEM laws;
+//! - [`check`] judges a solver's [`history::History`] against a reference, with a tolerance and
+//!   its reason, as OK / NOOK / INFO;
+//! - [`verify`] runs cases and their checks; [`report`] prints and writes the results.
+//!
+//! What it is not: a general contact solver or a DEM code. Everything here serves the question
+//! "how far is this solver from the right answer for two elastic spheres, and why".
+//!
+//! Units are SI throughout (m, N, Pa); a case file may give its path in µm or mm and says so.
+
+pub mod analytic;
+pub mod case;
+pub mod check;
+pub mod history;
+pub mod io;
+pub mod pair;
+pub mod path;
+pub mod report;
+pub mod scene;
+pub mod solver;
+pub mod verify;

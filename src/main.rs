@@ -1,0 +1,203 @@
+//! The `spherecontact` command line: arguments are parsed raw (clap), validated into a plan
+//! (cases read and checked, solver names resolved, nothing written yet), then executed.
+//!
+//! Exit codes: 0 success; 1 a check is NOOK or a solver failed; 2 bad input (arguments, case
+//! files), in which case nothing is written.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use spherecontact::case::Case;
+use spherecontact::report::{history_files, junit, table};
+use spherecontact::{io, solver, verify};
+
+#[derive(Parser)]
+#[command(
+    name = "spherecontact",
+    version,
+    about = "Verification harness for the contact of two elastic spheres"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a case's solvers and write DIR/<solver>.csv and DIR/<solver>.json.
+    Run {
+        /// The case file.
+        case: PathBuf,
+        /// A solver to run (repeatable); default: the case's own list.
+        #[arg(long = "solver", value_name = "NAME")]
+        solvers: Vec<String>,
+        /// Output folder (created if missing).
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
+    /// Run cases and judge their checks; exit 1 on any NOOK.
+    Verify {
+        /// Case files; default: every .toml under cases/.
+        cases: Vec<PathBuf>,
+        /// Write JUnit XML here.
+        #[arg(long, value_name = "FILE")]
+        junit: Option<PathBuf>,
+    },
+    /// List the solvers of this build and the cases under cases/.
+    List,
+}
+
+/// A bad-input error: printed, exit code 2, nothing written.
+struct InputError(String);
+
+impl<E: std::fmt::Display> From<E> for InputError {
+    fn from(e: E) -> Self {
+        InputError(e.to_string())
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run { case, solvers, out } => run(&case, &solvers, &out),
+        Command::Verify { cases, junit } => verify_cases(cases, junit.as_deref()),
+        Command::List => list(),
+    };
+    match result {
+        Ok(code) => code,
+        Err(InputError(message)) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Every `.toml` file under `dir`, recursively, in sorted order.
+fn case_files(dir: &Path) -> Result<Vec<PathBuf>, InputError> {
+    let mut files = Vec::new();
+    let entries = std::fs::read_dir(dir)
+        .map_err(|e| InputError(format!("{}: cannot list cases: {e}", dir.display())))?;
+    for entry in entries {
+        let path = entry?.path();
+        if path.is_dir() {
+            files.extend(case_files(&path)?);
+        } else if path.extension().is_some_and(|e| e == "toml") {
+            files.push(path);
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+fn run(case: &Path, solvers: &[String], out: &Path) -> Result<ExitCode, InputError> {
+    // Plan: the case and every solver named must be valid before anything is written.
+    let case = Case::load(case)?;
+    let names = if solvers.is_empty() {
+        case.solvers.clone()
+    } else {
+        solvers.to_vec()
+    };
+    let plan = names
+        .iter()
+        .map(|name| {
+            solver::by_name(name).ok_or_else(|| {
+                InputError(format!(
+                    "--solver: unknown solver `{name}` (see `spherecontact list`)"
+                ))
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    std::fs::create_dir_all(out)
+        .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
+    let mut code = ExitCode::SUCCESS;
+    for warning in case.scene.warnings() {
+        eprintln!("warning: {}: {warning}", case.name());
+    }
+    for solver in plan {
+        match solver::run(solver.as_ref(), &case.scene) {
+            Ok(history) => {
+                if let Err(e) = history_files::write(out, &history) {
+                    eprintln!(
+                        "error: {}: writing results to {}: {e}",
+                        solver.name(),
+                        out.display()
+                    );
+                    code = ExitCode::FAILURE;
+                    continue;
+                }
+                for warning in &history.metadata.warnings {
+                    eprintln!("warning: {}: {warning}", solver.name());
+                }
+                println!(
+                    "{:<22} {:>9.3} ms  -> {}",
+                    solver.name(),
+                    history.metadata.wall_time_s * 1e3,
+                    out.join(format!("{}.csv", solver.name())).display()
+                );
+            }
+            Err(e) => {
+                eprintln!("error: {}: {e}", solver.name());
+                code = ExitCode::FAILURE;
+            }
+        }
+    }
+    Ok(code)
+}
+
+fn verify_cases(files: Vec<PathBuf>, junit_file: Option<&Path>) -> Result<ExitCode, InputError> {
+    let files = if files.is_empty() {
+        case_files(Path::new("cases"))?
+    } else {
+        files
+    };
+    if files.is_empty() {
+        return Err(InputError("no case files to verify".into()));
+    }
+    let cases = files
+        .iter()
+        .map(|f| Case::load(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    let runs: Vec<_> = cases.into_iter().map(verify::run_case).collect();
+    for run in &runs {
+        print!("{}", table::case_block(run));
+    }
+    let outcomes = runs.iter().flat_map(|r| &r.outcomes);
+    let count = |label: &str| {
+        outcomes
+            .clone()
+            .filter(|o| o.verdict.label() == label)
+            .count()
+    };
+    let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
+    println!("verify: {ok} passed, {nook} failed, {info} informational, {na} not available");
+    if let Some(file) = junit_file {
+        io::write_atomically(file, junit::document(&runs).as_bytes())
+            .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+    }
+    Ok(if runs.iter().all(verify::CaseRun::passed) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn list() -> Result<ExitCode, InputError> {
+    println!("solvers:");
+    for solver in solver::registry() {
+        println!("  {:<22} {}", solver.name(), solver.description());
+    }
+    println!("cases:");
+    for file in case_files(Path::new("cases")).unwrap_or_default() {
+        match Case::load(&file) {
+            Ok(case) => println!(
+                "  {:<22} {}  {}",
+                case.name(),
+                file.display(),
+                case.description.lines().next().unwrap_or("")
+            ),
+            Err(e) => println!("  (invalid) {e}"),
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

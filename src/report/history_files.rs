@@ -1,0 +1,87 @@
+//! A solver's history as files: `<solver>.csv` (SI, one row per step, empty cells for what the
+//! solver does not produce) and `<solver>.json` (the same rows plus metadata).
+
+use std::path::Path;
+
+use crate::history::{History, Quantity};
+use crate::io::write_atomically;
+
+/// The CSV header: the path columns, then every quantity.
+pub fn csv_header() -> Vec<&'static str> {
+    let mut header = vec!["step", "position", "delta_n", "delta_t"];
+    header.extend(Quantity::ALL.iter().map(|q| q.name()));
+    header
+}
+
+/// The CSV text of a history.
+pub fn to_csv(history: &History) -> anyhow::Result<String> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(csv_header())?;
+    let cell = |v: Option<f64>| v.map_or_else(String::new, |v| format!("{v:.10e}"));
+    for row in &history.steps {
+        let mut record = vec![
+            row.step.to_string(),
+            row.position.map_or_else(String::new, |p| p.to_string()),
+            cell(Some(row.delta_n)),
+            cell(Some(row.delta_t)),
+        ];
+        record.extend(Quantity::ALL.iter().map(|q| cell(q.of(row))));
+        writer.write_record(&record)?;
+    }
+    Ok(String::from_utf8(writer.into_inner()?)?)
+}
+
+/// The CSV text of a history's surface fields: one row per sample point, empty cells for what
+/// the solver does not resolve (`stick` is 1, 0, or empty outside the contact).
+pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record([
+        "position",
+        "x",
+        "y",
+        "pressure",
+        "traction_x",
+        "traction_y",
+        "stick",
+    ])?;
+    for field in &history.fields {
+        for (i, [x, y]) in field.points.iter().enumerate() {
+            let traction = field.traction.as_ref().map(|t| t[i]);
+            let in_contact = field.pressure[i] > 0.0;
+            let stick = field
+                .stick
+                .as_ref()
+                .filter(|_| in_contact)
+                .map(|s| u8::from(s[i]).to_string());
+            writer.write_record([
+                field.position.to_string(),
+                format!("{x:.10e}"),
+                format!("{y:.10e}"),
+                format!("{:.10e}", field.pressure[i]),
+                traction.map_or_else(String::new, |t| format!("{:.10e}", t[0])),
+                traction.map_or_else(String::new, |t| format!("{:.10e}", t[1])),
+                stick.unwrap_or_default(),
+            ])?;
+        }
+    }
+    Ok(String::from_utf8(writer.into_inner()?)?)
+}
+
+/// Writes `<dir>/<solver>.csv` and `<dir>/<solver>.json`, and `<dir>/<solver>.fields.csv` when
+/// the solver resolves surface fields; each atomically.
+pub fn write(dir: &Path, history: &History) -> anyhow::Result<()> {
+    let name = &history.metadata.solver;
+    write_atomically(
+        &dir.join(format!("{name}.csv")),
+        to_csv(history)?.as_bytes(),
+    )?;
+    if !history.fields.is_empty() {
+        write_atomically(
+            &dir.join(format!("{name}.fields.csv")),
+            fields_to_csv(history)?.as_bytes(),
+        )?;
+    }
+    let json = serde_json::to_string_pretty(history)?;
+    write_atomically(&dir.join(format!("{name}.json")), json.as_bytes())?;
+    Ok(())
+}

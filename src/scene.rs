@@ -1,0 +1,72 @@
+//! What a case asks of the solvers: the contact pair, friction, the loading path, and the facts
+//! derived from them that decide how much model the case needs.
+
+use serde::Serialize;
+
+use crate::analytic::hertz::Hertz;
+use crate::pair::ContactPair;
+use crate::path::{LoadingPath, Step};
+
+/// |β| above which the pair counts as elastically dissimilar (MD's decoupling fails).
+///
+/// Reason: β enters the tangential compliance through products with the normal traction;
+/// at |β| < 1e-3 the neglected coupling is below 0.1 % of the tangential force.
+pub const DISSIMILARITY_BETA: f64 = 1e-3;
+
+/// c/R above which Hertz's small-strain, half-space assumptions are no longer sound.
+///
+/// Reason: the Hertz profile z = r²/2R is the parabolic approximation of the sphere; its error
+/// in the gap grows as (c/R)², about 1 % of the gap at c/R = 0.1 (Johnson 1985, §4.2).
+pub const SMALL_STRAIN_LIMIT: f64 = 0.1;
+
+/// A validated, solver-independent description of one contact problem.
+#[derive(Clone, Debug, Serialize)]
+pub struct Scene {
+    /// The case's name.
+    pub name: String,
+    /// The two bodies.
+    pub pair: ContactPair,
+    /// Coulomb friction coefficient μ.
+    pub friction: f64,
+    /// The loading path.
+    pub path: LoadingPath,
+}
+
+impl Scene {
+    /// The Hertz solution of this pair.
+    pub fn hertz(&self) -> Hertz {
+        Hertz::of(&self.pair)
+    }
+
+    /// Every step of the path.
+    pub fn steps(&self) -> Vec<Step> {
+        self.path.steps()
+    }
+
+    /// The largest Hertz contact radius along the path [m]: what meshes, grids and spring
+    /// windows are sized by (0 if the path never closes the gap).
+    pub fn max_contact_radius(&self) -> f64 {
+        self.hertz().contact_radius(self.path.max_approach())
+    }
+
+    /// Warnings about the assumptions that the analytic models make and this scene breaks.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        let beta = self.pair.dundurs_beta();
+        if beta.abs() > DISSIMILARITY_BETA && !self.path.is_normal_only() {
+            warnings.push(format!(
+                "bodies are elastically dissimilar (Dundurs β = {beta:.4}): Mindlin–Deresiewicz and the \
+                 DEM laws assume β = 0 and neglect the normal–tangential coupling"
+            ));
+        }
+        let radius = self.pair.body1.radius.min(self.pair.body2.radius);
+        let ratio = self.max_contact_radius() / radius;
+        if ratio > SMALL_STRAIN_LIMIT {
+            warnings.push(format!(
+                "largest contact radius is {ratio:.3} of the smaller body radius (> {SMALL_STRAIN_LIMIT}): \
+                 outside Hertz's small-strain, half-space validity"
+            ));
+        }
+        warnings
+    }
+}

@@ -1,0 +1,57 @@
+//! Running cases: every solver a case needs, once each, then every check on their histories.
+
+use crate::case::Case;
+use crate::check::{Histories, Outcome, Verdict};
+use crate::solver;
+
+/// A case after its solvers ran and its checks were judged.
+#[derive(Debug)]
+pub struct CaseRun {
+    /// The case.
+    pub case: Case,
+    /// What the scene and the solvers warned about.
+    pub warnings: Vec<String>,
+    /// Each solver's history, or why it has none.
+    pub histories: Histories,
+    /// Each check's outcome, in the case's order.
+    pub outcomes: Vec<Outcome>,
+}
+
+impl CaseRun {
+    /// True when no check is NOOK.
+    pub fn passed(&self) -> bool {
+        self.outcomes.iter().all(|o| o.verdict != Verdict::Nook)
+    }
+}
+
+/// Runs every solver the case needs and judges its checks. A solver that fails does not stop
+/// the others; the checks that need it are NOOK (or N/A when it is not installed).
+pub fn run_case(case: Case) -> CaseRun {
+    let mut warnings = case.scene.warnings();
+    let mut histories = Histories::new();
+    for name in case.required_solvers() {
+        let result = match solver::by_name(&name) {
+            Some(s) => solver::run(s.as_ref(), &case.scene),
+            None => Err(solver::SolveError::Unavailable(format!(
+                "no solver `{name}` in this build"
+            ))),
+        };
+        if let Ok(history) = &result {
+            warnings.extend(
+                history
+                    .metadata
+                    .warnings
+                    .iter()
+                    .map(|w| format!("{name}: {w}")),
+            );
+        }
+        histories.insert(name, result);
+    }
+    let outcomes = case.checks.iter().map(|c| c.evaluate(&histories)).collect();
+    CaseRun {
+        case,
+        warnings,
+        histories,
+        outcomes,
+    }
+}
