@@ -197,19 +197,13 @@ impl CheckSpec {
             };
             let Some(reference) = reference else { continue };
             let Some(value) = self.quantity.of(row) else {
-                let message = format!(
-                    "{} gives no {} at step {}",
-                    self.solver, self.quantity, row.step
-                );
+                let message = format!("{} gives no {} at step {}", self.solver, self.quantity, row.step);
                 return self.outcome_without_error(Verdict::Nook, message);
             };
             pairs.push((row.step, value, reference));
         }
         if pairs.is_empty() {
-            return self.outcome_without_error(
-                Verdict::Nook,
-                format!("nothing to compare at {}", self.at),
-            );
+            return self.outcome_without_error(Verdict::Nook, format!("nothing to compare at {}", self.at));
         }
         let peak = pairs.iter().map(|p| p.2.abs()).fold(0.0, f64::max);
         let (worst_step, value, reference, error) = pairs
@@ -336,9 +330,7 @@ mod tests {
         assert_eq!(ok.worst_step, Some(1));
         assert!((ok.error.unwrap() - 0.01).abs() < 1e-12);
         assert_eq!(
-            spec(ErrorMeasure::Relative, Some(0.005))
-                .evaluate(&h)
-                .verdict,
+            spec(ErrorMeasure::Relative, Some(0.005)).evaluate(&h).verdict,
             Verdict::Nook
         );
     }
@@ -372,10 +364,7 @@ mod tests {
             spec(ErrorMeasure::Relative, Some(1.0)).evaluate(&h).verdict,
             Verdict::Nook
         );
-        h.insert(
-            "a".into(),
-            Err(SolveError::Unavailable("not installed".into())),
-        );
+        h.insert("a".into(), Err(SolveError::Unavailable("not installed".into())));
         assert_eq!(
             spec(ErrorMeasure::Relative, Some(1.0)).evaluate(&h).verdict,
             Verdict::Unavailable

@@ -108,8 +108,7 @@ fn run(case: &Path, solvers: &[String], out: &Path) -> Result<ExitCode, InputErr
             })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    std::fs::create_dir_all(out)
-        .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
+    std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     let mut code = ExitCode::SUCCESS;
     for warning in case.scene.warnings() {
         eprintln!("warning: {}: {warning}", case.name());
@@ -163,12 +162,7 @@ fn verify_cases(files: Vec<PathBuf>, junit_file: Option<&Path>) -> Result<ExitCo
         print!("{}", table::case_block(run));
     }
     let outcomes = runs.iter().flat_map(|r| &r.outcomes);
-    let count = |label: &str| {
-        outcomes
-            .clone()
-            .filter(|o| o.verdict.label() == label)
-            .count()
-    };
+    let count = |label: &str| outcomes.clone().filter(|o| o.verdict.label() == label).count();
     let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
     println!("verify: {ok} passed, {nook} failed, {info} informational, {na} not available");
     if let Some(file) = junit_file {

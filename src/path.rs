@@ -45,10 +45,7 @@ impl LoadingPath {
         let ok = !positions.is_empty()
             && substeps.len() + 1 == positions.len()
             && substeps.iter().all(|&m| m >= 1);
-        ok.then_some(Self {
-            positions,
-            substeps,
-        })
+        ok.then_some(Self { positions, substeps })
     }
 
     /// The path positions.
@@ -126,11 +123,8 @@ mod tests {
 
     #[test]
     fn steps_interpolate_and_mark_positions() {
-        let path = LoadingPath::try_new(
-            vec![pos(0.0, 0.0), pos(4.0, 0.0), pos(4.0, 2.0)],
-            vec![4, 2],
-        )
-        .unwrap();
+        let path =
+            LoadingPath::try_new(vec![pos(0.0, 0.0), pos(4.0, 0.0), pos(4.0, 2.0)], vec![4, 2]).unwrap();
         let steps = path.steps();
         assert_eq!(steps.len(), 7);
         assert_eq!(steps[2].delta_n, 2.0);

@@ -37,13 +37,7 @@ pub fn run_case(case: Case) -> CaseRun {
             ))),
         };
         if let Ok(history) = &result {
-            warnings.extend(
-                history
-                    .metadata
-                    .warnings
-                    .iter()
-                    .map(|w| format!("{name}: {w}")),
-            );
+            warnings.extend(history.metadata.warnings.iter().map(|w| format!("{name}: {w}")));
         }
         histories.insert(name, result);
     }

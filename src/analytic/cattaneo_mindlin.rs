@@ -136,11 +136,7 @@ impl CattaneoMindlin {
             .iter()
             .position(|s| s.delta_t != steps[0].delta_t)
             .unwrap_or(steps.len());
-        let base = if start > 0 {
-            steps[start - 1]
-        } else {
-            steps[0]
-        };
+        let base = if start > 0 { steps[start - 1] } else { steps[0] };
         if let Some(bad) = steps[start..].iter().find(|s| s.delta_n != base.delta_n) {
             return Err(SolveError::NotApplicable(format!(
                 "cattaneo-mindlin needs a constant normal approach once tangential loading starts \
@@ -176,10 +172,7 @@ impl Solver for CattaneoMindlin {
         let rows = steps
             .iter()
             .map(|step| {
-                let (p, c) = (
-                    hertz.force(step.delta_n),
-                    hertz.contact_radius(step.delta_n),
-                );
+                let (p, c) = (hertz.force(step.delta_n), hertz.contact_radius(step.delta_n));
                 let mut row = StepResult {
                     normal_force: Some(p),
                     contact_radius: Some(c),
@@ -210,8 +203,7 @@ impl Solver for CattaneoMindlin {
             .collect();
         Ok(History {
             metadata: Metadata {
-                model: "Cattaneo–Mindlin: Hertz contact, constant normal load, Masing hysteresis"
-                    .into(),
+                model: "Cattaneo–Mindlin: Hertz contact, constant normal load, Masing hysteresis".into(),
                 resolution: "closed form".into(),
                 ..Metadata::default()
             },

@@ -74,13 +74,11 @@ impl Solver for IncrementalSolver {
         for step in &steps {
             let after = normal_at(step.delta_n);
             let tangential = match previous {
-                Some((delta_n, delta_t)) if delta_n > 0.0 && step.delta_n > 0.0 => {
-                    law.advance(&Increment {
-                        before: normal_at(delta_n),
-                        after,
-                        delta_t: step.delta_t - delta_t,
-                    })
-                }
+                Some((delta_n, delta_t)) if delta_n > 0.0 && step.delta_n > 0.0 => law.advance(&Increment {
+                    before: normal_at(delta_n),
+                    after,
+                    delta_t: step.delta_t - delta_t,
+                }),
                 _ => {
                     law.reset();
                     0.0

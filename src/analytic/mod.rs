@@ -25,8 +25,7 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
         Box::new(mdr::Mdr::default()),
         Box::new(IncrementalSolver {
             name: "hertz-mindlin-spring",
-            description:
-                "no-slip Hertz–Mindlin spring k_t = 8G*c with a Coulomb cap (LIGGGHTS, YADE)",
+            description: "no-slip Hertz–Mindlin spring k_t = 8G*c with a Coulomb cap (LIGGGHTS, YADE)",
             make_law: |scene| Box::new(hertz_mindlin_spring::HertzMindlinSpring::new(scene)),
         }),
     ]

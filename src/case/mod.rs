@@ -68,9 +68,8 @@ pub struct Case {
 impl Case {
     /// Reads and validates the case file at `file`.
     pub fn load(file: &Path) -> Result<Self, CaseError> {
-        let text = std::fs::read_to_string(file).map_err(|e| {
-            CaseError::new(file, None, "", format!("cannot read the case file: {e}"))
-        })?;
+        let text = std::fs::read_to_string(file)
+            .map_err(|e| CaseError::new(file, None, "", format!("cannot read the case file: {e}")))?;
         Self::parse(file, &text)
     }
 
@@ -133,11 +132,7 @@ impl Validator<'_> {
         if ok(v) {
             Ok(v)
         } else {
-            Err(self.error(
-                value,
-                field,
-                format!("{v} is out of range (allowed: {allowed})"),
-            ))
+            Err(self.error(value, field, format!("{v} is out of range (allowed: {allowed})")))
         }
     }
 
@@ -226,26 +221,22 @@ impl Validator<'_> {
                 ))
             }
         };
-        let values =
-            |list: &Spanned<Vec<Spanned<f64>>>, field: &str| -> Result<Vec<f64>, CaseError> {
-                list.get_ref()
-                    .iter()
-                    .enumerate()
-                    .map(|(i, v)| {
-                        self.number(
-                            v,
-                            &format!("path.{field}[{i}]"),
-                            f64::is_finite,
-                            "a finite number",
-                        )
-                        .map(|v| v * scale)
-                    })
-                    .collect()
-            };
-        let (delta_n, delta_t) = (
-            values(&raw.delta_n, "delta_n")?,
-            values(&raw.delta_t, "delta_t")?,
-        );
+        let values = |list: &Spanned<Vec<Spanned<f64>>>, field: &str| -> Result<Vec<f64>, CaseError> {
+            list.get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    self.number(
+                        v,
+                        &format!("path.{field}[{i}]"),
+                        f64::is_finite,
+                        "a finite number",
+                    )
+                    .map(|v| v * scale)
+                })
+                .collect()
+        };
+        let (delta_n, delta_t) = (values(&raw.delta_n, "delta_n")?, values(&raw.delta_t, "delta_t")?);
         if delta_n.is_empty() {
             return Err(self.error(
                 &raw.delta_n,
@@ -271,15 +262,10 @@ impl Validator<'_> {
             .zip(delta_t)
             .map(|(delta_n, delta_t)| Position { delta_n, delta_t })
             .collect();
-        Ok(LoadingPath::try_new(positions, substeps)
-            .expect("positions and substeps validated above"))
+        Ok(LoadingPath::try_new(positions, substeps).expect("positions and substeps validated above"))
     }
 
-    fn substeps(
-        &self,
-        raw: &Spanned<toml::Value>,
-        segments: usize,
-    ) -> Result<Vec<usize>, CaseError> {
+    fn substeps(&self, raw: &Spanned<toml::Value>, segments: usize) -> Result<Vec<usize>, CaseError> {
         let count = |v: &toml::Value| match v {
             toml::Value::Integer(n) if *n >= 1 && *n <= 1_000_000 => Ok(*n as usize),
             other => Err(self.error(
@@ -312,11 +298,7 @@ impl Validator<'_> {
             .map(|name| {
                 let name_str = self.solver_name(name, "solvers")?;
                 if !seen.insert(name_str.clone()) {
-                    return Err(self.error(
-                        name,
-                        "solvers",
-                        format!("`{name_str}` is listed twice"),
-                    ));
+                    return Err(self.error(name, "solvers", format!("`{name_str}` is listed twice")));
                 }
                 Ok(name_str)
             })
@@ -354,12 +336,18 @@ impl Validator<'_> {
             )
         })?;
         let at = self.at(&raw.at, &format!("{field}.at"), positions)?;
-        let reference =
-            self.reference(&raw.reference, &format!("{field}.reference"), quantity, &at)?;
+        let reference = self.reference(&raw.reference, &format!("{field}.reference"), quantity)?;
         let measure = match &raw.error {
             None => ErrorMeasure::Relative,
             Some(name) => ErrorMeasure::from_name(name.get_ref()).ok_or_else(|| {
-                self.error(name, format!("{field}.error"), format!("unknown error measure `{}` (allowed: relative, relative-to-peak, absolute)", name.get_ref()))
+                self.error(
+                    name,
+                    format!("{field}.error"),
+                    format!(
+                        "unknown error measure `{}` (allowed: relative, relative-to-peak, absolute)",
+                        name.get_ref()
+                    ),
+                )
             })?,
         };
         let tolerance = match (&raw.tolerance, raw.informational) {
@@ -398,14 +386,8 @@ impl Validator<'_> {
         })
     }
 
-    fn at(
-        &self,
-        raw: &Spanned<toml::Value>,
-        field: &str,
-        positions: usize,
-    ) -> Result<Where, CaseError> {
-        let allowed =
-            "\"every-step\", \"every-position\", { position = K } or { positions = [FIRST, LAST] }";
+    fn at(&self, raw: &Spanned<toml::Value>, field: &str, positions: usize) -> Result<Where, CaseError> {
+        let allowed = "\"every-step\", \"every-position\", { position = K } or { positions = [FIRST, LAST] }";
         let bad = |what: String| {
             self.error(
                 raw,
@@ -423,19 +405,17 @@ impl Validator<'_> {
         match raw.get_ref() {
             toml::Value::String(s) if s == "every-step" => Ok(Where::EveryStep),
             toml::Value::String(s) if s == "every-position" => Ok(Where::EveryPosition),
-            toml::Value::Table(t) if t.len() == 1 => {
-                match (t.get("position"), t.get("positions")) {
-                    (Some(k), None) => Ok(Where::Position(index(k)?)),
-                    (None, Some(toml::Value::Array(range))) if range.len() == 2 => {
-                        let (a, b) = (index(&range[0])?, index(&range[1])?);
-                        if a > b {
-                            return Err(bad(format!("range {a}–{b} runs backwards")));
-                        }
-                        Ok(Where::Positions(a, b))
+            toml::Value::Table(t) if t.len() == 1 => match (t.get("position"), t.get("positions")) {
+                (Some(k), None) => Ok(Where::Position(index(k)?)),
+                (None, Some(toml::Value::Array(range))) if range.len() == 2 => {
+                    let (a, b) = (index(&range[0])?, index(&range[1])?);
+                    if a > b {
+                        return Err(bad(format!("range {a}–{b} runs backwards")));
                     }
-                    _ => Err(bad(format!("`{}` is not understood", raw.get_ref()))),
+                    Ok(Where::Positions(a, b))
                 }
-            }
+                _ => Err(bad(format!("`{}` is not understood", raw.get_ref()))),
+            },
             other => Err(bad(format!("`{other}` is not understood"))),
         }
     }
@@ -445,7 +425,6 @@ impl Validator<'_> {
         raw: &Spanned<toml::Value>,
         field: &str,
         quantity: Quantity,
-        at: &Where,
     ) -> Result<Reference, CaseError> {
         let allowed = "{ solver = \"NAME\" } or { file = \"PATH\", key = \"KEY\" }";
         let table = match raw.get_ref() {
@@ -466,12 +445,7 @@ impl Validator<'_> {
                     self.solver_name(&name, &format!("{field}.solver"))?,
                 ))
             }
-            (None, Some(file), Some(key), 2) => {
-                if !matches!(at, Where::Position(_)) {
-                    return Err(self.error(raw, field, "a stored value applies at one path position (allowed: at = { position = K })"));
-                }
-                self.stored_value(raw, field, file, key, quantity)
-            }
+            (None, Some(file), Some(key), 2) => self.stored_value(raw, field, file, key, quantity),
             _ => Err(self.error(
                 raw,
                 field,
@@ -512,9 +486,9 @@ impl Validator<'_> {
                 format!("no key `{key}` in {}", path.display()),
             )
         })?;
-        let entry: RawReferenceValue = entry.try_into().map_err(|e: toml::de::Error| {
-            CaseError::new(&path, None, key, e.message().to_owned())
-        })?;
+        let entry: RawReferenceValue = entry
+            .try_into()
+            .map_err(|e: toml::de::Error| CaseError::new(&path, None, key, e.message().to_owned()))?;
         let value = entry.value;
         let mismatch = |what: &str| CaseError::new(&path, None, key, what.to_owned());
         if !value.is_finite() {

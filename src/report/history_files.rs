@@ -71,10 +71,7 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
 /// the solver resolves surface fields; each atomically.
 pub fn write(dir: &Path, history: &History) -> anyhow::Result<()> {
     let name = &history.metadata.solver;
-    write_atomically(
-        &dir.join(format!("{name}.csv")),
-        to_csv(history)?.as_bytes(),
-    )?;
+    write_atomically(&dir.join(format!("{name}.csv")), to_csv(history)?.as_bytes())?;
     if !history.fields.is_empty() {
         write_atomically(
             &dir.join(format!("{name}.fields.csv")),

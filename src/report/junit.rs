@@ -42,11 +42,7 @@ pub fn document(runs: &[CaseRun]) -> String {
     );
     for run in runs {
         let name = run.case.name();
-        let failures = run
-            .outcomes
-            .iter()
-            .filter(|o| o.verdict == Verdict::Nook)
-            .count();
+        let failures = run.outcomes.iter().filter(|o| o.verdict == Verdict::Nook).count();
         let _ = writeln!(
             xml,
             "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{failures}\">",
