@@ -2,7 +2,7 @@
 
 use crate::case::Case;
 use crate::check::{Histories, Outcome, Verdict};
-use crate::solver;
+use crate::solver::{self, SolveError};
 
 /// A case after its solvers ran and its checks were judged.
 #[derive(Debug)]
@@ -18,9 +18,13 @@ pub struct CaseRun {
 }
 
 impl CaseRun {
-    /// True when no check is NOOK.
+    /// True when no check is NOOK and every solver the case needs either ran or is not installed.
     pub fn passed(&self) -> bool {
-        self.outcomes.iter().all(|o| o.verdict != Verdict::Nook)
+        let solvers_ran = self
+            .histories
+            .values()
+            .all(|r| matches!(r, Ok(_) | Err(SolveError::Unavailable(_))));
+        solvers_ran && self.outcomes.iter().all(|o| o.verdict != Verdict::Nook)
     }
 }
 

@@ -1,0 +1,58 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)] // each test binary uses a different subset
+
+use spherecontact::case::Case;
+use spherecontact::history::History;
+use spherecontact::path::{LoadingPath, Position};
+use spherecontact::scene::Scene;
+use spherecontact::solver;
+use std::path::{Path, PathBuf};
+
+/// The crate's folder (where cases/ and reference/ live).
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A shipped case, loaded and validated.
+pub fn case(relative: &str) -> Case {
+    Case::load(&root().join(relative)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Every shipped case file.
+pub fn all_case_files() -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "toml") {
+                out.push(path);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    walk(&root().join("cases"), &mut files);
+    files.sort();
+    files
+}
+
+/// The paper's scene with its path replaced by `positions` (µm) at `substeps` per segment.
+pub fn paper_scene_with_path(positions_um: &[(f64, f64)], substeps: usize) -> Scene {
+    let mut scene = case("cases/paper-fig7.toml").scene;
+    let positions: Vec<_> = positions_um
+        .iter()
+        .map(|&(n, t)| Position {
+            delta_n: n * 1e-6,
+            delta_t: t * 1e-6,
+        })
+        .collect();
+    let segments = positions.len() - 1;
+    scene.path = LoadingPath::try_new(positions, vec![substeps; segments]).unwrap();
+    scene
+}
+
+/// Runs the named solver on a scene.
+pub fn solve(name: &str, scene: &Scene) -> History {
+    let solver = solver::by_name(name).unwrap_or_else(|| panic!("no solver {name}"));
+    solver::run(solver.as_ref(), scene).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
