@@ -16,7 +16,8 @@
 //!   (Hertz, Cattaneo–Mindlin), the exact path reference (MDR) and the incremental DEM laws;
 //! - [`check`] judges a solver's [`history::History`] against a reference, with a tolerance and
 //!   its reason, as OK / NOOK / INFO;
-//! - [`verify`] runs cases and their checks; [`report`] prints and writes the results.
+//! - [`verify`] runs cases and their checks; [`report`] prints and writes the results;
+//!   [`bench`] times solvers side by side.
 //!
 //! What it is not: a general contact solver or a DEM code. Everything here serves the question
 //! "how far is this solver from the right answer for two elastic spheres, and why".
@@ -24,6 +25,7 @@
 //! Units are SI throughout (m, N, Pa); a case file may give its path in µm or mm and says so.
 
 pub mod analytic;
+pub mod bench;
 pub mod case;
 pub mod check;
 pub mod history;

@@ -46,6 +46,17 @@ enum Command {
     },
     /// List the solvers of this build and the cases under cases/.
     List,
+    /// Time a case's solvers side by side (build with --release for representative numbers).
+    Bench {
+        /// The case file.
+        case: PathBuf,
+        /// A solver to time (repeatable); default: the case's own list.
+        #[arg(long = "solver", value_name = "NAME")]
+        solvers: Vec<String>,
+        /// Timed runs per solver (the median is reported).
+        #[arg(long, default_value_t = 21, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+        repeat: u32,
+    },
 }
 
 /// A bad-input error: printed, exit code 2, nothing written.
@@ -63,6 +74,11 @@ fn main() -> ExitCode {
         Command::Run { case, solvers, out } => run(&case, &solvers, &out),
         Command::Verify { cases, junit } => verify_cases(cases, junit.as_deref()),
         Command::List => list(),
+        Command::Bench {
+            case,
+            solvers,
+            repeat,
+        } => bench(&case, &solvers, repeat as usize),
     };
     match result {
         Ok(code) => code,
@@ -90,15 +106,14 @@ fn case_files(dir: &Path) -> Result<Vec<PathBuf>, InputError> {
     Ok(files)
 }
 
-fn run(case: &Path, solvers: &[String], out: &Path) -> Result<ExitCode, InputError> {
-    // Plan: the case and every solver named must be valid before anything is written.
-    let case = Case::load(case)?;
-    let names = if solvers.is_empty() {
-        case.solvers.clone()
+/// The solvers named on the command line, or the case's own list.
+fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::Solver>>, InputError> {
+    let names = if names.is_empty() {
+        &case.solvers[..]
     } else {
-        solvers.to_vec()
+        names
     };
-    let plan = names
+    names
         .iter()
         .map(|name| {
             solver::by_name(name).ok_or_else(|| {
@@ -107,7 +122,13 @@ fn run(case: &Path, solvers: &[String], out: &Path) -> Result<ExitCode, InputErr
                 ))
             })
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect()
+}
+
+fn run(case: &Path, solvers: &[String], out: &Path) -> Result<ExitCode, InputError> {
+    // Plan: the case and every solver named must be valid before anything is written.
+    let case = Case::load(case)?;
+    let plan = planned_solvers(&case, solvers)?;
     std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     let mut code = ExitCode::SUCCESS;
     for warning in case.scene.warnings() {
@@ -174,6 +195,36 @@ fn verify_cases(files: Vec<PathBuf>, junit_file: Option<&Path>) -> Result<ExitCo
     } else {
         ExitCode::FAILURE
     })
+}
+
+fn bench(case: &Path, solvers: &[String], repeat: usize) -> Result<ExitCode, InputError> {
+    let case = Case::load(case)?;
+    let plan = planned_solvers(&case, solvers)?;
+    if cfg!(debug_assertions) {
+        eprintln!("warning: built without optimisation; run `cargo run --release -- bench …` for representative timings");
+    }
+    let increments = case.scene.steps().len() - 1;
+    println!(
+        "bench {}: {increments} increments, {repeat} timed runs each (median, min, max)",
+        case.name()
+    );
+    let mut code = ExitCode::SUCCESS;
+    for result in spherecontact::bench::time_solvers(&plan, &case.scene, repeat) {
+        match result {
+            Ok(t) => println!(
+                "  {:<22} median {:>10.3} ms   min {:>10.3} ms   max {:>10.3} ms",
+                t.solver,
+                t.median() * 1e3,
+                t.seconds[0] * 1e3,
+                t.seconds[t.seconds.len() - 1] * 1e3
+            ),
+            Err((name, e)) => {
+                println!("  {name:<22} {e}");
+                code = ExitCode::FAILURE;
+            }
+        }
+    }
+    Ok(code)
 }
 
 fn list() -> Result<ExitCode, InputError> {

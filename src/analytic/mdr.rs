@@ -27,6 +27,9 @@ use crate::history::{History, Metadata, StepResult};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
+/// Partial sums kept apart in the spring loop.
+const LANES: usize = 4;
+
 /// Springs beyond the largest contact radius, as a fraction of it: keeps the contact edge inside
 /// the window at every step.
 const WINDOW_MARGIN: f64 = 0.05;
@@ -45,12 +48,14 @@ impl Default for Mdr {
 
 /// The state of the spring bed along a path.
 struct SpringBed {
-    /// Spring positions x_i [m].
-    x: Vec<f64>,
     /// Profile g(x_i) = x_i²/R* [m].
     profile: Vec<f64>,
     /// Tangential displacement u_i of each spring [m].
     u: Vec<f64>,
+    /// Prefix sums of the profile: profile_sums[k] = Σ_{i<k} g(x_i) [m].
+    profile_sums: Vec<f64>,
+    /// Springs [0, touched) were in contact at the previous step.
+    touched: usize,
     /// Spacing Δx [m].
     dx: f64,
     /// E* [Pa].
@@ -72,12 +77,22 @@ impl SpringBed {
     fn new(scene: &Scene, springs: usize) -> Self {
         let half_width = (1.0 + WINDOW_MARGIN) * scene.max_contact_radius();
         let dx = half_width / springs as f64;
-        let x: Vec<f64> = (0..springs).map(|i| (i as f64 + 0.5) * dx).collect();
         let r_star = scene.pair.effective_radius();
+        // Spring i sits at the midpoint x_i = (i + ½) Δx of its cell.
+        let profile: Vec<f64> = (0..springs)
+            .map(|i| ((i as f64 + 0.5) * dx).powi(2) / r_star)
+            .collect();
+        let profile_sums = std::iter::once(0.0)
+            .chain(profile.iter().scan(0.0, |sum, g| {
+                *sum += g;
+                Some(*sum)
+            }))
+            .collect();
         Self {
-            profile: x.iter().map(|x| x * x / r_star).collect(),
+            profile,
+            profile_sums,
             u: vec![0.0; springs],
-            x,
+            touched: 0,
             dx,
             normal_modulus: scene.pair.effective_modulus(),
             tangential_modulus: 4.0 * scene.pair.mindlin_shear_modulus(),
@@ -87,41 +102,39 @@ impl SpringBed {
 
     /// Moves the rigid profile to approach `delta_n` and shifts it by `increment_t`.
     fn advance(&mut self, delta_n: f64, increment_t: f64) -> BedState {
-        let slip_ratio = self.friction * self.normal_modulus / self.tangential_modulus;
-        let (mut normal, mut tangential) = (0.0, 0.0);
-        let mut innermost_slip = f64::INFINITY;
-        let mut outermost_contact = 0.0_f64;
-        for i in 0..self.x.len() {
-            let w = delta_n - self.profile[i];
-            if w <= 0.0 {
-                self.u[i] = 0.0;
-                continue;
-            }
-            let trial = self.u[i] + increment_t;
-            let limit = slip_ratio * w;
-            if trial.abs() > limit {
-                self.u[i] = limit.copysign(trial);
-                innermost_slip = innermost_slip.min(self.x[i]);
-            } else {
-                self.u[i] = trial;
-            }
-            normal += w;
-            tangential += self.u[i];
-            outermost_contact = self.x[i];
+        // The springs in contact, w = δn − g(x) > 0, are a prefix of the bed (g grows with x);
+        // those beyond it that touched before have left contact and forget their history.
+        let in_contact = self.profile.partition_point(|&g| g < delta_n);
+        if in_contact < self.touched {
+            self.u[in_contact..self.touched].fill(0.0);
         }
-        let contact_radius = if outermost_contact > 0.0 {
-            outermost_contact + 0.5 * self.dx
-        } else {
-            0.0
-        };
+        self.touched = in_contact;
+        let slip_ratio = self.friction * self.normal_modulus / self.tangential_modulus;
+        // Four independent partial sums of u: a serial float sum would bind the loop to the
+        // latency of one addition per spring.
+        let mut lanes = [0.0_f64; LANES];
+        let mut innermost_slip = usize::MAX;
+        let chunks = self.u[..in_contact]
+            .chunks_mut(LANES)
+            .zip(self.profile.chunks(LANES));
+        for (c, (u_chunk, g_chunk)) in chunks.enumerate() {
+            for (lane, (u, g)) in u_chunk.iter_mut().zip(g_chunk).enumerate() {
+                let limit = slip_ratio * (delta_n - g);
+                let trial = *u + increment_t;
+                *u = trial.clamp(-limit, limit);
+                // Branch-free minimum, so that the loop stays vectorisable.
+                innermost_slip = innermost_slip.min(if *u == trial { usize::MAX } else { c * LANES + lane });
+                lanes[lane] += *u;
+            }
+        }
+        let tangential: f64 = lanes.iter().sum();
+        // Σ w = k δn − Σ_{i<k} g_i, from the prefix sums of the profile.
+        let normal = in_contact as f64 * delta_n - self.profile_sums[in_contact];
+        let edge = |index: usize| index as f64 * self.dx; // the left edge of a spring's cell
         BedState {
             normal_force: 2.0 * self.normal_modulus * normal * self.dx,
             tangential_force: 2.0 * self.tangential_modulus * tangential * self.dx,
-            stick_radius: if innermost_slip.is_finite() {
-                innermost_slip - 0.5 * self.dx
-            } else {
-                contact_radius
-            },
+            stick_radius: edge(innermost_slip.min(in_contact)),
         }
     }
 }
