@@ -9,8 +9,16 @@
 //! δs   = 3μP / (16 c G*)                    (G*: Mindlin's effective shear modulus)
 //! stick radius  c_s = c (1 − Q/μP)^{1/3}
 //! ```
-//! so that dQ/dδ at δ = 0 is K_T0 = 8 G* c. Masing: from a reversal point (δr, Qr) the branch is
-//! Q = Qr ± 2 f(|δ − δr|/2), with stick radius c (1 − |Q − Qr|/2μP)^{1/3}. The memory rules
+//! so that dQ/dδ at δ = 0 is K_T0 = 8 G* c. The traction of that virgin state is the difference
+//! of two Hertz-like ellipsoids (Johnson 1985, eq. 7.50):
+//!
+//! ```text
+//! q_v(r; S) = (μ p0 / c) [ √(c² − r²) − √(c_s² − r²) ],   c_s = c (1 − S/μP)^{1/3},
+//! ```
+//! (each root taken as zero where its argument is negative), S the load the stick zone has shed,
+//! S = |Q| on the virgin curve. Masing: from a reversal point (δr, Qr) the branch is
+//! Q = Qr ± 2 f(|δ − δr|/2), with stick radius c (1 − |Q − Qr|/2μP)^{1/3}, and by superposition
+//! q = q_r ± 2 q_v(r; |Q − Qr|/2), q_r the traction at the reversal. The memory rules
 //! of Masing and Madelung close the loops: a branch that reaches the reversal point before its
 //! own start continues on the branch that led there, and the first branch off the virgin curve
 //! rejoins the virgin curve at the mirror of its start.
@@ -18,7 +26,7 @@
 //! The normal load must be constant while the tangential displacement changes; this solver
 //! reports itself not applicable otherwise (MDR covers varying loads).
 
-use crate::history::{History, Metadata, StepResult};
+use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -32,6 +40,13 @@ struct VirginCurve {
 }
 
 impl VirginCurve {
+    /// q_v(r; S) / (μ p0 / c) = √(c² − r²)₊ − √(c_s² − r²)₊, c_s = c (1 − S/μP)^{1/3}.
+    fn traction_shape(&self, r: f64, contact_radius: f64, shed: f64) -> f64 {
+        let stick = stick_radius(contact_radius, shed, self.sliding_force);
+        let root = |a: f64| (a * a - r * r).max(0.0).sqrt();
+        root(contact_radius) - root(stick)
+    }
+
     /// f(δ) for δ ≥ 0.
     fn force(&self, delta: f64) -> f64 {
         if delta >= self.sliding_displacement {
@@ -100,6 +115,24 @@ impl Masing {
         (force, shed)
     }
 
+    /// The traction q(r) of the current state, as a multiple of μ p0 / c: the virgin branch and
+    /// every remembered Masing branch superposed (factor 1 for the virgin branch, 2 after it).
+    fn traction_shape(&self, r: f64, contact_radius: f64) -> f64 {
+        let forces = self
+            .reversals
+            .iter()
+            .map(|rev| rev.force)
+            .chain(std::iter::once(self.force));
+        let (mut q, mut previous, mut factor) = (0.0, 0.0, 1.0);
+        for force in forces {
+            let change = force - previous;
+            let shed = change.abs() / factor;
+            q += factor * direction_of(change) * self.curve.traction_shape(r, contact_radius, shed);
+            (previous, factor) = (force, 2.0);
+        }
+        q
+    }
+
     /// Pops the reversal points that the motion to `delta` has passed.
     fn forget_closed_loops(&mut self, delta: f64) {
         while let Some(&last) = self.reversals.last() {
@@ -116,12 +149,48 @@ impl Masing {
     }
 }
 
+/// The stick radius c (1 − S/μP)^{1/3} once the stick zone has shed the load S (0 in gross sliding).
+fn stick_radius(contact_radius: f64, shed: f64, sliding_force: f64) -> f64 {
+    if sliding_force > 0.0 && shed < sliding_force {
+        contact_radius * (1.0 - shed / sliding_force).cbrt()
+    } else {
+        0.0
+    }
+}
+
+/// Sample points of the surface fields along x: from the centre to beyond the largest contact.
+const FIELD_POINTS: usize = 101;
+
 /// The sign of a non-zero displacement change (+1 for zero).
 fn direction_of(change: f64) -> f64 {
     if change < 0.0 {
         -1.0
     } else {
         1.0
+    }
+}
+
+/// p(r), q(r) and stick status along x at one path position (traction zero before tangential
+/// loading starts).
+fn surface_field(
+    scene: &Scene,
+    position: usize,
+    delta_n: f64,
+    masing: Option<&Masing>,
+    stick_radius: Option<f64>,
+) -> SurfaceField {
+    let hertz = scene.hertz();
+    let c = hertz.contact_radius(delta_n);
+    let scale = scene.friction * hertz.peak_pressure(delta_n) / c;
+    let spacing = 1.05 * scene.max_contact_radius() / (FIELD_POINTS - 1) as f64;
+    let radii: Vec<f64> = (0..FIELD_POINTS).map(|k| k as f64 * spacing).collect();
+    let traction = |r: f64| masing.map_or(0.0, |m| scale * m.traction_shape(r, c));
+    SurfaceField {
+        position,
+        points: radii.iter().map(|&r| [r, 0.0]).collect(),
+        pressure: radii.iter().map(|&r| hertz.pressure(delta_n, r)).collect(),
+        traction: Some(radii.iter().map(|&r| [traction(r), 0.0]).collect()),
+        stick: Some(radii.iter().map(|&r| r < stick_radius.unwrap_or(c)).collect()),
     }
 }
 
@@ -169,6 +238,7 @@ impl Solver for CattaneoMindlin {
         let steps = scene.steps();
         let origin = steps[0].delta_t;
         let mut masing: Option<Masing> = None;
+        let mut fields = Vec::new();
         let rows = steps
             .iter()
             .map(|step| {
@@ -192,11 +262,16 @@ impl Solver for CattaneoMindlin {
                     });
                     let (q, shed) = state.move_to(step.delta_t - origin);
                     row.tangential_force = Some(q);
-                    row.stick_radius = Some(if sliding_force > 0.0 && shed < sliding_force {
-                        c * (1.0 - shed / sliding_force).cbrt()
-                    } else {
-                        0.0
-                    });
+                    row.stick_radius = Some(stick_radius(c, shed, sliding_force));
+                }
+                if let (Some(position), true) = (step.position, c > 0.0) {
+                    fields.push(surface_field(
+                        scene,
+                        position,
+                        step.delta_n,
+                        masing.as_ref(),
+                        row.stick_radius,
+                    ));
                 }
                 row
             })
@@ -208,7 +283,110 @@ impl Solver for CattaneoMindlin {
                 ..Metadata::default()
             },
             steps: rows,
-            fields: Vec::new(),
+            fields,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analytic::hertz::Hertz;
+    use crate::pair::{Body, ContactPair, Material};
+    use approx::assert_relative_eq;
+
+    /// The paper's spheres at δn = 17 µm: P = 803.76 N, c = 0.92195 mm, μ = 0.2.
+    fn paper_contact() -> (Hertz, ContactPair, f64) {
+        let body = Body {
+            radius: 0.1,
+            material: Material {
+                young: 70e9,
+                poisson: 0.3,
+            },
+        };
+        let pair = ContactPair {
+            body1: body,
+            body2: body,
+        };
+        (Hertz::of(&pair), pair, 17e-6)
+    }
+
+    fn masing() -> (Masing, f64, f64) {
+        let (hertz, pair, delta) = paper_contact();
+        let (p, c) = (hertz.force(delta), hertz.contact_radius(delta));
+        let sliding_force = 0.2 * p;
+        let curve = VirginCurve {
+            sliding_force,
+            sliding_displacement: 3.0 * sliding_force / (16.0 * c * pair.mindlin_shear_modulus()),
+        };
+        (Masing::new(curve), c, hertz.peak_pressure(delta))
+    }
+
+    /// ∫ q 2πr dr by the midpoint rule on 20 000 rings (the square-root edges limit it to ~1e-5).
+    fn integrated(m: &Masing, c: f64, p0: f64) -> f64 {
+        let n = 20_000;
+        let dr = c / n as f64;
+        let scale = 0.2 * p0 / c;
+        (0..n)
+            .map(|i| {
+                let r = (i as f64 + 0.5) * dr;
+                scale * m.traction_shape(r, c) * 2.0 * std::f64::consts::PI * r * dr
+            })
+            .sum()
+    }
+
+    #[test]
+    fn traction_integrates_to_the_force_on_every_branch() {
+        // Virgin loading, unloading past zero, reloading: a Masing loop, then a nested one.
+        let (mut m, c, p0) = masing();
+        for delta in [1.5e-6, 3.0e-6, -1.0e-6, 0.5e-6, -0.2e-6, 2.0e-6, 6.0e-6, -7.0e-6] {
+            let (q, _) = m.move_to(delta);
+            // Tolerance: the rings' midpoint rule at the √ edges of c and c_s, ~1e-5 of μP.
+            assert_relative_eq!(integrated(&m, c, p0), q, epsilon = 1e-5 * m.curve.sliding_force);
+        }
+    }
+
+    #[test]
+    fn traction_never_exceeds_coulomb_and_equals_it_in_the_slip_annulus() {
+        let (mut m, c, p0) = masing();
+        let hertz_p = |r: f64| p0 * (1.0 - (r / c).powi(2)).max(0.0).sqrt();
+        let scale = 0.2 * p0 / c;
+        for delta in [2.0e-6, -1.0e-6, 1.0e-6, 5.0e-6] {
+            m.move_to(delta);
+            for k in 0..200 {
+                let r = c * k as f64 / 200.0;
+                let q = scale * m.traction_shape(r, c);
+                assert!(
+                    q.abs() <= 0.2 * hertz_p(r) * (1.0 + 1e-12) + 1e-9,
+                    "|q({r})| = {q}"
+                );
+            }
+        }
+        // Virgin loading to δ = 2 µm: slip annulus c_s < r < c carries exactly μp.
+        let (mut m, c, p0) = masing();
+        let (q, _) = m.move_to(2.0e-6);
+        let stick = stick_radius(c, q.abs(), m.curve.sliding_force);
+        for k in 1..10 {
+            let r = stick + (c - stick) * k as f64 / 10.0;
+            assert_relative_eq!(
+                scale * m.traction_shape(r, c),
+                0.2 * hertz_p(r),
+                max_relative = 1e-12
+            );
+        }
+    }
+
+    #[test]
+    fn masing_memory_rejoins_the_virgin_curve() {
+        // Load to 2 µm, unload to 1 µm, reload past 2 µm: beyond it Q is on the virgin curve.
+        let (mut m, _, _) = masing();
+        m.move_to(2.0e-6);
+        m.move_to(1.0e-6);
+        let (q, _) = m.move_to(3.0e-6);
+        assert_relative_eq!(q, m.curve.force(3.0e-6), max_relative = 1e-12);
+        assert!(m.reversals.is_empty(), "the closed loop is forgotten");
+        // First unloading branch reaches the mirror point and continues on the virgin curve.
+        let (q, _) = m.move_to(-3.5e-6);
+        assert_relative_eq!(q, -m.curve.force(3.5e-6), max_relative = 1e-12);
     }
 }
