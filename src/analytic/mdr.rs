@@ -19,13 +19,29 @@
 //! its radius is the innermost slipping spring (c when none slips, 0 in gross sliding); in the
 //! MDR that 1D radius equals the 3D stick radius.
 //!
+//! Surface tractions come back from the bed by the MDR inverse transform (Popov & Heß 2015,
+//! eqs. 3.22 and 4.27): with the linear force densities f_z = E* w and f_x = G̃ u,
+//!
+//! ```text
+//! p(r) = −(1/π) ∫_r^∞ f_z'(x) / √(x² − r²) dx,    q(r) = −(1/π) ∫_r^∞ f_x'(x) / √(x² − r²) dx.
+//! ```
+//! They are evaluated at path positions only, with f linear between the nodes of the bed
+//! averaged in blocks down to at most `TRANSFORM_NODES` nodes, so that each segment integrates
+//! in closed form: ∫ dx / √(x² − r²) = ln(x + √(x² − r²)).
+//!
 //! Discretisation: springs at the midpoints of `springs` equal cells on [0, 1.05 c_max] (the
 //! problem is even in x, so one half is modelled and doubled). P then has a relative error of
 //! order (Δx/c)², from the one cell cut by the contact edge.
 
-use crate::history::{History, Metadata, StepResult};
+use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
+
+/// Most nodes of the bed used by the inverse transform (a block average of the springs).
+const TRANSFORM_NODES: usize = 500;
+
+/// Sample points of the surface fields along x.
+const FIELD_POINTS: usize = 101;
 
 /// Partial sums kept apart in the spring loop.
 const LANES: usize = 4;
@@ -139,6 +155,60 @@ impl SpringBed {
     }
 }
 
+impl SpringBed {
+    /// p(r) and q(r) at the radii `radii` by the inverse transform, for approach `delta_n`.
+    fn tractions(&self, delta_n: f64, radii: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let block = self.u.len().div_ceil(TRANSFORM_NODES);
+        let nodes: Vec<(f64, f64, f64)> = self
+            .u
+            .chunks(block)
+            .zip(self.profile.chunks(block))
+            .enumerate()
+            .map(|(j, (u, g))| {
+                let x = (j as f64 + 0.5) * block as f64 * self.dx;
+                let mean = |values: &mut dyn Iterator<Item = f64>| values.sum::<f64>() / u.len() as f64;
+                let w = mean(&mut g.iter().map(|g| (delta_n - g).max(0.0)));
+                (
+                    x,
+                    self.normal_modulus * w,
+                    self.tangential_modulus * mean(&mut u.iter().copied()),
+                )
+            })
+            .collect();
+        let transform = |r: f64, density: fn(&(f64, f64, f64)) -> f64| {
+            let antiderivative = |x: f64| (x + (x * x - r * r).max(0.0).sqrt()).ln();
+            let integral: f64 = nodes
+                .windows(2)
+                .filter(|pair| pair[1].0 > r)
+                .map(|pair| {
+                    let (a, b) = (&pair[0], &pair[1]);
+                    let slope = (density(b) - density(a)) / (b.0 - a.0);
+                    slope * (antiderivative(b.0) - antiderivative(a.0.max(r)))
+                })
+                .sum();
+            -integral / std::f64::consts::PI
+        };
+        radii
+            .iter()
+            .map(|&r| (transform(r, |n| n.1), transform(r, |n| n.2)))
+            .unzip()
+    }
+
+    /// The surface field at a path position.
+    fn surface_field(&self, position: usize, delta_n: f64, stick_radius: f64) -> SurfaceField {
+        let spacing = self.u.len() as f64 * self.dx / (FIELD_POINTS - 1) as f64;
+        let radii: Vec<f64> = (0..FIELD_POINTS).map(|k| k as f64 * spacing).collect();
+        let (pressure, traction) = self.tractions(delta_n, &radii);
+        SurfaceField {
+            position,
+            points: radii.iter().map(|&r| [r, 0.0]).collect(),
+            pressure,
+            traction: Some(traction.into_iter().map(|q| [q, 0.0]).collect()),
+            stick: Some(radii.iter().map(|&r| r < stick_radius).collect()),
+        }
+    }
+}
+
 impl Solver for Mdr {
     fn name(&self) -> &'static str {
         "mdr"
@@ -152,6 +222,7 @@ impl Solver for Mdr {
         let hertz = scene.hertz();
         let steps = scene.steps();
         let mut rows = Vec::with_capacity(steps.len());
+        let mut fields = Vec::new();
         if scene.max_contact_radius() > 0.0 {
             let mut bed = SpringBed::new(scene, self.springs.max(1));
             let mut previous_t = steps[0].delta_t;
@@ -159,6 +230,9 @@ impl Solver for Mdr {
                 let state = bed.advance(step.delta_n, step.delta_t - previous_t);
                 previous_t = step.delta_t;
                 let in_contact = step.delta_n > 0.0;
+                if let (Some(position), true) = (step.position, in_contact) {
+                    fields.push(bed.surface_field(position, step.delta_n, state.stick_radius));
+                }
                 rows.push(StepResult {
                     normal_force: Some(state.normal_force),
                     tangential_force: Some(state.tangential_force),
@@ -187,7 +261,7 @@ impl Solver for Mdr {
                 ..Metadata::default()
             },
             steps: rows,
-            fields: Vec::new(),
+            fields,
         })
     }
 }
