@@ -198,3 +198,146 @@ impl TangentialLaw for MdIncremental {
         self.turning_points.clear();
     }
 }
+
+/// Scenes and increments for the laws' unit tests.
+#[cfg(test)]
+pub(crate) mod fixtures {
+    use super::super::incremental::{Increment, NormalState};
+    use crate::pair::{Body, ContactPair, Material};
+    use crate::path::{LoadingPath, Position};
+    use crate::scene::Scene;
+
+    /// The paper's spheres (R = 0.1 m, E = 70 GPa, ν = 0.3) with μ = 0.2.
+    pub fn paper_scene() -> Scene {
+        let body = Body {
+            radius: 0.1,
+            material: Material {
+                young: 70e9,
+                poisson: 0.3,
+            },
+        };
+        let origin = Position {
+            delta_n: 0.0,
+            delta_t: 0.0,
+        };
+        Scene {
+            name: "unit".into(),
+            pair: ContactPair {
+                body1: body,
+                body2: body,
+            },
+            friction: 0.2,
+            path: LoadingPath::try_new(vec![origin], vec![]).expect("one position"),
+        }
+    }
+
+    /// The increment from approach `from` to `to` [m] with tangential increment `delta_t` [m].
+    pub fn increment(scene: &Scene, from: f64, to: f64, delta_t: f64) -> Increment {
+        let hertz = scene.hertz();
+        let state = |d: f64| NormalState {
+            force: hertz.force(d),
+            radius: hertz.contact_radius(d),
+        };
+        Increment {
+            before: state(from),
+            after: state(to),
+            delta_t,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixtures::{increment, paper_scene};
+    use super::*;
+    use approx::assert_relative_eq;
+
+    const UM: f64 = 1e-6;
+
+    #[test]
+    fn normal_loading_without_tangential_motion_gives_no_force() {
+        // Requirement: Mindlin & Deresiewicz's no-slip case; without it the μΔN(1 − θ) term
+        // would give Q = μΔN at δt = 0 on the first increment (θ = 0 when N_before = 0).
+        // Exact: 0.
+        let scene = paper_scene();
+        for evaluation in [Evaluation::EndWithShift, Evaluation::Start] {
+            let mut law = MdIncremental::new(&scene, Memory::Masing, evaluation);
+            for k in 1..50 {
+                let (from, to) = (k as f64 * 0.3 * UM, (k + 1) as f64 * 0.3 * UM);
+                assert_eq!(law.advance(&increment(&scene, from, to, 0.0)), 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn oblique_increment_is_continuous_at_the_no_slip_limit() {
+        // Requirement: the no-slip line ΔT = k0Δδ and the slip line k0θΔδ + dμΔN(1 − θ) meet at
+        // k0|Δδ| = μΔN. Reference: k0Δδ at the limit. Tolerance: 1e-12 relative (rounding),
+        // from a loaded state (T = 0.5 μN) with an increment just either side of the limit.
+        let scene = paper_scene();
+        let hertz = scene.hertz();
+        let (from, to) = (17.0 * UM, 17.1 * UM);
+        let mu_dn = scene.friction * (hertz.force(to) - hertz.force(from));
+        let k0 = 8.0 * scene.pair.mindlin_shear_modulus() * hertz.contact_radius(to);
+        let limit = mu_dn / k0;
+        let start = |law: &mut MdIncremental| {
+            let t = 0.5 * scene.friction * hertz.force(from);
+            law.force = t;
+            law.direction = 1.0;
+        };
+        let mut below = MdIncremental::new(&scene, Memory::Masing, Evaluation::EndWithShift);
+        let mut above = below.clone();
+        start(&mut below);
+        start(&mut above);
+        let t0 = below.force;
+        let q_below = below.advance(&increment(&scene, from, to, limit * (1.0 - 1e-13)));
+        let q_above = above.advance(&increment(&scene, from, to, limit * (1.0 + 1e-13)));
+        assert_relative_eq!(q_below - t0, mu_dn, max_relative = 1e-12);
+        assert_relative_eq!(q_above - t0, mu_dn, max_relative = 1e-12);
+    }
+
+    #[test]
+    fn turning_points_drift_with_the_normal_force() {
+        // Requirement: Thornton's T* ← T* + μΔN, T** ← T** − μΔN. Exact up to rounding (1e-12).
+        let scene = paper_scene();
+        let mut law = MdIncremental::new(&scene, Memory::Masing, Evaluation::EndWithShift);
+        let d = 17.0 * UM;
+        law.advance(&increment(&scene, d, d, 0.5 * UM)); // load
+        law.advance(&increment(&scene, d, d, -0.2 * UM)); // unload: T* recorded
+        law.advance(&increment(&scene, d, d, 0.1 * UM)); // reload: T** recorded
+        let [t_star, t_star_star] = [law.turning_points[0].force, law.turning_points[1].force];
+        let hertz = scene.hertz();
+        let mu_dn = scene.friction * (hertz.force(17.2 * UM) - hertz.force(d));
+        law.advance(&increment(&scene, d, 17.2 * UM, 0.0));
+        assert_relative_eq!(
+            law.turning_points[0].force,
+            t_star + mu_dn,
+            max_relative = 1e-12
+        );
+        assert_relative_eq!(
+            law.turning_points[1].force,
+            t_star_star - mu_dn,
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn thornton_forgets_the_older_loop_and_masing_does_not() {
+        // Requirement: with T* and T** only, a reversal during reloading replaces T* by the
+        // current force; Masing memory keeps the whole stack. Exact: stack sizes and contents.
+        let scene = paper_scene();
+        let d = 17.0 * UM;
+        let strokes = [0.6, -0.3, 0.2, -0.1];
+        let run = |memory| {
+            let mut law = MdIncremental::new(&scene, memory, Evaluation::EndWithShift);
+            for s in strokes {
+                law.advance(&increment(&scene, d, d, s * UM));
+            }
+            law
+        };
+        let (thornton, masing) = (run(Memory::TwoTurningPoints), run(Memory::Masing));
+        assert_eq!(masing.turning_points.len(), 3);
+        assert_eq!(thornton.turning_points.len(), 1);
+        assert_eq!(thornton.turning_points[0], masing.turning_points[2]);
+    }
+}

@@ -95,3 +95,59 @@ impl TangentialLaw for WaltonBraun {
         self.direction = 0.0;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::md_incremental::fixtures::{increment, paper_scene};
+    use super::*;
+    use approx::assert_relative_eq;
+
+    const UM: f64 = 1e-6;
+
+    #[test]
+    fn first_increment_has_mindlins_initial_stiffness() {
+        // Requirement: k_t0 = 8G*a at the current radius and T* = 0 on a fresh contact.
+        // Reference: 8G*aΔδ. Tolerance: 1e-14 (one product).
+        let scene = paper_scene();
+        let mut law = WaltonBraun::new(&scene);
+        let step = increment(&scene, 17.0 * UM, 17.0 * UM, 1e-3 * UM);
+        let k0 = 8.0 * scene.pair.mindlin_shear_modulus() * step.after.radius;
+        assert_relative_eq!(law.advance(&step), k0 * 1e-9, max_relative = 1e-14);
+    }
+
+    #[test]
+    fn reversal_force_is_recorded_and_scaled_with_the_normal_force() {
+        // Requirement: T* = T at a reversal (Walton & Braun 1986), T* ← T* N/N_old when N changes
+        // (Walton 1993), T itself unchanged at Δδ = 0 below the Coulomb limit. Exact up to
+        // rounding (1e-12).
+        let scene = paper_scene();
+        let mut law = WaltonBraun::new(&scene);
+        let d = 17.0 * UM;
+        let loaded = law.advance(&increment(&scene, d, d, 0.5 * UM));
+        assert_eq!(law.reversal_force, 0.0);
+        law.advance(&increment(&scene, d, d, -0.1 * UM));
+        assert_eq!(law.reversal_force, loaded);
+        let t = law.force;
+        let step = increment(&scene, d, 20.0 * UM, 0.0);
+        assert_eq!(law.advance(&step), t);
+        assert_relative_eq!(
+            law.reversal_force,
+            loaded * step.after.force / step.before.force,
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn unloading_softens_towards_the_opposite_limit() {
+        // Requirement: on unloading the stiffness is k_t0 (1 − (T* − T)/(μN + T*))^{1/3}: k_t0 at
+        // the reversal and 0 at T = −μN. Reference: the formula at T = T* and at T = −μN.
+        let scene = paper_scene();
+        let mut law = WaltonBraun::new(&scene);
+        let limit = scene.friction * scene.hertz().force(17.0 * UM);
+        law.force = 0.4 * limit;
+        law.reversal_force = 0.4 * limit;
+        assert_eq!(law.softening(-1.0, limit), 1.0);
+        law.force = -limit;
+        assert_eq!(law.softening(-1.0, limit), 0.0);
+    }
+}
