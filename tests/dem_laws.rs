@@ -236,7 +236,7 @@ fn separation_gives_no_force_and_erases_the_history() {
     // with no memory: its forces equal, exactly, those of the same closing on a fresh contact.
     let loaded = [(0.0, 0.0), (17.0 * UM, 0.0), (17.0 * UM, 2.0 * UM)];
     let reopen = [
-        (-1.0 * UM, 2.0 * UM),
+        (-UM, 2.0 * UM),
         (17.0 * UM, 2.0 * UM),
         (15.0 * UM, 3.0 * UM),
     ];

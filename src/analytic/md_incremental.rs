@@ -19,7 +19,7 @@
 //! a proportional part μΔN, taken with no slip (compliance 1/k0), plus a tangential part
 //! ΔT − dμΔN at constant normal load (compliance 1/(k0θ)); so Δδ = dμΔN/k0 + (ΔT − dμΔN)/(k0θ).
 //! Written with (−1)^k for loading (k = 0), unloading (1) and reloading (2) it is Thornton's form
-//! ΔT = 8G*aθΔδ + (−1)^k μΔN(1 − θ). The first line is M&D's case |ΔT| < μΔN (no slip anywhere);
+//! ΔT = 8G*aθΔδ + (−1)^k μΔN(1 − θ). The first line is M&D's case |ΔT| ≤ μΔN (no slip anywhere);
 //! the two lines meet at k0|Δδ| = μΔN, so the force is continuous in Δδ.
 //!
 //! The stick factor θ is the cube root of the unslipped fraction of the branch's load capacity:
@@ -39,8 +39,13 @@
 //! the turning point before its own start closes its loop (Masing–Madelung), and the first branch
 //! off the virgin curve becomes the virgin curve of the opposite direction at −T_r. How many
 //! turning points are remembered is the [`Memory`]. Every increment ends with the Coulomb cap
-//! |T| ≤ μN; θ³ is clamped to [0, 1] so that no root of a negative number is taken (it only
-//! leaves that range through the cap or rounding).
+//! |T| ≤ μN. θ³ is clamped to [0, 1]: above 1 it would mean a stiffness beyond k0 (it happens
+//! when ΔN < 0 at small T with the shift s, and θ = 1 is then the no-slip limit), below 0 a root
+//! of a negative number (only after the cap or by rounding).
+//!
+//! Sources: Mindlin & Deresiewicz (1953, J. Appl. Mech. 20, 327) for the oblique increments and
+//! their no-slip case (also Johnson 1985, *Contact Mechanics*, ch. 7); Thornton (1991) for the
+//! loading / unloading / reloading form with T*, T** and their drift.
 
 use super::incremental::{coulomb_cap, Increment, TangentialLaw};
 use crate::scene::Scene;

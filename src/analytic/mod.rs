@@ -8,7 +8,7 @@
 //! | `mdr` | method of dimensionality reduction | exact Mindlin–Deresiewicz |
 //! | `hertz-mindlin-spring` | no-slip spring with Coulomb cap | approximate (DEM) |
 //! | `thornton` | Thornton (1991): M–D increments, T*, T** | approximate (DEM) |
-//! | `zhang-vu-quoc` | M–D incremental cases (Vu-Quoc & Zhang), Masing memory | approximate (DEM) |
+//! | `zhang-vu-quoc` | M–D incremental cases under Zhang & Vu-Quoc, Masing memory | approximate (DEM) |
 //! | `walton-braun` | Walton & Braun (1986), T* scaled with N | approximate (DEM) |
 
 pub mod cattaneo_mindlin;
@@ -45,7 +45,7 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
         Box::new(IncrementalSolver {
             name: "zhang-vu-quoc",
             description:
-                "Mindlin–Deresiewicz incremental cases (as tabulated by Vu-Quoc & Zhang), \
+                "Mindlin–Deresiewicz incremental cases that Zhang & Vu-Quoc build on, \
                           displacement-driven, Masing memory; not Zhang & Vu-Quoc's own refinements",
             make_law: |scene| Box::new(zhang_vu_quoc::law(scene)),
         }),

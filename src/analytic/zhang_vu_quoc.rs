@@ -2,8 +2,9 @@
 //! 225, 730–752) build their displacement-driven law — not their law itself.
 //!
 //! What is implemented: the force-driven incremental relations of Mindlin & Deresiewicz (1953)
-//! for a Hertz contact, as Vu-Quoc & Zhang (1999, Mech. Mater. 31, 235) tabulate them for normal
-//! force constant / increasing / decreasing × tangential force increasing / decreasing,
+//! for a Hertz contact, in the cases (normal force constant / increasing / decreasing ×
+//! tangential force increasing / decreasing) from which Vu-Quoc & Zhang (1999, Mech. Mater. 31,
+//! 235) and Zhang & Vu-Quoc (2007) start,
 //!
 //! ```text
 //! ΔN > 0, |ΔT| ≤ μΔN:   Δδ = ΔT / (8G*a)                                    (no slip)
