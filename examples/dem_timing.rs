@@ -18,7 +18,7 @@ const RUNS: usize = 21;
 const SOLVERS: [&str; 5] = [
     "hertz-mindlin-spring",
     "thornton",
-    "zhang-vu-quoc",
+    "md-incremental",
     "walton-braun",
     "mdr",
 ];
@@ -27,9 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/paper-fig7.toml");
     let scene = Case::load(&file)?.scene;
     let increments = scene.steps().len() - 1;
-    println!(
-        "paper-fig7: {increments} increments; median of {RUNS} solves (release build expected)"
-    );
+    println!("paper-fig7: {increments} increments; median of {RUNS} solves (release build expected)");
     for name in SOLVERS {
         let solver = solver::by_name(name).ok_or_else(|| format!("{name} is not registered"))?;
         let mut times: Vec<f64> = (0..RUNS)

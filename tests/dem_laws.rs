@@ -15,12 +15,12 @@ use spherecontact::solver;
 const LAWS: [&str; 4] = [
     "hertz-mindlin-spring",
     "thornton",
-    "zhang-vu-quoc",
+    "md-incremental",
     "walton-braun",
 ];
 
 /// The laws whose virgin curve and Masing unloading are Cattaneo–Mindlin's at constant load.
-const MINDLIN_LAWS: [&str; 2] = ["thornton", "zhang-vu-quoc"];
+const MINDLIN_LAWS: [&str; 2] = ["thornton", "md-incremental"];
 
 const UM: f64 = 1e-6;
 
@@ -28,10 +28,7 @@ const UM: f64 = 1e-6;
 fn pair(poisson: f64) -> ContactPair {
     let body = Body {
         radius: 0.1,
-        material: Material {
-            young: 70e9,
-            poisson,
-        },
+        material: Material { young: 70e9, poisson },
     };
     ContactPair {
         body1: body,
@@ -168,10 +165,7 @@ fn walton_braun_unloading_is_not_masing() {
     let coarse = error_against_cattaneo("walton-braun", &[0.6, -0.6], 100);
     let fine = error_against_cattaneo("walton-braun", &[0.6, -0.6], 1000);
     assert!(fine > 1e-2, "error {fine:.3e}");
-    assert!(
-        (coarse / fine - 1.0).abs() < 0.1,
-        "{coarse:.3e} → {fine:.3e}"
-    );
+    assert!((coarse / fine - 1.0).abs() < 0.1, "{coarse:.3e} → {fine:.3e}");
 }
 
 /// Asserts |Q| ≤ μP (1 + 1e-12) at every step of `history`.
@@ -223,10 +217,7 @@ fn no_friction_gives_no_tangential_force() {
     let mut paper = paper_scene();
     paper.friction = 0.0;
     for law in LAWS {
-        assert!(
-            tangential(&solve(law, &paper)).iter().all(|&q| q == 0.0),
-            "{law}"
-        );
+        assert!(tangential(&solve(law, &paper)).iter().all(|&q| q == 0.0), "{law}");
     }
 }
 
@@ -235,22 +226,13 @@ fn separation_gives_no_force_and_erases_the_history() {
     // Requirement: while δn ≤ 0 the force is zero, and the contact that closes afterwards starts
     // with no memory: its forces equal, exactly, those of the same closing on a fresh contact.
     let loaded = [(0.0, 0.0), (17.0 * UM, 0.0), (17.0 * UM, 2.0 * UM)];
-    let reopen = [
-        (-UM, 2.0 * UM),
-        (17.0 * UM, 2.0 * UM),
-        (15.0 * UM, 3.0 * UM),
-    ];
+    let reopen = [(-UM, 2.0 * UM), (17.0 * UM, 2.0 * UM), (15.0 * UM, 3.0 * UM)];
     let with_history = scene(0.3, 0.2, &[&loaded[..], &reopen[..]].concat(), vec![20; 5]);
     let fresh = scene(0.3, 0.2, &reopen, vec![20; 2]);
     for law in LAWS {
         let history = solve(law, &with_history);
         for row in history.steps.iter().filter(|r| r.delta_n <= 0.0) {
-            assert_eq!(
-                row.tangential_force,
-                Some(0.0),
-                "{law} at step {}",
-                row.step
-            );
+            assert_eq!(row.tangential_force, Some(0.0), "{law} at step {}", row.step);
         }
         let q = tangential(&history);
         let tail = &q[q.len() - 41..]; // from the open position on
@@ -294,10 +276,7 @@ fn grazing_contact_and_incompressible_material_give_finite_forces() {
 /// u and w of every annulus fall in the same ratio, so all still stick and Q = (4G*α/E*) P.
 fn proportional_error(law: &str, alpha_over_critical: f64, through: &[f64], m: usize) -> f64 {
     let probe = scene(0.3, 0.2, &[(0.0, 0.0)], vec![]);
-    let (e_star, g_star) = (
-        probe.pair.effective_modulus(),
-        probe.pair.mindlin_shear_modulus(),
-    );
+    let (e_star, g_star) = (probe.pair.effective_modulus(), probe.pair.mindlin_shear_modulus());
     let critical = probe.friction * e_star / (4.0 * g_star);
     let alpha = alpha_over_critical * critical;
     let mut positions = vec![(0.0, 0.0)];
@@ -327,7 +306,7 @@ fn proportional_oblique_loading_follows_mindlin_deresiewicz() {
     // and Q = μP (sliding from the start) for α > α_c.
     // Reference: that closed form. Tolerance: sliding is reproduced to rounding (1e-12 μP);
     // the stick case integrates k0 = 8G*a explicitly with a at the end of each increment
-    // (Thornton) or at its start (zhang-vu-quoc), a first-order error: rate in [0.9, 1.1]
+    // (Thornton) or at its start (md-incremental), a first-order error: rate in [0.9, 1.1]
     // between 1000 and 10 000 increments per 17 µm (coarser, Thornton's is still pre-asymptotic),
     // error below 1e-4 μP at 10 000 (measured 5.4e-5 and 5.5e-5).
     for law in MINDLIN_LAWS {

@@ -314,11 +314,7 @@ mod tests {
         let hertz = scene.hertz();
         let mu_dn = scene.friction * (hertz.force(17.2 * UM) - hertz.force(d));
         law.advance(&increment(&scene, d, 17.2 * UM, 0.0));
-        assert_relative_eq!(
-            law.turning_points[0].force,
-            t_star + mu_dn,
-            max_relative = 1e-12
-        );
+        assert_relative_eq!(law.turning_points[0].force, t_star + mu_dn, max_relative = 1e-12);
         assert_relative_eq!(
             law.turning_points[1].force,
             t_star_star - mu_dn,

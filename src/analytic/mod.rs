@@ -8,18 +8,18 @@
 //! | `mdr` | method of dimensionality reduction | exact Mindlin–Deresiewicz |
 //! | `hertz-mindlin-spring` | no-slip spring with Coulomb cap | approximate (DEM) |
 //! | `thornton` | Thornton (1991): M–D increments, T*, T** | approximate (DEM) |
-//! | `zhang-vu-quoc` | M–D incremental cases under Zhang & Vu-Quoc, Masing memory | approximate (DEM) |
+//! | `md-incremental` | Mindlin–Deresiewicz incremental cases (the basis of Zhang & Vu-Quoc 2007), Masing memory | approximate (DEM) |
 //! | `walton-braun` | Walton & Braun (1986), T* scaled with N | approximate (DEM) |
 
 pub mod cattaneo_mindlin;
 pub mod hertz;
 pub mod hertz_mindlin_spring;
 pub mod incremental;
+pub mod md_cases;
 pub mod md_incremental;
 pub mod mdr;
 pub mod thornton;
 pub mod walton_braun;
-pub mod zhang_vu_quoc;
 
 use crate::solver::Solver;
 use incremental::IncrementalSolver;
@@ -37,21 +37,18 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
         }),
         Box::new(IncrementalSolver {
             name: "thornton",
-            description:
-                "Thornton (1991): Mindlin–Deresiewicz increments with θ, T*, T** and μΔN(1−θ)",
+            description: "Thornton (1991): Mindlin–Deresiewicz increments with θ, T*, T** and μΔN(1−θ)",
             make_law: |scene| Box::new(thornton::law(scene)),
         }),
         Box::new(IncrementalSolver {
-            name: "zhang-vu-quoc",
-            description:
-                "Mindlin–Deresiewicz incremental cases that Zhang & Vu-Quoc build on, \
+            name: "md-incremental",
+            description: "Mindlin–Deresiewicz incremental cases that Zhang & Vu-Quoc build on, \
                           displacement-driven, Masing memory; not Zhang & Vu-Quoc's own refinements",
-            make_law: |scene| Box::new(zhang_vu_quoc::law(scene)),
+            make_law: |scene| Box::new(md_cases::law(scene)),
         }),
         Box::new(IncrementalSolver {
             name: "walton-braun",
-            description:
-                "Walton & Braun (1986): softening k_t from the last reversal, T* scaled with N",
+            description: "Walton & Braun (1986): softening k_t from the last reversal, T* scaled with N",
             make_law: |scene| Box::new(walton_braun::WaltonBraun::new(scene)),
         }),
     ]

@@ -81,8 +81,7 @@ impl TangentialLaw for WaltonBraun {
                 self.reversal_force = self.force;
             }
             self.direction = direction;
-            let stiffness =
-                8.0 * self.shear_modulus * after.radius * self.softening(direction, limit);
+            let stiffness = 8.0 * self.shear_modulus * after.radius * self.softening(direction, limit);
             self.force += stiffness * delta;
         }
         self.force = coulomb_cap(self.force, self.friction, after.force);

@@ -1,5 +1,7 @@
-//! The Mindlin–Deresiewicz incremental cases on which Zhang & Vu-Quoc (2007, J. Comput. Phys.
-//! 225, 730–752) build their displacement-driven law — not their law itself.
+//! `md-incremental`: the Mindlin–Deresiewicz incremental cases on which Zhang & Vu-Quoc (2007,
+//! J. Comput. Phys. 225, 730–752) build their displacement-driven law — not their law itself,
+//! which is why it does not carry their name. (These are the "loading spring constants given by
+//! Zhang and Quoc" that the reproduced paper compares its FEM with.)
 //!
 //! What is implemented: the force-driven incremental relations of Mindlin & Deresiewicz (1953)
 //! for a Hertz contact, in the cases (normal force constant / increasing / decreasing ×
