@@ -205,19 +205,23 @@ fn bench(case: &Path, solvers: &[String], repeat: usize) -> Result<ExitCode, Inp
     }
     let increments = case.scene.steps().len() - 1;
     println!(
-        "bench {}: {increments} increments, {repeat} timed runs each (median, min, max)",
+        "bench {}: {increments} increments, {repeat} timed runs each, interleaved",
         case.name()
     );
     let mut code = ExitCode::SUCCESS;
     for result in spherecontact::bench::time_solvers(&plan, &case.scene, repeat) {
         match result {
-            Ok(t) => println!(
-                "  {:<22} median {:>10.3} ms   min {:>10.3} ms   max {:>10.3} ms",
-                t.solver,
-                t.median() * 1e3,
-                t.seconds[0] * 1e3,
-                t.seconds[t.seconds.len() - 1] * 1e3
-            ),
+            Ok(t) => {
+                let ms = |seconds: &[f64]| spherecontact::bench::median(seconds) * 1e3;
+                println!(
+                    "  {:<22} median wall {:>10.3} ms   median CPU {:>10.3} ms   (wall min {:.3}, max {:.3} ms)",
+                    t.solver,
+                    ms(&t.seconds),
+                    ms(&t.cpu_seconds),
+                    t.seconds[0] * 1e3,
+                    t.seconds[t.seconds.len() - 1] * 1e3
+                )
+            }
             Err((name, e)) => {
                 println!("  {name:<22} {e}");
                 code = ExitCode::FAILURE;

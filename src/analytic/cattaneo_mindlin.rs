@@ -363,7 +363,7 @@ mod tests {
             }
         }
         // Virgin loading to δ = 2 µm: slip annulus c_s < r < c carries exactly μp.
-        let (mut m, c, p0) = masing();
+        let (mut m, c, _) = masing(); // the same contact: hertz_p and scale still apply
         let (q, _) = m.move_to(2.0e-6);
         let stick = stick_radius(c, q.abs(), m.curve.sliding_force);
         for k in 1..10 {

@@ -44,7 +44,7 @@ const TRANSFORM_NODES: usize = 500;
 const FIELD_POINTS: usize = 101;
 
 /// Partial sums kept apart in the spring loop.
-const LANES: usize = 4;
+const LANES: usize = 8;
 
 /// Springs beyond the largest contact radius, as a fraction of it: keeps the contact edge inside
 /// the window at every step.
@@ -126,7 +126,7 @@ impl SpringBed {
         }
         self.touched = in_contact;
         let slip_ratio = self.friction * self.normal_modulus / self.tangential_modulus;
-        // Four independent partial sums of u: a serial float sum would bind the loop to the
+        // Independent partial sums of u: a serial float sum would bind the loop to the
         // latency of one addition per spring.
         let mut lanes = [0.0_f64; LANES];
         let mut innermost_slip = usize::MAX;
@@ -134,13 +134,17 @@ impl SpringBed {
             .chunks_mut(LANES)
             .zip(self.profile.chunks(LANES));
         for (c, (u_chunk, g_chunk)) in chunks.enumerate() {
+            // Which lanes slipped, as bits: no branch inside the chunk.
+            let mut slipped = 0_u32;
             for (lane, (u, g)) in u_chunk.iter_mut().zip(g_chunk).enumerate() {
                 let limit = slip_ratio * (delta_n - g);
                 let trial = *u + increment_t;
                 *u = trial.clamp(-limit, limit);
-                // Branch-free minimum, so that the loop stays vectorisable.
-                innermost_slip = innermost_slip.min(if *u == trial { usize::MAX } else { c * LANES + lane });
+                slipped |= u32::from(*u != trial) << lane;
                 lanes[lane] += *u;
+            }
+            if slipped != 0 && innermost_slip == usize::MAX {
+                innermost_slip = c * LANES + slipped.trailing_zeros() as usize;
             }
         }
         let tangential: f64 = lanes.iter().sum();
@@ -175,22 +179,31 @@ impl SpringBed {
                 )
             })
             .collect();
-        let transform = |r: f64, density: fn(&(f64, f64, f64)) -> f64| {
-            let antiderivative = |x: f64| (x + (x * x - r * r).max(0.0).sqrt()).ln();
-            let integral: f64 = nodes
-                .windows(2)
-                .filter(|pair| pair[1].0 > r)
-                .map(|pair| {
-                    let (a, b) = (&pair[0], &pair[1]);
-                    let slope = (density(b) - density(a)) / (b.0 - a.0);
-                    slope * (antiderivative(b.0) - antiderivative(a.0.max(r)))
-                })
-                .sum();
-            -integral / std::f64::consts::PI
-        };
+        // Slopes of the linear force densities (f_z, f_x) on each segment between nodes.
+        let slopes: Vec<(f64, f64)> = nodes
+            .windows(2)
+            .map(|pair| {
+                let (a, b) = (pair[0], pair[1]);
+                ((b.1 - a.1) / (b.0 - a.0), (b.2 - a.2) / (b.0 - a.0))
+            })
+            .collect();
         radii
             .iter()
-            .map(|&r| (transform(r, |n| n.1), transform(r, |n| n.2)))
+            .map(|&r| {
+                // Segments ending beyond r contribute; the antiderivative at each node is shared
+                // by the segment it ends and the one it starts, and by p and q.
+                let antiderivative = |x: f64| (x + (x * x - r * r).max(0.0).sqrt()).ln();
+                let first = nodes[1..].partition_point(|n| n.0 <= r);
+                let mut lower = antiderivative(nodes.get(first).map_or(r, |n| n.0.max(r)));
+                let (mut p, mut q) = (0.0, 0.0);
+                for (node, slope) in nodes[first + 1..].iter().zip(&slopes[first..]) {
+                    let upper = antiderivative(node.0);
+                    p += slope.0 * (upper - lower);
+                    q += slope.1 * (upper - lower);
+                    lower = upper;
+                }
+                (-p / std::f64::consts::PI, -q / std::f64::consts::PI)
+            })
             .unzip()
     }
 
