@@ -50,6 +50,10 @@ use crate::scene::Scene;
 use crate::solver;
 use raw::{RawBody, RawCase, RawCheck, RawPath, RawReferenceValue};
 
+/// The most increments a path may have in all: each step keeps a row of every solver's history,
+/// so this bounds the memory a case can ask for (about 100 bytes a row and solver).
+pub const MAX_INCREMENTS: usize = 1_000_000;
+
 /// A validated case.
 #[derive(Clone, Debug)]
 pub struct Case {
@@ -267,25 +271,38 @@ impl Validator<'_> {
 
     fn substeps(&self, raw: &Spanned<toml::Value>, segments: usize) -> Result<Vec<usize>, CaseError> {
         let count = |v: &toml::Value| match v {
-            toml::Value::Integer(n) if *n >= 1 && *n <= 1_000_000 => Ok(*n as usize),
+            toml::Value::Integer(n) if *n >= 1 && *n <= MAX_INCREMENTS as i64 => Ok(*n as usize),
             other => Err(self.error(
                 raw,
                 "path.substeps",
-                format!("{other} is not a whole number from 1 to 1000000"),
+                format!("{other} is not a whole number from 1 to {MAX_INCREMENTS}"),
             )),
         };
-        match raw.get_ref() {
-            toml::Value::Array(list) if list.len() == segments => list.iter().map(count).collect(),
-            toml::Value::Array(list) => Err(self.error(
+        let counts: Vec<usize> = match raw.get_ref() {
+            toml::Value::Array(list) if list.len() == segments => {
+                list.iter().map(count).collect::<Result<_, _>>()?
+            }
+            toml::Value::Array(list) => {
+                return Err(self.error(
+                    raw,
+                    "path.substeps",
+                    format!(
+                        "{} counts for {segments} segments (allowed: one count, or one per segment)",
+                        list.len()
+                    ),
+                ))
+            }
+            single => vec![count(single)?; segments],
+        };
+        let total: usize = counts.iter().sum();
+        if total > MAX_INCREMENTS {
+            return Err(self.error(
                 raw,
                 "path.substeps",
-                format!(
-                    "{} counts for {segments} segments (allowed: one count, or one per segment)",
-                    list.len()
-                ),
-            )),
-            single => Ok(vec![count(single)?; segments]),
+                format!("{total} increments in all (allowed: at most {MAX_INCREMENTS})"),
+            ));
         }
+        Ok(counts)
     }
 
     fn solvers(&self, raw: &Spanned<Vec<Spanned<String>>>) -> Result<Vec<String>, CaseError> {
