@@ -89,12 +89,13 @@ impl ContactPair {
     }
 }
 
+/// Pairs for unit tests.
 #[cfg(test)]
-mod tests {
+pub(crate) mod fixtures {
     use super::*;
-    use approx::assert_relative_eq;
 
-    fn paper_pair() -> ContactPair {
+    /// The paper's two spheres: R = 0.1 m, E = 70 GPa, ν = 0.3.
+    pub fn paper_pair() -> ContactPair {
         let body = Body {
             radius: 0.1,
             material: Material {
@@ -107,6 +108,13 @@ mod tests {
             body2: body,
         }
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixtures::paper_pair;
+    use super::*;
+    use approx::assert_relative_eq;
 
     #[test]
     fn effective_properties_of_the_paper_spheres() {

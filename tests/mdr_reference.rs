@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{case, paper_scene_with_path, solve};
+use common::{case, paper_scene_with_path, paper_scene_with_substeps, solve};
 use spherecontact::analytic::mdr::Mdr;
 use spherecontact::history::{History, Quantity};
 use spherecontact::solver;
@@ -75,28 +75,14 @@ fn mdr_along_the_paper_path_does_not_depend_on_the_substep_count() {
     // Requirement: 20 vs 2000 substeps per segment agree within 0.5 % (of the peak |Q|) at every
     // path position. MDR has no integration error in time except where δn and δt change in the
     // same step: the springs entering contact during such a step take the whole step's Δδt.
-    let positions = [
-        (0.0, 0.0),
-        (10.0, 0.0),
-        (14.0, 1.0),
-        (17.0, 1.0),
-        (17.0, 2.0),
-        (17.0, 3.0),
-        (17.0, 6.0),
-        (17.0, 2.0),
-        (20.0, -2.0),
-        (15.0, 0.0),
-        (12.0, -1.0),
-        (0.0, 0.0),
-    ];
-    let coarse = solve("mdr", &paper_scene_with_path(&positions, 20));
-    let fine = solve("mdr", &paper_scene_with_path(&positions, 2000));
+    let coarse = solve("mdr", &paper_scene_with_substeps(20));
+    let fine = solve("mdr", &paper_scene_with_substeps(2000));
     let peak = fine
         .steps
         .iter()
         .map(|r| r.tangential_force.unwrap().abs())
         .fold(0.0, f64::max);
-    for k in 0..positions.len() {
+    for k in 0..coarse.at_positions().count() {
         let (c, f) = (coarse.at_position(k).unwrap(), fine.at_position(k).unwrap());
         let difference = (c.tangential_force.unwrap() - f.tangential_force.unwrap()).abs() / peak;
         assert!(difference < 5e-3, "position {k}: {difference:.3e}");

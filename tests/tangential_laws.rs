@@ -8,27 +8,11 @@
 
 mod common;
 
-use common::{all_case_files, paper_scene_with_path, root};
+use common::{all_case_files, paper_scene_with_path, paper_scene_with_substeps, root};
 use spherecontact::case::Case;
 use spherecontact::history::History;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
-
-/// The paper's path (µm).
-const PAPER_PATH: [(f64, f64); 12] = [
-    (0.0, 0.0),
-    (10.0, 0.0),
-    (14.0, 1.0),
-    (17.0, 1.0),
-    (17.0, 2.0),
-    (17.0, 3.0),
-    (17.0, 6.0),
-    (17.0, 2.0),
-    (20.0, -2.0),
-    (15.0, 0.0),
-    (12.0, -1.0),
-    (0.0, 0.0),
-];
 
 /// Runs every registered solver that gives a tangential force on `scene`; skips those that do
 /// not apply to it (Cattaneo–Mindlin under a varying load) or are not installed.
@@ -62,7 +46,7 @@ fn assert_coulomb(scene: &Scene) {
 
 #[test]
 fn coulomb_bound_holds_on_the_paper_path() {
-    assert_coulomb(&paper_scene_with_path(&PAPER_PATH, 50));
+    assert_coulomb(&paper_scene_with_substeps(50));
 }
 
 #[test]
@@ -80,7 +64,7 @@ fn coulomb_bound_holds_with_reversal_at_every_step() {
 
 #[test]
 fn frictionless_contact_carries_no_tangential_force() {
-    let mut scene = paper_scene_with_path(&PAPER_PATH, 20);
+    let mut scene = paper_scene_with_substeps(20);
     scene.friction = 0.0;
     for (name, history) in tangential_histories(&scene) {
         assert!(

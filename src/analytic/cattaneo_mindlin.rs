@@ -292,22 +292,13 @@ impl Solver for CattaneoMindlin {
 mod tests {
     use super::*;
     use crate::analytic::hertz::Hertz;
-    use crate::pair::{Body, ContactPair, Material};
+    use crate::pair::fixtures::paper_pair;
+    use crate::pair::ContactPair;
     use approx::assert_relative_eq;
 
     /// The paper's spheres at δn = 17 µm: P = 803.76 N, c = 0.92195 mm, μ = 0.2.
     fn paper_contact() -> (Hertz, ContactPair, f64) {
-        let body = Body {
-            radius: 0.1,
-            material: Material {
-                young: 70e9,
-                poisson: 0.3,
-            },
-        };
-        let pair = ContactPair {
-            body1: body,
-            body2: body,
-        };
+        let pair = paper_pair();
         (Hertz::of(&pair), pair, 17e-6)
     }
 

@@ -208,29 +208,19 @@ impl TangentialLaw for MdIncremental {
 #[cfg(test)]
 pub(crate) mod fixtures {
     use super::super::incremental::{Increment, NormalState};
-    use crate::pair::{Body, ContactPair, Material};
+    use crate::pair::fixtures::paper_pair;
     use crate::path::{LoadingPath, Position};
     use crate::scene::Scene;
 
     /// The paper's spheres (R = 0.1 m, E = 70 GPa, ν = 0.3) with μ = 0.2.
     pub fn paper_scene() -> Scene {
-        let body = Body {
-            radius: 0.1,
-            material: Material {
-                young: 70e9,
-                poisson: 0.3,
-            },
-        };
         let origin = Position {
             delta_n: 0.0,
             delta_t: 0.0,
         };
         Scene {
             name: "unit".into(),
-            pair: ContactPair {
-                body1: body,
-                body2: body,
-            },
+            pair: paper_pair(),
             friction: 0.2,
             path: LoadingPath::try_new(vec![origin], vec![]).expect("one position"),
         }

@@ -51,6 +51,15 @@ pub fn paper_scene_with_path(positions_um: &[(f64, f64)], substeps: usize) -> Sc
     scene
 }
 
+/// The paper's scene (cases/paper-fig7.toml) with `substeps` on every segment.
+pub fn paper_scene_with_substeps(substeps: usize) -> Scene {
+    let mut scene = case("cases/paper-fig7.toml").scene;
+    let positions = scene.path.positions().to_vec();
+    let segments = positions.len() - 1;
+    scene.path = LoadingPath::try_new(positions, vec![substeps; segments]).unwrap();
+    scene
+}
+
 /// Runs the named solver on a scene.
 pub fn solve(name: &str, scene: &Scene) -> History {
     let solver = solver::by_name(name).unwrap_or_else(|| panic!("no solver {name}"));
