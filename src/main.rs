@@ -9,7 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use spherecontact::case::Case;
-use spherecontact::report::{history_files, junit, table};
+use spherecontact::report::{history_files, junit, summary, table};
 use spherecontact::{io, solver, verify};
 
 #[derive(Parser)]
@@ -46,6 +46,23 @@ enum Command {
     },
     /// List the solvers of this build and the cases under cases/.
     List,
+    /// Run a case's solvers and write a comparison report (HTML, Markdown, SVG, CSV).
+    Compare {
+        /// The case file.
+        case: PathBuf,
+        /// Output folder; default: out/compare-<case name>.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Reproduce the paper: its case with every available solver, reported in its figures' order.
+    ReproducePaper {
+        /// Output folder.
+        #[arg(long, default_value = "out/reproduce-paper")]
+        out: PathBuf,
+        /// The paper's case file.
+        #[arg(long, default_value = "cases/paper-fig7.toml")]
+        case: PathBuf,
+    },
     /// Time a case's solvers side by side (build with --release for representative numbers).
     Bench {
         /// The case file.
@@ -74,6 +91,8 @@ fn main() -> ExitCode {
         Command::Run { case, solvers, out } => run(&case, &solvers, &out),
         Command::Verify { cases, junit } => verify_cases(cases, junit.as_deref()),
         Command::List => list(),
+        Command::Compare { case, out } => report(&case, out, Report::Compare),
+        Command::ReproducePaper { out, case } => report(&case, Some(out), Report::Paper),
         Command::Bench {
             case,
             solvers,
@@ -229,6 +248,45 @@ fn bench(case: &Path, solvers: &[String], repeat: usize) -> Result<ExitCode, Inp
         }
     }
     Ok(code)
+}
+
+/// Which report to write.
+enum Report {
+    Compare,
+    Paper,
+}
+
+fn report(case: &Path, out: Option<PathBuf>, kind: Report) -> Result<ExitCode, InputError> {
+    let case = Case::load(case)?;
+    let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
+    let reference_dir = case.file.parent().unwrap_or(Path::new(".")).join("../reference");
+    let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_prefix(case.name().to_owned());
+    let run = verify::run_case_with_progress(case, &mut |name, index, _| {
+        bar.set_position(index as u64);
+        bar.set_message(name.to_owned());
+    });
+    bar.finish_and_clear();
+    let document = match kind {
+        Report::Compare => spherecontact::report::compare::document(&run),
+        Report::Paper => spherecontact::report::paper::document(&run, &reference_dir),
+    }
+    .map_err(|e| InputError(format!("building the report: {e}")))?;
+    document
+        .write(&out)
+        .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
+    print!("{}", summary::screen(&run));
+    println!("report: {}", out.join("report.html").display());
+    Ok(if run.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
 }
 
 fn list() -> Result<ExitCode, InputError> {

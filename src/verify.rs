@@ -31,9 +31,16 @@ impl CaseRun {
 /// Runs every solver the case needs and judges its checks. A solver that fails does not stop
 /// the others; the checks that need it are NOOK (or N/A when it is not installed).
 pub fn run_case(case: Case) -> CaseRun {
+    run_case_with_progress(case, &mut |_, _, _| {})
+}
+
+/// [`run_case`], calling `progress(solver, index, count)` before each solver runs.
+pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, usize)) -> CaseRun {
     let mut warnings = case.scene.warnings();
     let mut histories = Histories::new();
-    for name in case.required_solvers() {
+    let names = case.required_solvers();
+    for (index, name) in names.iter().cloned().enumerate() {
+        progress(&name, index, names.len());
         let result = match solver::by_name(&name) {
             Some(s) => solver::run(s.as_ref(), &case.scene),
             None => Err(solver::SolveError::Unavailable(format!(

@@ -154,6 +154,22 @@ fn the_unit_must_be_known() {
 }
 
 #[test]
+fn the_focus_must_be_a_path_position() {
+    assert_rejected(
+        "friction = 0.2",
+        "friction = 0.2\nfocus = 3",
+        "focus",
+        "allowed: 0 to 2",
+    );
+    assert_rejected(
+        "friction = 0.2",
+        "friction = 0.2\nfocus = -1",
+        "focus",
+        "allowed: 0 to 2",
+    );
+}
+
+#[test]
 fn unknown_fields_are_rejected() {
     assert_rejected(
         "poisson = 0.3",

@@ -6,6 +6,8 @@
 //! description = "…"
 //! friction = 0.2                        # Coulomb μ ≥ 0
 //! solvers = ["hertz", "mdr"]
+//! focus = 2                             # optional: the position whose surface fields reports
+//!                                       # show (default: the first of largest δn)
 //!
 //! [body1]                               # SI: m, Pa
 //! radius = 0.1                          # > 0; `inf` for a flat
@@ -35,6 +37,7 @@
 
 mod error;
 mod raw;
+pub mod reference;
 
 pub use error::CaseError;
 
@@ -48,7 +51,8 @@ use crate::pair::{Body, ContactPair, Material};
 use crate::path::{LoadingPath, Position};
 use crate::scene::Scene;
 use crate::solver;
-use raw::{RawBody, RawCase, RawCheck, RawPath, RawReferenceValue};
+use raw::{RawBody, RawCase, RawCheck, RawPath};
+use reference::LoadError;
 
 /// The most increments a path may have in all: each step keeps a row of every solver's history,
 /// so this bounds the memory a case can ask for (about 100 bytes a row and solver).
@@ -65,6 +69,8 @@ pub struct Case {
     pub scene: Scene,
     /// The solvers the case runs, in its order.
     pub solvers: Vec<String>,
+    /// The path position whose surface fields reports show.
+    pub focus: usize,
     /// Its checks.
     pub checks: Vec<CheckSpec>,
 }
@@ -173,8 +179,10 @@ impl Validator<'_> {
             .enumerate()
             .map(|(i, c)| self.check(c, &format!("checks[{i}]"), path.positions().len()))
             .collect::<Result<_, _>>()?;
+        let focus = self.focus(raw.focus.as_ref(), &path)?;
         Ok(Case {
             file: self.file.to_path_buf(),
+            focus,
             description: raw.description.unwrap_or_default(),
             scene: Scene {
                 name,
@@ -185,6 +193,27 @@ impl Validator<'_> {
             solvers,
             checks,
         })
+    }
+
+    fn focus(&self, raw: Option<&Spanned<i64>>, path: &LoadingPath) -> Result<usize, CaseError> {
+        let positions = path.positions();
+        let Some(raw) = raw else {
+            // The first position of largest δn.
+            let largest = path.max_approach();
+            return Ok(positions.iter().position(|p| p.delta_n == largest).unwrap_or(0));
+        };
+        match usize::try_from(*raw.get_ref()) {
+            Ok(k) if k < positions.len() => Ok(k),
+            _ => Err(self.error(
+                raw,
+                "focus",
+                format!(
+                    "{} is not a path position (allowed: 0 to {})",
+                    raw.get_ref(),
+                    positions.len() - 1
+                ),
+            )),
+        }
     }
 
     fn body(&self, raw: &RawBody, field: &str) -> Result<Body, CaseError> {
@@ -481,53 +510,27 @@ impl Validator<'_> {
         quantity: Quantity,
     ) -> Result<Reference, CaseError> {
         let path = self.file.parent().unwrap_or(Path::new(".")).join(file);
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            self.error(
+        let stored = reference::load(&path, key).map_err(|e| match e {
+            LoadError::Unreadable(e) => self.error(
                 raw,
                 format!("{field}.file"),
                 format!("cannot read reference file {}: {e}", path.display()),
-            )
-        })?;
-        let mut table: toml::Table = toml::from_str(&text).map_err(|e| {
-            CaseError::new(
-                &path,
-                e.span().map(|s| (text.as_str(), s)),
-                "",
-                e.message().to_owned(),
-            )
-        })?;
-        let entry = table.remove(key).ok_or_else(|| {
-            self.error(
+            ),
+            LoadError::NoKey => self.error(
                 raw,
                 format!("{field}.key"),
                 format!("no key `{key}` in {}", path.display()),
-            )
+            ),
+            LoadError::Invalid(e) => e,
         })?;
-        let entry: RawReferenceValue = entry
-            .try_into()
-            .map_err(|e: toml::de::Error| CaseError::new(&path, None, key, e.message().to_owned()))?;
-        let value = entry.value;
-        let mismatch = |what: &str| CaseError::new(&path, None, key, what.to_owned());
-        if !value.is_finite() {
-            return Err(mismatch("value is not finite (allowed: a finite number)"));
-        }
-        if entry.quantity != quantity.name() {
-            return Err(mismatch(&format!(
-                "holds {} but the check judges {}",
-                entry.quantity, quantity
-            )));
-        }
-        if entry.unit != quantity.unit() {
-            return Err(mismatch(&format!(
-                "unit `{}` (allowed: {}, SI)",
-                entry.unit,
-                quantity.unit()
-            )));
+        if stored.quantity != quantity {
+            let message = format!("holds {} but the check judges {quantity}", stored.quantity);
+            return Err(CaseError::new(&path, None, key, message));
         }
         Ok(Reference::Value {
-            value,
+            value: stored.value,
             key: format!("{file}#{key}"),
-            source: entry.source,
+            source: stored.source,
         })
     }
 }

@@ -12,6 +12,7 @@ pub struct RawCase {
     pub description: Option<String>,
     pub friction: Spanned<f64>,
     pub solvers: Spanned<Vec<Spanned<String>>>,
+    pub focus: Option<Spanned<i64>>,
     pub body1: RawBody,
     pub body2: Option<RawBody>,
     pub path: RawPath,

@@ -1,8 +1,14 @@
 //! What people and machines read: the check table on the terminal, per-solver CSV and JSON
 //! files, and JUnit XML for CI.
 
+pub mod compare;
+pub mod document;
+pub mod figures;
 pub mod history_files;
 pub mod junit;
+pub mod paper;
+pub mod plot;
+pub mod summary;
 pub mod table;
 
 /// Formats a value for people: four significant digits in scientific notation, "—" when absent,

@@ -1,0 +1,97 @@
+//! `compare`: one report of a case — its solvers side by side, its checks, P against δn, Q along
+//! the path, surface fields at the case's focus position, and every solver's error against its
+//! reference.
+
+use anyhow::Result;
+
+use super::document::{Document, Section};
+use super::figures;
+use crate::check::Verdict;
+use crate::verify::CaseRun;
+
+/// The "Case" section: description, bodies, warnings and the solver table.
+pub fn case_section(run: &CaseRun) -> Section {
+    let scene = &run.case.scene;
+    let body = |b: &crate::pair::Body| {
+        let radius = if b.radius.is_infinite() {
+            "a flat".to_owned()
+        } else {
+            format!("R = {} m", b.radius)
+        };
+        format!(
+            "{radius}, E = {:.4e} Pa, ν = {}",
+            b.material.young, b.material.poisson
+        )
+    };
+    let mut paragraphs = vec![
+        run.case.description.clone(),
+        format!(
+            "Body 1: {}. Body 2: {}. Friction μ = {}. {} path positions, {} steps. File: {}.",
+            body(&scene.pair.body1),
+            body(&scene.pair.body2),
+            scene.friction,
+            scene.path.positions().len(),
+            scene.steps().len(),
+            run.case.file.display()
+        ),
+    ];
+    paragraphs.extend(run.warnings.iter().map(|w| format!("Warning: {w}")));
+    Section {
+        title: "Case and solvers".into(),
+        paragraphs,
+        tables: vec![figures::solver_table(run)],
+        figures: vec![],
+    }
+}
+
+/// The "Checks" section: counts and the check table.
+pub fn checks_section(run: &CaseRun) -> Section {
+    let count = |v: Verdict| run.outcomes.iter().filter(|o| o.verdict == v).count();
+    Section {
+        title: "Checks".into(),
+        paragraphs: vec![format!(
+            "{} OK, {} NOOK, {} informational, {} not available. Informational checks measure approximate laws and are never judged.",
+            count(Verdict::Ok),
+            count(Verdict::Nook),
+            count(Verdict::Info),
+            count(Verdict::Unavailable)
+        )],
+        tables: vec![figures::check_table(run)],
+        figures: vec![],
+    }
+}
+
+/// A section holding figures only (dropped by the caller when it has none).
+pub fn figure_section(title: &str, figures: Vec<super::document::Figure>) -> Section {
+    Section {
+        title: title.into(),
+        figures,
+        ..Section::default()
+    }
+}
+
+/// The compare report of a case run.
+pub fn document(run: &CaseRun) -> Result<Document> {
+    let focus = run.case.focus;
+    let mut fields = figures::profiles(run, focus)?;
+    fields.extend(figures::maps(run, focus)?);
+    let sections = vec![
+        case_section(run),
+        checks_section(run),
+        figure_section("Loading path", vec![figures::loading_path(run)?]),
+        figure_section("Normal force", figures::normal_force(run)?.into_iter().collect()),
+        figure_section(
+            "Tangential force",
+            figures::tangential_force(run)?.into_iter().collect(),
+        ),
+        figure_section(&format!("Surface fields at position {focus}"), fields),
+        figure_section("Errors against the references", figures::errors(run)?),
+    ];
+    Ok(Document {
+        title: format!("spherecontact: {}", run.case.name()),
+        sections: sections
+            .into_iter()
+            .filter(|s| !s.tables.is_empty() || !s.figures.is_empty())
+            .collect(),
+    })
+}

@@ -1,0 +1,284 @@
+//! A report as data — sections of text, tables and figures with the CSV behind each — and its
+//! two renderings: a self-contained HTML page (inline SVG and CSS, no network) and a Markdown
+//! summary that links the SVG and CSV files written beside it.
+
+use std::fmt::Write;
+use std::path::Path;
+
+use crate::io::write_atomically;
+
+/// A table cell: text, and a CSS class that marks verdicts and timings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    /// The text shown.
+    pub text: String,
+    /// `ok`, `nook`, `info`, `na`, `timing`, or empty.
+    pub class: &'static str,
+}
+
+impl Cell {
+    /// A plain cell.
+    pub fn plain(text: impl Into<String>) -> Self {
+        Self {
+            text: text.into(),
+            class: "",
+        }
+    }
+
+    /// A cell with a class.
+    pub fn with_class(text: impl Into<String>, class: &'static str) -> Self {
+        Self {
+            text: text.into(),
+            class,
+        }
+    }
+}
+
+/// A table with a header row.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// Column titles.
+    pub header: Vec<String>,
+    /// Rows of cells, as many as the header has columns.
+    pub rows: Vec<Vec<Cell>>,
+}
+
+impl Table {
+    /// The table as CSV text.
+    pub fn to_csv(&self) -> anyhow::Result<String> {
+        let mut writer = csv::Writer::from_writer(Vec::new());
+        writer.write_record(&self.header)?;
+        for row in &self.rows {
+            writer.write_record(row.iter().map(|c| c.text.as_str()))?;
+        }
+        Ok(String::from_utf8(writer.into_inner()?)?)
+    }
+}
+
+/// A plot with its caption and the data behind it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Figure {
+    /// File stem of its SVG and CSV (letters, digits, '-').
+    pub id: String,
+    /// The SVG document.
+    pub svg: String,
+    /// What it shows, and which solvers are missing from it and why.
+    pub caption: String,
+    /// The plotted values.
+    pub data: Table,
+}
+
+/// A titled section.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Section {
+    /// The heading.
+    pub title: String,
+    /// Paragraphs of plain text.
+    pub paragraphs: Vec<String>,
+    /// Tables, after the paragraphs.
+    pub tables: Vec<Table>,
+    /// Figures, after the tables.
+    pub figures: Vec<Figure>,
+}
+
+/// A whole report.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Document {
+    /// The page title.
+    pub title: String,
+    /// The sections, in order.
+    pub sections: Vec<Section>,
+}
+
+/// Escapes text for HTML.
+pub fn escape_html(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Escapes the characters that break a Markdown table cell.
+fn escape_markdown_cell(text: &str) -> String {
+    text.replace('|', "\\|").replace('\n', " ")
+}
+
+const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
+h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}\
+table{border-collapse:collapse;margin:1em 0;font-size:.85em}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top}\
+th{background:#f3f3f3}td.ok{color:#176b1e;font-weight:bold}td.nook{color:#b00;font-weight:bold}td.info{color:#555}td.na{color:#a60}\
+figure{margin:1.5em 0}figcaption{font-size:.85em;color:#444;max-width:820px}svg{max-width:100%;height:auto}";
+
+impl Document {
+    /// The self-contained HTML page.
+    pub fn to_html(&self) -> String {
+        let mut html = String::new();
+        let title = escape_html(&self.title);
+        let _ = write!(
+            html,
+            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n\
+             <style>{STYLE}</style>\n</head>\n<body>\n<h1>{title}</h1>\n"
+        );
+        for section in &self.sections {
+            let _ = writeln!(html, "<section>\n<h2>{}</h2>", escape_html(&section.title));
+            for paragraph in &section.paragraphs {
+                let _ = writeln!(html, "<p>{}</p>", escape_html(paragraph));
+            }
+            for table in &section.tables {
+                html.push_str(&table_html(table));
+            }
+            for figure in &section.figures {
+                let _ = writeln!(
+                    html,
+                    "<figure id=\"{id}\">\n{svg}\n<figcaption>{caption} (data: <a href=\"data/{id}.csv\">{id}.csv</a>)</figcaption>\n</figure>",
+                    id = figure.id,
+                    svg = figure.svg,
+                    caption = escape_html(&figure.caption)
+                );
+            }
+            html.push_str("</section>\n");
+        }
+        html.push_str("</body>\n</html>\n");
+        html
+    }
+
+    /// The Markdown summary (figures linked as files).
+    pub fn to_markdown(&self) -> String {
+        let mut md = format!("# {}\n", self.title);
+        for section in &self.sections {
+            let _ = write!(md, "\n## {}\n\n", section.title);
+            for paragraph in &section.paragraphs {
+                let _ = write!(md, "{paragraph}\n\n");
+            }
+            for table in &section.tables {
+                let _ = writeln!(
+                    md,
+                    "| {} |",
+                    table
+                        .header
+                        .iter()
+                        .map(|h| escape_markdown_cell(h))
+                        .collect::<Vec<_>>()
+                        .join(" | ")
+                );
+                let _ = writeln!(md, "|{}", "---|".repeat(table.header.len()));
+                for row in &table.rows {
+                    let cells: Vec<_> = row.iter().map(|c| escape_markdown_cell(&c.text)).collect();
+                    let _ = writeln!(md, "| {} |", cells.join(" | "));
+                }
+                md.push('\n');
+            }
+            for figure in &section.figures {
+                let _ = write!(
+                    md,
+                    "![{caption}](figures/{id}.svg)\n\n*{caption}* (data: [data/{id}.csv](data/{id}.csv))\n\n",
+                    id = figure.id,
+                    caption = figure.caption
+                );
+            }
+        }
+        md
+    }
+
+    /// Writes `report.html`, `report.md`, `figures/*.svg` and `data/*.csv` into `dir`, each file
+    /// atomically.
+    pub fn write(&self, dir: &Path) -> anyhow::Result<()> {
+        std::fs::create_dir_all(dir.join("figures"))?;
+        std::fs::create_dir_all(dir.join("data"))?;
+        for figure in self.sections.iter().flat_map(|s| &s.figures) {
+            write_atomically(
+                &dir.join("figures").join(format!("{}.svg", figure.id)),
+                figure.svg.as_bytes(),
+            )?;
+            write_atomically(
+                &dir.join("data").join(format!("{}.csv", figure.id)),
+                figure.data.to_csv()?.as_bytes(),
+            )?;
+        }
+        write_atomically(&dir.join("report.md"), self.to_markdown().as_bytes())?;
+        write_atomically(&dir.join("report.html"), self.to_html().as_bytes())?;
+        Ok(())
+    }
+}
+
+/// A table as HTML.
+fn table_html(table: &Table) -> String {
+    let mut html = String::from("<table>\n<tr>");
+    for title in &table.header {
+        let _ = write!(html, "<th>{}</th>", escape_html(title));
+    }
+    html.push_str("</tr>\n");
+    for row in &table.rows {
+        html.push_str("<tr>");
+        for cell in row {
+            match cell.class {
+                "" => {
+                    let _ = write!(html, "<td>{}</td>", escape_html(&cell.text));
+                }
+                class => {
+                    let _ = write!(html, "<td class=\"{class}\">{}</td>", escape_html(&cell.text));
+                }
+            }
+        }
+        html.push_str("</tr>\n");
+    }
+    html.push_str("</table>\n");
+    html
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn document() -> Document {
+        Document {
+            title: "T <1>".into(),
+            sections: vec![Section {
+                title: "S".into(),
+                paragraphs: vec!["a & b".into()],
+                tables: vec![Table {
+                    header: vec!["k".into(), "v".into()],
+                    rows: vec![vec![Cell::plain("x|y"), Cell::with_class("OK", "ok")]],
+                }],
+                figures: vec![Figure {
+                    id: "f1".into(),
+                    svg: "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>".into(),
+                    caption: "cap".into(),
+                    data: Table {
+                        header: vec!["x".into()],
+                        rows: vec![vec![Cell::plain("1")]],
+                    },
+                }],
+            }],
+        }
+    }
+
+    #[test]
+    fn html_escapes_text_and_inlines_svg() {
+        let html = document().to_html();
+        assert!(html.contains("<title>T &lt;1&gt;</title>"));
+        assert!(html.contains("<p>a &amp; b</p>"));
+        assert!(html.contains("<td class=\"ok\">OK</td>"));
+        assert!(html.contains("<svg xmlns"));
+        assert!(
+            !html.contains("http-equiv") && !html.contains("<script"),
+            "no network, no script"
+        );
+    }
+
+    #[test]
+    fn markdown_escapes_table_pipes() {
+        let md = document().to_markdown();
+        assert!(md.contains("| x\\|y | OK |"));
+        assert!(md.contains("![cap](figures/f1.svg)"));
+    }
+
+    #[test]
+    fn write_produces_every_file() {
+        let dir = tempfile::tempdir().unwrap();
+        document().write(dir.path()).unwrap();
+        for file in ["report.html", "report.md", "figures/f1.svg", "data/f1.csv"] {
+            assert!(dir.path().join(file).is_file(), "{file}");
+        }
+    }
+}
