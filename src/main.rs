@@ -63,16 +63,20 @@ enum Command {
         #[arg(long, default_value = "cases/paper-fig7.toml")]
         case: PathBuf,
     },
-    /// Time a case's solvers side by side (build with --release for representative numbers).
+    /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
+    /// (build with --release for representative numbers).
     Bench {
         /// The case file.
         case: PathBuf,
-        /// A solver to time (repeatable); default: the case's own list.
+        /// A solver to sweep (repeatable); default: the case's own list.
         #[arg(long = "solver", value_name = "NAME")]
         solvers: Vec<String>,
-        /// Timed runs per solver (the median is reported).
-        #[arg(long, default_value_t = 21, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+        /// Timed runs per rung (the median is reported).
+        #[arg(long, default_value_t = 11, value_parser = clap::value_parser!(u32).range(1..=10_000))]
         repeat: u32,
+        /// Output folder; default: out/bench-<case name>.
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
 }
 
@@ -97,7 +101,8 @@ fn main() -> ExitCode {
             case,
             solvers,
             repeat,
-        } => bench(&case, &solvers, repeat as usize),
+            out,
+        } => bench(&case, &solvers, repeat as usize, out),
     };
     match result {
         Ok(code) => code,
@@ -216,38 +221,59 @@ fn verify_cases(files: Vec<PathBuf>, junit_file: Option<&Path>) -> Result<ExitCo
     })
 }
 
-fn bench(case: &Path, solvers: &[String], repeat: usize) -> Result<ExitCode, InputError> {
+fn bench(
+    case: &Path,
+    solvers: &[String],
+    repeat: usize,
+    out: Option<PathBuf>,
+) -> Result<ExitCode, InputError> {
     let case = Case::load(case)?;
     let plan = planned_solvers(&case, solvers)?;
+    let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("bench-{}", case.name())));
     if cfg!(debug_assertions) {
         eprintln!("warning: built without optimisation; run `cargo run --release -- bench …` for representative timings");
     }
     let increments = case.scene.steps().len() - 1;
+    let rungs = spherecontact::bench::sweep(&plan, &case.scene, repeat)
+        .map_err(|e| InputError(format!("{}: the references failed: {e}", case.name())))?;
+    let document = spherecontact::report::bench::document(case.name(), increments, repeat, &rungs)
+        .map_err(|e| InputError(format!("building the bench report: {e}")))?;
+    document
+        .write(&out)
+        .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
+    for line in spherecontact::report::bench::machine() {
+        println!("{line}");
+    }
     println!(
-        "bench {}: {increments} increments, {repeat} timed runs each, interleaved",
+        "{}: {increments} increments, {repeat} timed runs per rung, interleaved; medians",
         case.name()
     );
-    let mut code = ExitCode::SUCCESS;
-    for result in spherecontact::bench::time_solvers(&plan, &case.scene, repeat) {
-        match result {
-            Ok(t) => {
-                let ms = |seconds: &[f64]| spherecontact::bench::median(seconds) * 1e3;
-                println!(
-                    "  {:<22} median wall {:>10.3} ms   median CPU {:>10.3} ms   (wall min {:.3}, max {:.3} ms)",
-                    t.solver,
-                    ms(&t.seconds),
-                    ms(&t.cpu_seconds),
-                    t.seconds[0] * 1e3,
-                    t.seconds[t.seconds.len() - 1] * 1e3
-                )
-            }
-            Err((name, e)) => {
-                println!("  {name:<22} {e}");
-                code = ExitCode::FAILURE;
-            }
-        }
+    let table = &document.sections[0].tables[0];
+    println!(
+        "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12}",
+        "solver", "resolution", "CPU [ms]", "wall [ms]", "P error", "Q error"
+    );
+    for row in &table.rows {
+        let cell = |k: usize| row.get(k).map_or("", |c| c.text.as_str());
+        println!(
+            "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12}",
+            cell(0),
+            cell(1),
+            cell(2),
+            cell(3),
+            cell(4),
+            cell(5)
+        );
     }
-    Ok(code)
+    println!("report: {}", out.join("report.html").display());
+    let failed = rungs
+        .iter()
+        .any(|r| matches!(r, Err((_, e)) if !matches!(e, solver::SolveError::Unavailable(_))));
+    Ok(if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    })
 }
 
 /// Which report to write.

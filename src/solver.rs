@@ -34,6 +34,13 @@ pub trait Solver: Send + Sync {
     /// Solves the scene along its whole path. Implementations fill the per-step rows and the
     /// metadata's model, resolution and warnings; [`run`] adds name, version and wall time.
     fn solve(&self, scene: &Scene) -> Result<History, SolveError>;
+
+    /// The same solver at a ladder of resolutions, coarse to fine (springs, grid, mesh size), for
+    /// convergence and speed-against-error studies; empty where resolution has no meaning
+    /// (closed forms, incremental laws whose resolution is the path's own increments).
+    fn resolution_ladder(&self) -> Vec<Box<dyn Solver>> {
+        Vec::new()
+    }
 }
 
 /// Runs `solver` on `scene`, timing it and completing the history's metadata.

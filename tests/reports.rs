@@ -42,11 +42,23 @@ fn reports_regenerate_identically_apart_from_timings() {
     let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
     for dir in &dirs {
         let run = paper_run();
-        paper::document(&run, &root().join("reference")).unwrap().write(dir.path()).unwrap();
+        paper::document(&run, &root().join("reference"))
+            .unwrap()
+            .write(dir.path())
+            .unwrap();
     }
     let read = |dir: &Path, file: &str| without_timings(&std::fs::read_to_string(dir.join(file)).unwrap());
-    for file in ["report.html", "report.md", "figures/tangential-force.svg", "data/tangential-force.csv"] {
-        assert_eq!(read(dirs[0].path(), file), read(dirs[1].path(), file), "{file} differs");
+    for file in [
+        "report.html",
+        "report.md",
+        "figures/tangential-force.svg",
+        "data/tangential-force.csv",
+    ] {
+        assert_eq!(
+            read(dirs[0].path(), file),
+            read(dirs[1].path(), file),
+            "{file} differs"
+        );
     }
 }
 
@@ -55,7 +67,10 @@ fn every_svg_is_well_formed_and_the_page_is_self_contained() {
     let dir = tempfile::tempdir().unwrap();
     let run = paper_run();
     compare::document(&run).unwrap().write(dir.path()).unwrap();
-    let svgs: Vec<_> = std::fs::read_dir(dir.path().join("figures")).unwrap().map(|e| e.unwrap().path()).collect();
+    let svgs: Vec<_> = std::fs::read_dir(dir.path().join("figures"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     assert!(svgs.len() >= 6, "figures: {svgs:?}");
     for svg in &svgs {
         let text = std::fs::read_to_string(svg).unwrap();
@@ -76,41 +91,100 @@ fn every_svg_is_well_formed_and_the_page_is_self_contained() {
 #[test]
 fn a_missing_solver_is_shown_as_missing_not_as_a_line() {
     let mut run = paper_run();
-    run.histories.insert("thornton".into(), Err(SolveError::Unavailable("thornton is not installed".into())));
+    run.histories.insert(
+        "thornton".into(),
+        Err(SolveError::Unavailable("thornton is not installed".into())),
+    );
     let document = compare::document(&run).unwrap();
     let figures: Vec<_> = document.sections.iter().flat_map(|s| &s.figures).collect();
     let tangential = figures.iter().find(|f| f.id == "tangential-force").unwrap();
-    assert!(tangential.caption.contains("Missing: thornton (not available: thornton is not installed)"), "{}", tangential.caption);
-    assert!(tangential.data.rows.iter().all(|row| row[0].text != "thornton"), "no series for a missing solver");
+    assert!(
+        tangential
+            .caption
+            .contains("Missing: thornton (not available: thornton is not installed)"),
+        "{}",
+        tangential.caption
+    );
+    assert!(
+        tangential.data.rows.iter().all(|row| row[0].text != "thornton"),
+        "no series for a missing solver"
+    );
     let svg = roxmltree::Document::parse(&tangential.svg).unwrap();
-    let texts: Vec<&str> = svg.descendants().filter_map(|n| n.text()).map(str::trim).collect();
-    assert!(texts.contains(&"mdr"), "control: the legend names the solvers that ran: {texts:?}");
-    assert!(!texts.contains(&"thornton"), "no legend entry for a missing solver");
+    let texts: Vec<&str> = svg
+        .descendants()
+        .filter_map(|n| n.text())
+        .map(str::trim)
+        .collect();
+    assert!(
+        texts.contains(&"mdr"),
+        "control: the legend names the solvers that ran: {texts:?}"
+    );
+    assert!(
+        !texts.contains(&"thornton"),
+        "no legend entry for a missing solver"
+    );
     let solver_table = &document.sections[0].tables[0];
-    let row = solver_table.rows.iter().find(|r| r[0].text == "thornton").unwrap();
+    let row = solver_table
+        .rows
+        .iter()
+        .find(|r| r[0].text == "thornton")
+        .unwrap();
     assert_eq!(row[1].text, "missing: not available");
-    assert!(row[2..].iter().all(|c| !c.text.starts_with('0')), "no zeros stand in for a missing solver");
+    assert!(
+        row[2..].iter().all(|c| !c.text.starts_with('0')),
+        "no zeros stand in for a missing solver"
+    );
 }
 
 #[test]
 fn the_page_loads_in_headless_chromium_without_console_errors() {
-    let Some(chromium) = ["chromium", "chromium-browser"].into_iter().find(|c| Command::new(c).arg("--version").output().is_ok()) else {
+    let Some(chromium) = ["chromium", "chromium-browser"]
+        .into_iter()
+        .find(|c| Command::new(c).arg("--version").output().is_ok())
+    else {
         println!("skipped: Chromium is not installed (apt-get install chromium)");
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    paper::document(&paper_run(), &root().join("reference")).unwrap().write(dir.path()).unwrap();
+    paper::document(&paper_run(), &root().join("reference"))
+        .unwrap()
+        .write(dir.path())
+        .unwrap();
     let profile = tempfile::tempdir().unwrap();
     let output = Command::new(chromium)
-        .args(["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run"])
-        .args(["--disable-background-networking", "--disable-component-update", "--disable-sync"])
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+        ])
+        .args([
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+        ])
         .arg(format!("--user-data-dir={}", profile.path().display()))
-        .args(["--enable-logging=stderr", "--v=0", "--virtual-time-budget=2000", "--dump-dom"])
+        .args([
+            "--enable-logging=stderr",
+            "--v=0",
+            "--virtual-time-budget=2000",
+            "--dump-dom",
+        ])
         .arg(format!("file://{}", dir.path().join("report.html").display()))
         .output()
         .unwrap();
-    let (dom, log) = (String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
-    assert!(dom.contains("Figure 9: tangential force"), "the page did not load: {log}");
-    let console_errors: Vec<_> = log.lines().filter(|l| l.contains("CONSOLE") && l.contains("ERROR")).collect();
+    let (dom, log) = (
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr),
+    );
+    assert!(
+        dom.contains("Figure 9: tangential force"),
+        "the page did not load: {log}"
+    );
+    let console_errors: Vec<_> = log
+        .lines()
+        .filter(|l| l.contains("CONSOLE") && l.contains("ERROR"))
+        .collect();
     assert!(console_errors.is_empty(), "console errors: {console_errors:?}");
 }

@@ -1,6 +1,7 @@
 //! What people and machines read: the check table on the terminal, per-solver CSV and JSON
 //! files, and JUnit XML for CI.
 
+pub mod bench;
 pub mod compare;
 pub mod document;
 pub mod figures;

@@ -1,0 +1,164 @@
+//! The `bench` report: each solver's resolution ladder as error against CPU time, all solvers on
+//! one log-log front, with the machine and versions it was measured on.
+
+use anyhow::Result;
+
+use super::document::{Cell, Document, Figure, Section, Table};
+use super::plot::{Axes, LinePlot, Series, Style};
+use crate::bench::{median, Rung, REFERENCE_SPRINGS};
+use crate::solver::SolveError;
+
+/// Facts about the machine that make timings comparable: CPU, cores, load, versions.
+pub fn machine() -> Vec<String> {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|text| {
+            text.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_owned())
+        })
+        .unwrap_or_else(|| "unknown".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let load = std::fs::read_to_string("/proc/loadavg").map_or_else(
+        |_| "unknown".into(),
+        |l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "),
+    );
+    let rustc = std::process::Command::new("rustc")
+        .arg("--version")
+        .output()
+        .ok()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "rustc not on PATH".into());
+    vec![
+        format!("CPU: {cpu}; {cores} cores available; load average at the start {load}."),
+        format!(
+            "spherecontact {} ({} build); {rustc}.",
+            env!("CARGO_PKG_VERSION"),
+            if cfg!(debug_assertions) {
+                "debug"
+            } else {
+                "release"
+            }
+        ),
+    ]
+}
+
+/// The bench report of a sweep.
+pub fn document(
+    case: &str,
+    increments: usize,
+    repeat: usize,
+    rungs: &[Result<Rung, (String, SolveError)>],
+) -> Result<Document> {
+    let format_error = |e: Option<f64>| e.map_or_else(|| "—".to_owned(), |e| format!("{e:.3e}"));
+    let table = Table {
+        header: [
+            "solver",
+            "resolution",
+            "median CPU [ms]",
+            "median wall [ms]",
+            "P error vs Hertz",
+            "Q error vs MDR",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect(),
+        rows: rungs
+            .iter()
+            .map(|r| match r {
+                Ok(r) => vec![
+                    Cell::plain(&r.timing.solver),
+                    Cell::plain(&r.timing.history.metadata.resolution),
+                    Cell::with_class(format!("{:.3}", median(&r.timing.cpu_seconds) * 1e3), "timing"),
+                    Cell::with_class(format!("{:.3}", median(&r.timing.seconds) * 1e3), "timing"),
+                    Cell::plain(format_error(r.normal_error)),
+                    Cell::plain(format_error(r.tangential_error)),
+                ],
+                Err((name, e)) => {
+                    let mut row = vec![Cell::plain(name), Cell::with_class(format!("missing: {e}"), "na")];
+                    row.extend((0..4).map(|_| Cell::plain("—")));
+                    row
+                }
+            })
+            .collect(),
+    };
+    let mut figures = Vec::new();
+    for (id, what, error) in [
+        (
+            "normal-front",
+            "P error against Hertz",
+            (|r: &Rung| r.normal_error) as fn(&Rung) -> Option<f64>,
+        ),
+        ("tangential-front", "Q error against MDR", |r: &Rung| {
+            r.tangential_error
+        }),
+    ] {
+        let mut series: Vec<Series> = Vec::new();
+        for rung in rungs.iter().flatten() {
+            let Some(e) = error(rung).filter(|e| *e > 0.0) else {
+                continue;
+            };
+            let point = (median(&rung.timing.cpu_seconds) * 1e3, e);
+            match series.iter_mut().find(|s| s.name == rung.timing.solver) {
+                Some(s) => s.points.push(point),
+                None => series.push(Series {
+                    name: rung.timing.solver.clone(),
+                    points: vec![point],
+                    style: Style::Markers,
+                }),
+            }
+        }
+        if series.is_empty() {
+            continue;
+        }
+        let plot = LinePlot {
+            title: format!("{case}: {what} against CPU time"),
+            x_label: "median CPU time [ms]".into(),
+            y_label: "worst error along the path".into(),
+            series,
+            axes: Axes::LogLog,
+        };
+        let data = Table {
+            header: vec!["solver".into(), "median CPU [ms]".into(), "error".into()],
+            rows: plot
+                .series
+                .iter()
+                .flat_map(|s| {
+                    s.points.iter().map(|p| {
+                        vec![
+                            Cell::plain(&s.name),
+                            Cell::plain(format!("{:.6e}", p.0)),
+                            Cell::plain(format!("{:.6e}", p.1)),
+                        ]
+                    })
+                })
+                .collect(),
+        };
+        let caption = format!(
+            "{what} (P: relative at every step in contact; Q: relative to the reference's peak) against median CPU time; \
+             one point per rung of each solver's resolution ladder, zero errors (exact by construction) not drawn."
+        );
+        figures.push(Figure {
+            id: id.into(),
+            svg: plot.to_svg()?,
+            caption,
+            data,
+        });
+    }
+    let mut paragraphs = machine();
+    paragraphs.push(format!(
+        "{increments} increments; each rung ran once untimed, then {repeat} times interleaved with all the others; medians. \
+         The Q reference is MDR on {REFERENCE_SPRINGS} springs."
+    ));
+    Ok(Document {
+        title: format!("spherecontact bench: {case}"),
+        sections: vec![Section {
+            title: "Speed against error".into(),
+            paragraphs,
+            tables: vec![table],
+            figures,
+        }],
+    })
+}
