@@ -58,6 +58,7 @@ pub struct DeckRow {
 pub fn parse_steps(text: &str, d: &[f64]) -> Result<Vec<DeckRow>, String> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
+        .flexible(true)
         .from_reader(text.as_bytes());
     let header = reader.headers().map_err(|e| format!("steps.csv: {e}"))?;
     if header.iter().ne(STEP_COLUMNS) {
