@@ -232,6 +232,7 @@ impl<D: Deck> AxisymSolver<D> {
         let mut fields = Vec::new();
         let mut reaction = Vec::new();
         let mut iterations = Vec::new();
+        let mut crossing = Vec::new();
         for step in scene.steps() {
             let mut row = StepResult::at(&step);
             if let Some(position) = step.position {
@@ -239,14 +240,18 @@ impl<D: Deck> AxisymSolver<D> {
                     Some(i) => {
                         let deck_row = &rows[i];
                         row.normal_force = Some(deck_row.force_contact);
-                        row.contact_radius = Some(deck_row.contact_radius);
+                        row.contact_radius = Some(
+                            readback::contact_radius(&profiles[i])
+                                .unwrap_or(deck_row.contact_radius),
+                        );
+                        crossing.push(json!([position, deck_row.contact_radius]));
                         row.peak_pressure = Some(deck_row.p0);
                         reaction.push(json!([position, deck_row.force_reaction]));
                         iterations.push(json!([position, deck_row.iterations]));
                         fields.push(SurfaceField {
                             position,
-                            points: profiles[i].iter().map(|&(r, _)| [r, 0.0]).collect(),
-                            pressure: profiles[i].iter().map(|&(_, p)| p).collect(),
+                            points: profiles[i].iter().map(|s| [s.r, 0.0]).collect(),
+                            pressure: profiles[i].iter().map(|s| s.pressure).collect(),
                             traction: None,
                             stick: None,
                         });
@@ -290,6 +295,14 @@ impl<D: Deck> AxisymSolver<D> {
             json!(reaction),
         );
         extra.insert("iterations_by_position".into(), json!(iterations));
+        extra.insert(
+            "contact_radius_method".into(),
+            json!("edge fit of the gap g ~ (r - c)^(3/2) to the first two surface nodes outside the contact"),
+        );
+        extra.insert(
+            "contact_radius_deck_linear_crossing_by_position".into(),
+            json!(crossing),
+        );
         extra.insert("solved_delta_n_m".into(), json!(approaches));
         extra.insert("penalty_factor".into(), json!(KFAC));
         extra.insert("meshing_s".into(), json!(timing.meshing_s));

@@ -136,8 +136,40 @@ pub fn read_steps(dir: &Path, d: &[f64]) -> Result<Vec<DeckRow>, String> {
     parse_steps(&text, d)
 }
 
-/// The surface pressure of one field file: (r [m], p [Pa]) sorted by r.
-pub type Profile = Vec<(f64, f64)>;
+/// One point of the spherical surface in a field file, SI.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// Radius r [m].
+    pub r: f64,
+    /// Contact pressure [Pa].
+    pub pressure: f64,
+    /// Height of the deformed surface above the contact plane, z + u_z [m] (negative inside the
+    /// contact by the penalty's penetration p/k).
+    pub gap: f64,
+}
+
+/// The surface of one field file, sorted by r.
+pub type Profile = Vec<SurfacePoint>;
+
+/// The contact radius from the gap just outside the contact.
+///
+/// At the edge of a smooth frictionless non-adhesive contact the pressure falls as √(c − r) and
+/// the gap opens as g ≈ A (r − c)^{3/2} (Johnson 1985, §4.2 and eq. 3.42 for Hertz; the same
+/// exponent holds for any smooth profile). Two surface points outside, g1 at r1 and g2 at r2,
+/// give s = (g1/g2)^{2/3} = (r1 − c)/(r2 − c), so c = (r1 − s r2)/(1 − s), kept between the last
+/// point in contact and the first outside. This resolves c far below the element size; taking
+/// the last node in contact (or a linear zero crossing of g, which the penalty's tiny negative
+/// gap pins to that node) errs by up to one element (−1.7 % at h = c/40, measured).
+///
+/// `None` when no point is in contact or fewer than two points lie outside it.
+pub fn contact_radius(profile: &[SurfacePoint]) -> Option<f64> {
+    let first_open = profile.iter().position(|p| p.gap > 0.0)?;
+    let last_closed = profile.get(first_open.checked_sub(1)?)?;
+    let (p1, p2) = (profile[first_open], *profile.get(first_open + 1)?);
+    let s = (p1.gap / p2.gap).powf(2.0 / 3.0);
+    let c = (p1.r - s * p2.r) / (1.0 - s);
+    c.is_finite().then(|| c.clamp(last_closed.r, p1.r))
+}
 
 /// Extracts p(r) on the spherical surface (radius `radius_mm`, r ≤ `window_mm`) from each field
 /// file in `dir`, through meshio (`scripts/read_fields.py` run by the toolchain's Python).
@@ -181,19 +213,19 @@ pub fn read_profiles(
     parse_profiles(&text, files)
 }
 
-/// Splits `read_fields.py`'s CSV (file, r [mm], p [MPa]) into one SI profile per file.
+/// Splits `read_fields.py`'s CSV (file, r [mm], p [MPa], gap [mm]) into one SI profile per file.
 pub fn parse_profiles(text: &str, files: &[String]) -> Result<Vec<Profile>, String> {
     let mut profiles = vec![Profile::new(); files.len()];
     let mut reader = csv::Reader::from_reader(text.as_bytes());
     for (k, record) in reader.records().enumerate() {
         let record = record.map_err(|e| format!("profiles.csv row {}: {e}", k + 1))?;
-        let values: Option<(f64, f64)> = (record.len() == 3)
-            .then(|| Some((record[1].parse().ok()?, record[2].parse().ok()?)))
-            .flatten();
-        let Some((r, p)) = values.filter(|(r, p): &(f64, f64)| r.is_finite() && p.is_finite())
-        else {
+        let values: Option<Vec<f64>> = (record.len() == 4)
+            .then(|| (1..4).map(|i| record[i].parse::<f64>().ok()).collect())
+            .flatten()
+            .filter(|v: &Vec<f64>| v.iter().all(|x| x.is_finite()));
+        let Some(v) = values else {
             return Err(format!(
-                "profiles.csv row {}: not a finite (r, p) pair",
+                "profiles.csv row {}: not a finite (r, p, gap) triple",
                 k + 1
             ));
         };
@@ -204,7 +236,11 @@ pub fn parse_profiles(text: &str, files: &[String]) -> Result<Vec<Profile>, Stri
                 &record[0]
             ));
         };
-        profiles[i].push((r * 1e-3, p * 1e6));
+        profiles[i].push(SurfacePoint {
+            r: v[0] * 1e-3,
+            pressure: v[1] * 1e6,
+            gap: v[2] * 1e-3,
+        });
     }
     if let Some(i) = profiles.iter().position(Vec::is_empty) {
         return Err(format!("no surface pressure read from {}", files[i]));
@@ -268,12 +304,47 @@ mod tests {
     #[test]
     fn profiles_split_by_file_and_reject_nan() {
         let files = vec!["a.vtu".to_string(), "b.vtu".to_string()];
-        let text = "file,r,pressure\na.vtu,0.0,450.0\nb.vtu,0.0,550.0\nb.vtu,0.5,300.0\n";
+        let text = "file,r,pressure,gap\na.vtu,0.0,450.0,-1e-8\nb.vtu,0.0,550.0,-1e-8\nb.vtu,0.5,300.0,-1e-8\n";
         let p = parse_profiles(text, &files).unwrap();
-        assert_eq!(p[0], vec![(0.0, 450e6)]);
+        assert_eq!(p[0].len(), 1);
+        assert_eq!(p[0][0].pressure, 450e6);
         assert_eq!(p[1].len(), 2);
-        assert!(parse_profiles("file,r,pressure\na.vtu,0.0,nan\n", &files).is_err());
-        let e = parse_profiles("file,r,pressure\na.vtu,0.0,1.0\n", &files).unwrap_err();
+        assert!(parse_profiles("file,r,pressure,gap\na.vtu,0.0,nan,0\n", &files).is_err());
+        let e = parse_profiles("file,r,pressure,gap\na.vtu,0.0,1.0,0\n", &files).unwrap_err();
         assert!(e.contains("b.vtu"), "{e}");
+    }
+
+    /// Hertz's gap outside the contact (Johnson 1985, eq. 3.42 with 4.22), in units a = 1,
+    /// with the penalty's small negative gap inside: the edge fit recovers c = a to well below
+    /// the node spacing, where the last node in contact errs by up to one spacing.
+    #[test]
+    fn the_edge_fit_recovers_hertz_contact_radius() {
+        let hertz_gap = |r: f64| {
+            if r <= 1.0 {
+                -1e-6
+            } else {
+                ((2.0 - r * r) * (1.0 / r).asin() + (r * r - 1.0).sqrt()) / std::f64::consts::PI
+                    - (1.0 - r * r / 2.0) // gap = r²/2 + u(r) − δ in units a²/R = 1, δ = 1
+            }
+        };
+        for h in [0.1, 0.05, 0.025] {
+            for offset in (1..20).map(|k| f64::from(k) / 20.0) {
+                let profile: Profile = (0..100)
+                    .map(|i| {
+                        let r = (i as f64 + offset) * h;
+                        SurfacePoint {
+                            r,
+                            pressure: 0.0,
+                            gap: hertz_gap(r),
+                        }
+                    })
+                    .collect();
+                let c = contact_radius(&profile).unwrap();
+                assert!(
+                    (c - 1.0).abs() < 0.25 * h * h + 1e-3 * h,
+                    "h {h} offset {offset}: c = {c}"
+                );
+            }
+        }
     }
 }
