@@ -177,7 +177,6 @@ pub fn mesh(
         "1000",
     ];
     let mut wall_s = 0.0;
-    let mut log = String::new();
     for (options, out) in [(&quadratic[..], &msh41), (&linear_mm[..], &msh22_mm)] {
         let mut args = vec![geo.display().to_string(), "-2".into()];
         args.extend(options.iter().map(|s| s.to_string()));
@@ -198,14 +197,14 @@ pub fn mesh(
                 run.tail(8)
             )));
         }
-        log = run.stdout;
     }
+    let triangles = triangle_count(&msh22_mm);
     Ok(MeshFiles {
         geo,
         msh41,
         msh22_mm,
         resolution,
-        triangles: triangle_count(&log),
+        triangles,
         wall_s,
     })
 }
@@ -222,18 +221,19 @@ fn describe(ending: &Ending) -> String {
     }
 }
 
-/// The triangle count from gmsh's log line "Info : … nodes … elements" (0 if absent): the
-/// last "Meshing 2D" summary line is `Info    : Done meshing 2D …`; the element total line is
-/// `Info    : N nodes M elements`.
-fn triangle_count(log: &str) -> usize {
-    log.lines()
-        .filter_map(|l| {
-            let words: Vec<&str> = l.split_whitespace().collect();
-            let at = words.iter().position(|w| *w == "elements")?;
-            words.get(at.checked_sub(1)?)?.parse().ok()
+/// The number of linear triangles (element type 2) in an MSH 2.2 file; 0 if unreadable.
+fn triangle_count(msh22: &Path) -> usize {
+    let text = std::fs::read_to_string(msh22).unwrap_or_default();
+    text.split("$Elements")
+        .nth(1)
+        .and_then(|rest| rest.split("$EndElements").next())
+        .map_or(0, |block| {
+            block
+                .lines()
+                .skip(2) // the rest of the "$Elements" line, then the count
+                .filter(|l| l.split_whitespace().nth(1) == Some("2"))
+                .count()
         })
-        .last()
-        .unwrap_or(0)
 }
 
 #[cfg(test)]
