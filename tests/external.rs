@@ -256,3 +256,58 @@ fn a_missing_tool_is_not_available_and_fails_only_when_required() {
     assert_eq!(strict.status.code(), Some(1), "{text}");
     assert!(text.contains("count as failures"), "{text}");
 }
+
+#[test]
+fn the_mesh_command_writes_the_geometry_and_both_meshes() {
+    if !tools_present("the_mesh_command_writes_the_geometry_and_both_meshes") {
+        return;
+    }
+    let out = tempfile::tempdir().unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .args([
+            "mesh",
+            "cases/hertz-normal.toml",
+            "--resolution",
+            "50um",
+            "--out",
+        ])
+        .arg(out.path())
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(text.contains("pole element 50.000 µm"), "{text}");
+    let msh41 = std::fs::read_to_string(out.path().join("mesh.msh")).unwrap();
+    assert!(msh41.starts_with("$MeshFormat\n4.1"), "MSH 4.1 expected");
+    let msh22 = std::fs::read_to_string(out.path().join("mesh_p1_mm.msh")).unwrap();
+    assert!(msh22.starts_with("$MeshFormat\n2.2"), "MSH 2.2 expected");
+    // Millimetres: the equator node (R = 100 mm, R) is in the FreeFEM mesh.
+    assert!(msh22.contains(" 100 100 0\n"), "mesh not scaled to mm");
+    let bad = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .args(["mesh", "cases/hertz-normal.toml", "--resolution", "0um"])
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--resolution"));
+}
+
+#[test]
+fn doctor_lists_every_tool_with_path_and_version() {
+    let run = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .arg("doctor")
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&run.stdout);
+    for tool in ["gmsh", "FreeFem++", "dolfinx", "meshio"] {
+        assert!(
+            text.lines().any(|l| l.starts_with(tool)),
+            "{tool} missing in:\n{text}"
+        );
+    }
+    let all_found = text.lines().filter(|l| l.contains(" found ")).count() == 4;
+    assert_eq!(run.status.success(), all_found, "{text}");
+}
