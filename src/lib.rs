@@ -28,6 +28,7 @@ pub mod analytic;
 pub mod bench;
 pub mod case;
 pub mod check;
+pub mod external;
 pub mod history;
 pub mod io;
 pub mod pair;

@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use spherecontact::case::Case;
+use spherecontact::external::{geo, toolchain::Toolchain};
 use spherecontact::report::{history_files, junit, summary, table};
 use spherecontact::{io, solver, verify};
 
@@ -43,7 +44,23 @@ enum Command {
         /// Write JUnit XML here.
         #[arg(long, value_name = "FILE")]
         junit: Option<PathBuf>,
+        /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
+        #[arg(long)]
+        require_external: bool,
     },
+    /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
+    Mesh {
+        /// The case file.
+        case: PathBuf,
+        /// Element size at the contact pole, e.g. 20um, 0.02mm, 2e-5 (m); default c_max/40.
+        #[arg(long, value_name = "LENGTH")]
+        resolution: Option<String>,
+        /// Output folder (created if missing).
+        #[arg(long, default_value = "out/mesh")]
+        out: PathBuf,
+    },
+    /// Report each external tool: found or not, path, version, and how to install it.
+    Doctor,
     /// List the solvers of this build and the cases under cases/.
     List,
     /// Run a case's solvers and write a comparison report (HTML, Markdown, SVG, CSV).
@@ -93,7 +110,17 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run { case, solvers, out } => run(&case, &solvers, &out),
-        Command::Verify { cases, junit } => verify_cases(cases, junit.as_deref()),
+        Command::Verify {
+            cases,
+            junit,
+            require_external,
+        } => verify_cases(cases, junit.as_deref(), require_external),
+        Command::Mesh {
+            case,
+            resolution,
+            out,
+        } => mesh(&case, resolution.as_deref(), &out),
+        Command::Doctor => Ok(doctor()),
         Command::List => list(),
         Command::Compare { case, out } => report(&case, out, Report::Compare),
         Command::ReproducePaper { out, case } => report(&case, Some(out), Report::Paper),
@@ -189,7 +216,11 @@ fn run(case: &Path, solvers: &[String], out: &Path) -> Result<ExitCode, InputErr
     Ok(code)
 }
 
-fn verify_cases(files: Vec<PathBuf>, junit_file: Option<&Path>) -> Result<ExitCode, InputError> {
+fn verify_cases(
+    files: Vec<PathBuf>,
+    junit_file: Option<&Path>,
+    require_external: bool,
+) -> Result<ExitCode, InputError> {
     let files = if files.is_empty() {
         case_files(Path::new("cases"))?
     } else {
@@ -214,11 +245,59 @@ fn verify_cases(files: Vec<PathBuf>, junit_file: Option<&Path>) -> Result<ExitCo
         io::write_atomically(file, junit::document(&runs).as_bytes())
             .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
     }
-    Ok(if runs.iter().all(verify::CaseRun::passed) {
+    if require_external && na > 0 {
+        println!("verify: {na} not-available checks count as failures (--require-external)");
+    }
+    Ok(
+        if runs.iter().all(verify::CaseRun::passed) && !(require_external && na > 0) {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        },
+    )
+}
+
+fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, InputError> {
+    // Plan: the case and the resolution must be valid before anything is written.
+    let case = Case::load(case)?;
+    let resolution = match resolution {
+        Some(text) => geo::parse_length(text).map_err(|e| InputError(format!("--resolution: {e}")))?,
+        None => geo::default_resolution(&case.scene),
+    };
+    geo::geo_for_scene(&case.scene, resolution)?;
+    std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
+    match geo::mesh(&case.scene, resolution, out, &Toolchain::default()) {
+        Ok(files) => {
+            println!(
+                "{}: pole element {:.3} µm, {} triangles, gmsh {:.2} s",
+                case.name(),
+                resolution * 1e6,
+                files.triangles,
+                files.wall_s
+            );
+            for file in [&files.geo, &files.msh41, &files.msh22_mm] {
+                println!("  {}", file.display());
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(e) => {
+            eprintln!("error: mesh: {e}");
+            Ok(ExitCode::FAILURE)
+        }
+    }
+}
+
+fn doctor() -> ExitCode {
+    let probes = Toolchain::default().doctor();
+    for probe in &probes {
+        println!("{}", probe.line());
+    }
+    if probes.iter().all(|p| p.available()) {
         ExitCode::SUCCESS
     } else {
+        println!("some external tools are missing: run scripts/setup.sh");
         ExitCode::FAILURE
-    })
+    }
 }
 
 fn bench(

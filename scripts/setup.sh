@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Install the external toolchain of spherecontact on a fresh Debian 12 (bookworm) machine, as root.
+# Idempotent: packages already installed are left as they are, the FreeFEM pref line is added once.
+#   gmsh 4.8.4 (+ python3-gmsh), FreeFem++ 4.11 (+ libfreefem++ plugins: gmsh, iovtk),
+#   dolfinx 0.5.2 for /usr/bin/python3, meshio 5 and h5py.
+# Measured: ~245 packages, ~200 MB download, 2-3 minutes on a fresh machine (shared/notes/toolchain.md).
+# Afterwards prints the versions found (the same facts as `spherecontact doctor`).
+set -euo pipefail
+
+PACKAGES=(gmsh python3-gmsh freefem++ libfreefem++ python3-dolfinx-real python3-meshio python3-h5py)
+export DEBIAN_FRONTEND=noninteractive
+APT=(apt-get -y -q -o DPkg::Lock::Timeout=900 --no-install-recommends)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ "${#missing[@]}" -gt 0 ]; then
+  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+  echo "setup.sh: installing ${missing[*]}"
+  $SUDO apt-get -q -o DPkg::Lock::Timeout=900 update
+  # Retry once: a first attempt once died with a dpkg "cannot stat … .deb" error and a retry passed.
+  $SUDO "${APT[@]}" install "${missing[@]}" || {
+    echo "setup.sh: apt-get install failed once; retrying"
+    $SUDO apt-get -q -o DPkg::Lock::Timeout=900 update
+    $SUDO "${APT[@]}" install "${missing[@]}"
+  }
+else
+  echo "setup.sh: all packages already installed"
+fi
+
+# Debian's /etc/freefem++.pref points at /usr/lib/ff++/4.9/lib, but libfreefem++ installs the
+# plugins (gmsh, iovtk) in /usr/lib/freefem++: add that load path once. spherecontact also sets
+# FF_LOADPATH itself for every FreeFem++ run, so this line only helps people running decks by hand.
+PREF=/etc/freefem++.pref
+if [ -w "$PREF" ] || [ "$(id -u)" -eq 0 ]; then
+  grep -qs '/usr/lib/freefem++' "$PREF" || echo 'loadpath += "/usr/lib/freefem++"' >> "$PREF"
+fi
+
+# Versions found (fail if a tool does not run).
+echo "gmsh      $(command -v gmsh): $(gmsh -version 2>&1 | tail -n1)"
+smoke=$(mktemp --suffix=.edp)
+printf 'load "gmsh"\nload "iovtk"\ncout << "ffversion " << version << endl;\n' > "$smoke"
+ffout=$(FF_LOADPATH=/usr/lib/freefem++ FreeFem++ -nw -ns -v 0 "$smoke" 2>&1) || { echo "$ffout"; rm -f "$smoke"; exit 1; }
+rm -f "$smoke"
+echo "FreeFem++ $(command -v FreeFem++): $(echo "$ffout" | sed -n 's/^ffversion //p') (plugins gmsh, iovtk load)"
+/usr/bin/python3 -c "import dolfinx, gmsh, meshio, h5py; print('dolfinx  ', dolfinx.__version__, '(/usr/bin/python3); meshio', meshio.__version__, '; h5py', h5py.__version__, '; python gmsh', gmsh.__version__)"

@@ -1,0 +1,65 @@
+//! The FEniCSx deck `fenicsx-axisym`: axisymmetric normal contact with dolfinx 0.5.2 (Debian),
+//! P2 on the quadratic mesh, penalty solved by semi-smooth Newton (template
+//! `templates/fenicsx_axisym.py`).
+
+use std::path::Path;
+use std::time::Duration;
+
+use super::deck::Deck;
+use super::geo::MeshFiles;
+use super::process::Job;
+use super::toolchain::{Tool, Toolchain};
+
+/// The deck template.
+pub const TEMPLATE: &str = include_str!("templates/fenicsx_axisym.py");
+
+/// dolfinx's axisymmetric deck.
+pub struct Fenicsx;
+
+impl Deck for Fenicsx {
+    fn name(&self) -> &'static str {
+        "fenicsx-axisym"
+    }
+
+    fn description(&self) -> &'static str {
+        "FEniCSx (dolfinx) axisymmetric FEM, one sphere on its symmetry plane, P2, penalty + Newton (normal only)"
+    }
+
+    fn tool(&self) -> Tool {
+        Tool::Dolfinx
+    }
+
+    fn template(&self) -> &'static str {
+        TEMPLATE
+    }
+
+    fn file_name(&self) -> &'static str {
+        "deck.py"
+    }
+
+    fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
+        &mesh.msh41
+    }
+
+    fn p0_method(&self) -> &'static str {
+        "penalty-nodal-pole: penalty pressure at the pole node"
+    }
+
+    /// Serial, no `mpirun` (faster than 2 ranks on 2 cores; mpirun as root needs extra flags).
+    fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
+        Job {
+            program: toolchain.python.clone(),
+            args: vec![deck.display().to_string()],
+            env: vec![],
+            timeout,
+        }
+    }
+
+    fn exit_code_meaning(&self, code: i32) -> &'static str {
+        match code {
+            1 => "uncaught Python exception (traceback in stderr)",
+            2 => "Python could not open the deck or its arguments were wrong",
+            _ => "unexpected exit code",
+        }
+    }
+}

@@ -1,0 +1,75 @@
+//! The FreeFEM deck `freefem-axisym`: axisymmetric normal contact, P2 displacements on the P1
+//! mesh, penalty with an active-set iteration (template `templates/freefem_axisym.edp`).
+
+use std::path::Path;
+use std::time::Duration;
+
+use super::deck::Deck;
+use super::geo::MeshFiles;
+use super::process::Job;
+use super::toolchain::{Tool, Toolchain, FF_LOADPATH};
+
+/// The deck template.
+pub const TEMPLATE: &str = include_str!("templates/freefem_axisym.edp");
+
+/// FreeFEM's axisymmetric deck.
+pub struct FreeFem;
+
+impl Deck for FreeFem {
+    fn name(&self) -> &'static str {
+        "freefem-axisym"
+    }
+
+    fn description(&self) -> &'static str {
+        "FreeFEM axisymmetric FEM, one sphere on its symmetry plane, P2, penalty + active set (normal only)"
+    }
+
+    fn tool(&self) -> Tool {
+        Tool::FreeFem
+    }
+
+    fn template(&self) -> &'static str {
+        TEMPLATE
+    }
+
+    fn file_name(&self) -> &'static str {
+        "deck.edp"
+    }
+
+    fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
+        &mesh.msh22_mm
+    }
+
+    fn p0_method(&self) -> &'static str {
+        "minus-szz-pole: −σzz at the pole (the nodal penalty pressure there is 2–4 % high)"
+    }
+
+    fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
+        Job {
+            program: toolchain.freefem.clone(),
+            args: vec![
+                "-nw".into(),
+                "-ns".into(),
+                "-v".into(),
+                "0".into(),
+                deck.display().to_string(),
+            ],
+            env: vec![("FF_LOADPATH".into(), FF_LOADPATH.into())],
+            timeout,
+        }
+    }
+
+    /// FreeFEM's codes, measured with FreeFem++ 4.11 (Debian 12): 1 for a compile error (also a
+    /// mesh file that cannot be opened), 2 for a plugin that cannot be loaded, 8 for an error
+    /// during execution (failed assert, index out of range, …).
+    fn exit_code_meaning(&self, code: i32) -> &'static str {
+        match code {
+            1 => "compile error in the deck, or an input file (mesh) that cannot be opened",
+            2 => {
+                "a plugin (gmsh, iovtk) failed to load: install libfreefem++, FF_LOADPATH=/usr/lib/freefem++"
+            }
+            8 => "execution error (failed assertion, index out of range, solver error)",
+            _ => "unexpected exit code",
+        }
+    }
+}

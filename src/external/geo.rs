@@ -1,0 +1,277 @@
+//! The gmsh geometry of a scene and its meshes: the meridian of one sphere for an axisymmetric
+//! model, graded from the contact pole by the path's largest contact radius.
+//!
+//! Model (shared/notes/toolchain.md, measured): the lower hemisphere of body 1, radius R, seen in
+//! its meridian plane (x = r ≥ 0, y = z), touching the plane y = 0 at the pole (0, 0); loaded
+//! through its flat equatorial face y = R. Physical tags: 1 the spherical surface (contact
+//! candidate), 2 the flat face (prescribed approach), 3 the symmetry axis, 10 the body. Against
+//! Hertz's half-space this finite hemisphere is ≈ 0.37 % stiffer in P(δn), on every mesh.
+//!
+//! Grading: element size h at the pole (the resolution) uniform over a disc of radius
+//! 1.5 c_max around it (c_max the largest Hertz contact radius of the path), growing linearly to
+//! R/20 at distance R/2 (a gmsh Distance + Threshold field).
+//!
+//! Files (SI in the geometry): `<stem>.geo` in metres; `<stem>.msh` MSH 4.1, quadratic (curved
+//! arc), metres, for the in-crate solver and FEniCSx; `<stem>_p1_mm.msh` MSH 2.2, first order,
+//! millimetres, for FreeFEM's `gmshload` (which reads only that, and rejects 20 µm elements
+//! in metres as degenerate).
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use super::process::{self, Ending, Job};
+use super::toolchain::{Tool, Toolchain};
+use crate::scene::Scene;
+use crate::solver::SolveError;
+
+/// Default pole element size: this fraction of the largest contact radius (c_max / 40 ≈ 23 µm
+/// for the paper's spheres at δn = 17 µm, where toolchain.md measured P within 0.4 % of Hertz).
+pub const DEFAULT_ELEMENTS_PER_RADIUS: f64 = 40.0;
+
+/// The time gmsh may take for one mesh (a 2D mesh graded to 20 µm takes under 1 s).
+const GMSH_TIMEOUT: Duration = Duration::from_secs(120);
+
+/// Physical tag of the spherical (contact candidate) surface.
+pub const TAG_CONTACT: u32 = 1;
+/// Physical tag of the loaded flat face.
+pub const TAG_TOP: u32 = 2;
+/// Physical tag of the symmetry axis.
+pub const TAG_AXIS: u32 = 3;
+
+/// The default resolution of a scene: pole element size c_max / 40 [m], or R / 4000 when the
+/// path never closes the gap.
+pub fn default_resolution(scene: &Scene) -> f64 {
+    let c_max = scene.max_contact_radius();
+    if c_max > 0.0 {
+        c_max / DEFAULT_ELEMENTS_PER_RADIUS
+    } else {
+        scene.pair.body1.radius / 4000.0
+    }
+}
+
+/// Reads a resolution (a length) such as `20um`, `0.02mm` or `2e-5` (metres) into metres.
+pub fn parse_length(text: &str) -> Result<f64, String> {
+    let text = text.trim();
+    let (number, scale) = [("um", 1e-6), ("µm", 1e-6), ("mm", 1e-3), ("m", 1.0)]
+        .iter()
+        .find_map(|(unit, scale)| text.strip_suffix(unit).map(|n| (n, *scale)))
+        .unwrap_or((text, 1.0));
+    let value: f64 = number
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a length (e.g. 20um, 0.02mm, 2e-5)"))?;
+    if value.is_finite() && value > 0.0 {
+        Ok(value * scale)
+    } else {
+        Err(format!("`{text}`: a length must be positive"))
+    }
+}
+
+/// The gmsh `.geo` text (metres) of body 1's meridian, graded to `resolution` [m] at the pole.
+///
+/// Not applicable to a flat body 1 (no finite sphere to mesh) or a resolution that is not a
+/// small positive fraction of the radius.
+pub fn geo_for_scene(scene: &Scene, resolution: f64) -> Result<String, SolveError> {
+    let radius = scene.pair.body1.radius;
+    if !radius.is_finite() {
+        return Err(SolveError::NotApplicable(
+            "body 1 is a flat: the axisymmetric mesh is of a sphere".into(),
+        ));
+    }
+    if !(resolution > 0.0 && resolution < radius / 20.0) {
+        return Err(SolveError::NotApplicable(format!(
+            "resolution {resolution:e} m must be positive and below R/20 = {:e} m",
+            radius / 20.0
+        )));
+    }
+    let c_max = scene.max_contact_radius();
+    let h_max = radius / 20.0;
+    let d_fine = (1.5 * c_max).max(4.0 * resolution);
+    let d_coarse = (radius / 2.0).max(2.0 * d_fine);
+    Ok(format!(
+        "// spherecontact: meridian of body 1 of scene `{name}` (metres).
+// x = r >= 0, y = z; pole (0,0) touches the plane y = 0; loaded through the face y = R.
+// Largest Hertz contact radius of the path c_max = {c_max:e} m.
+// Mesh: gmsh THIS.geo -2 -order 2 -format msh41   (FreeFEM: -order 1 -format msh22
+//       -setnumber Mesh.ScalingFactor 1000 for millimetres)
+R = {radius:e};
+h = {resolution:e};        // element size at the contact pole (the resolution)
+hmax = {h_max:e};     // element size far from the contact
+dfine = {d_fine:e};    // uniform size h up to this distance from the pole (1.5 c_max)
+dcoarse = {d_coarse:e};  // size grows linearly to hmax at this distance
+
+Point(1) = {{0, 0, 0, hmax}};  // pole
+Point(2) = {{0, R, 0, hmax}};  // centre, on the axis
+Point(3) = {{R, R, 0, hmax}};  // equator
+Circle(1) = {{1, 2, 3}};       // spherical surface: contact candidate
+Line(2) = {{3, 2}};            // flat loaded face y = R
+Line(3) = {{2, 1}};            // symmetry axis r = 0
+Curve Loop(1) = {{1, 2, 3}};
+Plane Surface(1) = {{1}};
+
+Physical Curve(\"contact\", {TAG_CONTACT}) = {{1}};
+Physical Curve(\"top\", {TAG_TOP}) = {{2}};
+Physical Curve(\"axis\", {TAG_AXIS}) = {{3}};
+Physical Surface(\"body\", 10) = {{1}};
+
+Field[1] = Distance;
+Field[1].PointsList = {{1}};
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = h;
+Field[2].SizeMax = hmax;
+Field[2].DistMin = dfine;
+Field[2].DistMax = dcoarse;
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Mesh.Algorithm = 6;            // Frontal-Delaunay (algorithm 8 segfaults in gmsh 4.8.4)
+Mesh.SecondOrderLinear = 0;    // quadratic elements follow the arc
+",
+        name = scene.name,
+    ))
+}
+
+/// The mesh files of one scene and resolution.
+#[derive(Clone, Debug)]
+pub struct MeshFiles {
+    /// The geometry, metres.
+    pub geo: PathBuf,
+    /// MSH 4.1, quadratic triangles, metres (in-crate solver, FEniCSx).
+    pub msh41: PathBuf,
+    /// MSH 2.2, linear triangles, millimetres (FreeFEM).
+    pub msh22_mm: PathBuf,
+    /// Pole element size [m].
+    pub resolution: f64,
+    /// Number of linear triangles (the same triangulation in both files).
+    pub triangles: usize,
+    /// Wall time of the two gmsh runs [s].
+    pub wall_s: f64,
+}
+
+/// Writes `<dir>/<stem>.geo` for the scene and runs gmsh for both mesh files.
+pub fn mesh(
+    scene: &Scene,
+    resolution: f64,
+    dir: &Path,
+    toolchain: &Toolchain,
+) -> Result<MeshFiles, SolveError> {
+    toolchain.require(Tool::Gmsh).map_err(SolveError::Unavailable)?;
+    let stem = "mesh";
+    let geo = dir.join(format!("{stem}.geo"));
+    std::fs::write(&geo, geo_for_scene(scene, resolution)?)
+        .map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
+    let msh41 = dir.join(format!("{stem}.msh"));
+    let msh22_mm = dir.join(format!("{stem}_p1_mm.msh"));
+    let quadratic = ["-order", "2", "-format", "msh41"];
+    let linear_mm = [
+        "-order",
+        "1",
+        "-format",
+        "msh22",
+        "-setnumber",
+        "Mesh.ScalingFactor",
+        "1000",
+    ];
+    let mut wall_s = 0.0;
+    for (options, out) in [(&quadratic[..], &msh41), (&linear_mm[..], &msh22_mm)] {
+        let mut args = vec![geo.display().to_string(), "-2".into()];
+        args.extend(options.iter().map(|s| s.to_string()));
+        args.extend(["-o".into(), out.display().to_string()]);
+        let job = Job {
+            program: toolchain.gmsh.clone(),
+            args,
+            env: vec![],
+            timeout: GMSH_TIMEOUT,
+        };
+        let run = process::run(&job, dir, "gmsh")
+            .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
+        wall_s += run.wall_s;
+        if !run.succeeded() || !out.is_file() {
+            return Err(SolveError::Failed(format!(
+                "gmsh {}: {}",
+                describe(&run.ending),
+                run.tail(8)
+            )));
+        }
+    }
+    let triangles = triangle_count(&msh22_mm);
+    Ok(MeshFiles {
+        geo,
+        msh41,
+        msh22_mm,
+        resolution,
+        triangles,
+        wall_s,
+    })
+}
+
+/// gmsh's exit in words (gmsh returns 1 on any error).
+fn describe(ending: &Ending) -> String {
+    match ending {
+        Ending::Exited(code) => format!("exited with code {code}"),
+        Ending::Signalled(s) => format!("crashed with {}", process::signal_name(*s)),
+        Ending::TimedOut => format!("timed out after {} s and was killed", GMSH_TIMEOUT.as_secs()),
+    }
+}
+
+/// The number of linear triangles (element type 2) in an MSH 2.2 file; 0 if unreadable.
+fn triangle_count(msh22: &Path) -> usize {
+    let text = std::fs::read_to_string(msh22).unwrap_or_default();
+    text.split("$Elements")
+        .nth(1)
+        .and_then(|rest| rest.split("$EndElements").next())
+        .map_or(0, |block| {
+            block
+                .lines()
+                .skip(2) // the rest of the "$Elements" line, then the count
+                .filter(|l| l.split_whitespace().nth(1) == Some("2"))
+                .count()
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grading_follows_the_largest_contact_radius() {
+        let scene = crate::external::test_scene(&[0.0, 17.0]);
+        let c = scene.max_contact_radius(); // sqrt(R* δn) = sqrt(0.05 · 17e-6) ≈ 0.922 mm
+        assert!((c - (0.05f64 * 17e-6).sqrt()).abs() < 1e-12);
+        let h = default_resolution(&scene);
+        assert!((h - c / 40.0).abs() < 1e-15);
+        let geo = geo_for_scene(&scene, h).unwrap();
+        assert!(geo.contains(&format!("h = {h:e};")));
+        assert!(geo.contains(&format!("dfine = {:e};", 1.5 * c)));
+        assert!(geo.contains("Physical Curve(\"contact\", 1)"));
+    }
+
+    #[test]
+    fn a_flat_or_a_bad_resolution_is_not_applicable() {
+        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        assert!(matches!(
+            geo_for_scene(&scene, 0.0),
+            Err(SolveError::NotApplicable(_))
+        ));
+        assert!(matches!(
+            geo_for_scene(&scene, f64::NAN),
+            Err(SolveError::NotApplicable(_))
+        ));
+        scene.pair.body1.radius = f64::INFINITY;
+        assert!(matches!(
+            geo_for_scene(&scene, 2e-5),
+            Err(SolveError::NotApplicable(_))
+        ));
+    }
+
+    #[test]
+    fn lengths_parse_with_units() {
+        assert!((parse_length("20um").unwrap() - 20e-6).abs() < 1e-18);
+        assert!((parse_length("0.02mm").unwrap() - 2e-5).abs() < 1e-18);
+        assert_eq!(parse_length("2e-5").unwrap(), 2e-5);
+        assert!(parse_length("-1um").is_err());
+        assert!(parse_length("abc").is_err());
+    }
+}

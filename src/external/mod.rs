@@ -1,0 +1,64 @@
+//! External solvers: gmsh meshes, FreeFEM and FEniCSx (dolfinx) decks written from the scene,
+//! run as subprocesses, their results read back into the same [`History`](crate::history::History)
+//! as every other solver.
+//!
+//! - [`toolchain`]: finding the tools, their versions, how to install them (`doctor`);
+//! - [`process`]: one run in its own directory and process group, with a timeout;
+//! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
+//! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
+//! - [`axisym`]: the shared run (mesh → deck → read back → History);
+//! - [`readback`]: the decks' per-step CSV and the field files through meshio.
+//!
+//! Install the tools with `scripts/setup.sh`. A missing tool makes the solver
+//! [`Unavailable`](crate::solver::SolveError::Unavailable), never a pass.
+
+pub mod axisym;
+pub mod deck;
+pub mod fenicsx;
+pub mod freefem;
+pub mod geo;
+pub mod process;
+pub mod readback;
+pub mod toolchain;
+
+use crate::solver::Solver;
+use axisym::AxisymSolver;
+
+/// The external solvers, with default options.
+pub fn solvers() -> Vec<Box<dyn Solver>> {
+    vec![
+        Box::new(AxisymSolver::new(freefem::FreeFem)),
+        Box::new(AxisymSolver::new(fenicsx::Fenicsx)),
+    ]
+}
+
+/// The paper's spheres (R 0.1 m, E 70 GPa, ν 0.3) along a normal path through `delta_n_um`.
+#[cfg(test)]
+pub(crate) fn test_scene(delta_n_um: &[f64]) -> crate::scene::Scene {
+    use crate::pair::{Body, ContactPair, Material};
+    use crate::path::{LoadingPath, Position};
+    let body = Body {
+        radius: 0.1,
+        material: Material {
+            young: 70e9,
+            poisson: 0.3,
+        },
+    };
+    let positions: Vec<Position> = delta_n_um
+        .iter()
+        .map(|&d| Position {
+            delta_n: d * 1e-6,
+            delta_t: 0.0,
+        })
+        .collect();
+    let substeps = vec![4; positions.len() - 1];
+    crate::scene::Scene {
+        name: "test".into(),
+        pair: ContactPair {
+            body1: body,
+            body2: body,
+        },
+        friction: 0.2,
+        path: LoadingPath::try_new(positions, substeps).expect("valid test path"),
+    }
+}

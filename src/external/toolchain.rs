@@ -1,0 +1,265 @@
+//! Finding the external tools, their versions and how to install them (`spherecontact doctor`).
+//!
+//! Debian 12's packages are the dependable set (shared/notes/toolchain.md): gmsh 4.8.4,
+//! FreeFem++ 4.11 with its plugins in `/usr/lib/freefem++`, and dolfinx 0.5.2, meshio and h5py
+//! for Debian's own `/usr/bin/python3` (not whichever `python3` is first on PATH).
+//! `scripts/setup.sh` installs them all.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+use std::time::Duration;
+
+use super::process::{self, Job};
+
+/// Where Debian's libfreefem++ puts the FreeFEM plugins (`gmsh`, `iovtk`); Debian's
+/// `/etc/freefem++.pref` points elsewhere, so every FreeFem++ run gets `FF_LOADPATH` set to this.
+pub const FF_LOADPATH: &str = "/usr/lib/freefem++";
+
+/// How long a version probe may take (a dolfinx import takes 1–2 s).
+const PROBE_TIMEOUT: Duration = Duration::from_secs(60);
+
+/// One external tool the decks need.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tool {
+    /// The gmsh mesher (command line).
+    Gmsh,
+    /// FreeFem++ with its `gmsh` and `iovtk` plugins.
+    FreeFem,
+    /// dolfinx (FEniCSx) and the gmsh Python module, for `/usr/bin/python3`.
+    Dolfinx,
+    /// meshio and h5py, for `/usr/bin/python3`: reads field files back.
+    Meshio,
+}
+
+impl Tool {
+    /// Every tool, in the order `doctor` lists them.
+    pub const ALL: [Tool; 4] = [Tool::Gmsh, Tool::FreeFem, Tool::Dolfinx, Tool::Meshio];
+
+    /// The tool's name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tool::Gmsh => "gmsh",
+            Tool::FreeFem => "FreeFem++",
+            Tool::Dolfinx => "dolfinx",
+            Tool::Meshio => "meshio",
+        }
+    }
+
+    /// The command that installs it (all of them: `scripts/setup.sh`).
+    pub fn install_command(self) -> &'static str {
+        match self {
+            Tool::Gmsh => "apt-get install gmsh",
+            Tool::FreeFem => "apt-get install freefem++ libfreefem++",
+            Tool::Dolfinx => "apt-get install python3-dolfinx-real python3-gmsh",
+            Tool::Meshio => "apt-get install python3-meshio python3-h5py",
+        }
+    }
+}
+
+/// The executables the decks are run with.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Toolchain {
+    /// The gmsh executable.
+    pub gmsh: PathBuf,
+    /// The FreeFem++ executable.
+    pub freefem: PathBuf,
+    /// The Python interpreter that has dolfinx, gmsh, meshio and h5py.
+    pub python: PathBuf,
+}
+
+impl Default for Toolchain {
+    /// Debian's: `gmsh` and `FreeFem++` from PATH, `/usr/bin/python3`.
+    fn default() -> Self {
+        Self {
+            gmsh: "gmsh".into(),
+            freefem: "FreeFem++".into(),
+            python: "/usr/bin/python3".into(),
+        }
+    }
+}
+
+/// What a probe of one tool found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Probe {
+    /// The tool.
+    pub tool: Tool,
+    /// The executable that runs it, if found.
+    pub path: Option<PathBuf>,
+    /// Its version, or why it does not work.
+    pub version: Result<String, String>,
+}
+
+impl Probe {
+    /// True when the tool was found and reported a version.
+    pub fn available(&self) -> bool {
+        self.version.is_ok()
+    }
+
+    /// One line for `doctor`: found or not, path, version, install command.
+    pub fn line(&self) -> String {
+        let path = self
+            .path
+            .as_ref()
+            .map_or_else(|| "-".to_owned(), |p| p.display().to_string());
+        match &self.version {
+            Ok(version) => format!("{:<10} found      {version:<10} {path}", self.tool.name()),
+            Err(why) => format!(
+                "{:<10} NOT FOUND  {path}: {why}; install: {} (or scripts/setup.sh)",
+                self.tool.name(),
+                self.tool.install_command()
+            ),
+        }
+    }
+}
+
+impl Toolchain {
+    /// The executable that runs `tool`.
+    pub fn executable(&self, tool: Tool) -> &Path {
+        match tool {
+            Tool::Gmsh => &self.gmsh,
+            Tool::FreeFem => &self.freefem,
+            Tool::Dolfinx | Tool::Meshio => &self.python,
+        }
+    }
+
+    /// Finds `tool` and asks it for its version (runs it once, in a temporary directory).
+    pub fn probe(&self, tool: Tool) -> Probe {
+        let Some(path) = which(self.executable(tool)) else {
+            return Probe {
+                tool,
+                path: None,
+                version: Err(format!("{} not on PATH", self.executable(tool).display())),
+            };
+        };
+        let version = version_of(tool, &path);
+        Probe {
+            tool,
+            path: Some(path),
+            version,
+        }
+    }
+
+    /// Every tool's probe, in [`Tool::ALL`] order.
+    pub fn doctor(&self) -> Vec<Probe> {
+        Tool::ALL.iter().map(|&t| self.probe(t)).collect()
+    }
+
+    /// `Ok(version)` if `tool` works, else the "not installed" message a solver reports.
+    /// The default toolchain's probes are made once per process.
+    pub fn require(&self, tool: Tool) -> Result<String, String> {
+        let probe = if *self == Toolchain::default() {
+            static SYSTEM: OnceLock<Vec<Probe>> = OnceLock::new();
+            SYSTEM.get_or_init(|| self.doctor())[Tool::ALL.iter().position(|&t| t == tool).unwrap_or(0)]
+                .clone()
+        } else {
+            self.probe(tool)
+        };
+        probe.version.map_err(|why| {
+            format!(
+                "{} not installed ({why}); run scripts/setup.sh or {}",
+                tool.name(),
+                tool.install_command()
+            )
+        })
+    }
+}
+
+/// The executable `program` resolves to: itself if it is a path, else the first match on PATH.
+pub fn which(program: &Path) -> Option<PathBuf> {
+    let is_file = |p: &Path| p.is_file();
+    if program.components().count() > 1 {
+        return is_file(program).then(|| program.to_path_buf());
+    }
+    std::env::split_paths(&std::env::var_os("PATH")?)
+        .map(|dir| dir.join(program))
+        .find(|p| is_file(p))
+}
+
+/// Runs the tool's version query in a temporary directory.
+fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
+    let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory: {e}"))?;
+    let (args, env): (Vec<String>, Vec<(String, String)>) = match tool {
+        Tool::Gmsh => (vec!["-version".into()], vec![]),
+        Tool::FreeFem => {
+            // The plugins the decks load must be there too: a FreeFEM without libfreefem++
+            // fails on `load "gmsh"` with exit code 2.
+            let script = "load \"gmsh\"\nload \"iovtk\"\ncout << \"ffversion \" << version << endl;\n";
+            std::fs::write(dir.path().join("version.edp"), script).map_err(|e| e.to_string())?;
+            (
+                vec![
+                    "-nw".into(),
+                    "-ns".into(),
+                    "-v".into(),
+                    "0".into(),
+                    "version.edp".into(),
+                ],
+                vec![("FF_LOADPATH".into(), FF_LOADPATH.into())],
+            )
+        }
+        Tool::Dolfinx => (
+            vec![
+                "-c".into(),
+                "import gmsh, dolfinx; print(dolfinx.__version__)".into(),
+            ],
+            vec![],
+        ),
+        Tool::Meshio => (
+            vec![
+                "-c".into(),
+                "import h5py, meshio; print(meshio.__version__)".into(),
+            ],
+            vec![],
+        ),
+    };
+    let job = Job {
+        program: path.to_path_buf(),
+        args,
+        env,
+        timeout: PROBE_TIMEOUT,
+    };
+    let run = process::run(&job, dir.path(), "version").map_err(|e| e.to_string())?;
+    if !run.succeeded() {
+        return Err(format!("{:?}: {}", run.ending, run.tail(3)));
+    }
+    let text = format!("{}\n{}", run.stdout, run.stderr);
+    let version = match tool {
+        Tool::FreeFem => text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("ffversion "))
+            .map(str::to_owned),
+        _ => text
+            .lines()
+            .map(str::trim)
+            .find(|l| !l.is_empty())
+            .map(str::to_owned),
+    };
+    version.ok_or_else(|| format!("no version in its output: {}", run.tail(3)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_missing_tool_is_reported_with_its_install_command() {
+        let chain = Toolchain {
+            gmsh: "/nonexistent/gmsh".into(),
+            ..Toolchain::default()
+        };
+        let probe = chain.probe(Tool::Gmsh);
+        assert!(!probe.available());
+        assert!(probe.line().contains("NOT FOUND"));
+        assert!(probe.line().contains("apt-get install gmsh"));
+        let message = chain.require(Tool::Gmsh).unwrap_err();
+        assert!(
+            message.contains("not installed") && message.contains("scripts/setup.sh"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn which_finds_a_shell() {
+        assert!(which(Path::new("sh")).is_some());
+        assert!(which(Path::new("spherecontact-no-such-tool")).is_none());
+    }
+}
