@@ -165,7 +165,7 @@ pub fn sweep(
     let rungs: Vec<Box<dyn Solver>> = solvers
         .iter()
         .flat_map(|s| {
-            let ladder = s.resolution_ladder();
+            let ladder = s.resolution_ladder(scene);
             if ladder.is_empty() {
                 solver::by_name(s.name()).into_iter().collect()
             } else {

@@ -35,10 +35,11 @@ pub trait Solver: Send + Sync {
     /// metadata's model, resolution and warnings; [`run`] adds name, version and wall time.
     fn solve(&self, scene: &Scene) -> Result<History, SolveError>;
 
-    /// The same solver at a ladder of resolutions, coarse to fine (springs, grid, mesh size), for
-    /// convergence and speed-against-error studies; empty where resolution has no meaning
-    /// (closed forms, incremental laws whose resolution is the path's own increments).
-    fn resolution_ladder(&self) -> Vec<Box<dyn Solver>> {
+    /// The same solver at a ladder of resolutions for `scene`, coarse to fine (springs, grid,
+    /// mesh size — sizes scale with the scene's contact), for convergence and speed-against-error
+    /// studies; empty where resolution has no meaning (closed forms, incremental laws whose
+    /// resolution is the path's own increments).
+    fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
         Vec::new()
     }
 }

@@ -231,7 +231,7 @@ impl Solver for Mdr {
         "method of dimensionality reduction (Popov & Heß): exact Mindlin–Deresiewicz for any history"
     }
 
-    fn resolution_ladder(&self) -> Vec<Box<dyn Solver>> {
+    fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
         [250, 500, 1000, 2000, 4000, 8000, 16000]
             .into_iter()
             .map(|springs| Box::new(Mdr { springs }) as Box<dyn Solver>)

@@ -69,9 +69,26 @@ pub struct AxisymSolver<D: Deck> {
     pub options: Options,
 }
 
-impl<D: Deck> Solver for AxisymSolver<D> {
+/// Pole element sizes of the external ladder, as fractions of the path's largest contact radius.
+pub const LADDER: [f64; 4] = [1.0 / 10.0, 1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0];
+
+impl<D: Deck + Clone + 'static> Solver for AxisymSolver<D> {
     fn name(&self) -> &'static str {
         self.deck.name()
+    }
+
+    fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
+        LADDER
+            .iter()
+            .map(|fraction| {
+                let mut options = self.options.clone();
+                options.resolution = Some(fraction * scene.max_contact_radius());
+                Box::new(AxisymSolver {
+                    deck: self.deck.clone(),
+                    options,
+                }) as Box<dyn Solver>
+            })
+            .collect()
     }
 
     fn description(&self) -> &'static str {

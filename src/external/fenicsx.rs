@@ -14,6 +14,7 @@ use super::toolchain::{Tool, Toolchain};
 pub const TEMPLATE: &str = include_str!("templates/fenicsx_axisym.py");
 
 /// dolfinx's axisymmetric deck.
+#[derive(Clone, Copy, Debug)]
 pub struct Fenicsx;
 
 impl Deck for Fenicsx {

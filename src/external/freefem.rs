@@ -13,6 +13,7 @@ use super::toolchain::{Tool, Toolchain, FF_LOADPATH};
 pub const TEMPLATE: &str = include_str!("templates/freefem_axisym.edp");
 
 /// FreeFEM's axisymmetric deck.
+#[derive(Clone, Copy, Debug)]
 pub struct FreeFem;
 
 impl Deck for FreeFem {
