@@ -382,8 +382,8 @@ fn report(case: &Path, out: Option<PathBuf>, kind: Report) -> Result<ExitCode, I
         Report::Paper => spherecontact::report::paper::document(&run, &reference_dir),
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;
-    document
-        .write(&out)
+    history_files::write_all(&out.join("solvers"), &run)
+        .and_then(|()| document.write(&out))
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     print!("{}", summary::screen(&run));
     println!("report: {}", out.join("report.html").display());

@@ -536,6 +536,31 @@ pub fn check_table(run: &CaseRun) -> Table {
     }
 }
 
+/// The scalar facts of a solver's metadata (`key = value`); lists and long texts are left to
+/// the solver's JSON file, and named as such.
+fn details_of(extra: &std::collections::BTreeMap<String, serde_json::Value>) -> Vec<String> {
+    let mut shown = Vec::new();
+    let mut elsewhere = Vec::new();
+    for (key, value) in extra {
+        match value {
+            serde_json::Value::Number(n) => match n.as_f64() {
+                Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => shown.push(format!("{key} = {x}")),
+                Some(x) => shown.push(format!("{key} = {x:.4}")),
+                None => shown.push(format!("{key} = {n}")),
+            },
+            serde_json::Value::String(text) if text.chars().count() <= 80 => {
+                shown.push(format!("{key} = {text}"))
+            }
+            serde_json::Value::Bool(b) => shown.push(format!("{key} = {b}")),
+            _ => elsewhere.push(key.as_str()),
+        }
+    }
+    if !elsewhere.is_empty() {
+        shown.push(format!("more in solvers/<name>.json: {}", elsewhere.join(", ")));
+    }
+    shown
+}
+
 /// The solver table: what ran, how (model, resolution, version, facts) and how long; what did
 /// not run and why.
 pub fn solver_table(run: &CaseRun) -> Table {
@@ -557,7 +582,7 @@ pub fn solver_table(run: &CaseRun) -> Table {
             .map(|name| match run.histories.get(name) {
                 Some(Ok(h)) => {
                     let m = &h.metadata;
-                    let details: Vec<String> = m.extra.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+                    let details = details_of(&m.extra);
                     vec![
                         Cell::plain(name),
                         Cell::with_class("ran", "ok"),

@@ -82,3 +82,12 @@ pub fn write(dir: &Path, history: &History) -> anyhow::Result<()> {
     write_atomically(&dir.join(format!("{name}.json")), json.as_bytes())?;
     Ok(())
 }
+
+/// Writes every history of a case run into `dir` (created if missing), as [`write`] does.
+pub fn write_all(dir: &Path, run: &crate::verify::CaseRun) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    for history in run.histories.values().flatten() {
+        write(dir, history)?;
+    }
+    Ok(())
+}
