@@ -536,12 +536,39 @@ pub fn check_table(run: &CaseRun) -> Table {
     }
 }
 
-/// The scalar facts of a solver's metadata (`key = value`); lists and long texts are left to
-/// the solver's JSON file, and named as such.
+/// Whether a metadata key is a duration in seconds (`meshing_s`, `solving_s`, …).
+fn is_duration(key: &str) -> bool {
+    key.ends_with("_s")
+}
+
+/// The wall time, with the solver's own split of it (`meshing 1.37 s, …`) where it gives one.
+fn wall_time_of(metadata: &crate::history::Metadata) -> String {
+    let parts: Vec<String> = metadata
+        .extra
+        .iter()
+        .filter(|(key, _)| is_duration(key))
+        .filter_map(|(key, value)| {
+            Some(format!(
+                "{} {:.3} s",
+                key.trim_end_matches("_s").replace('_', " "),
+                value.as_f64()?
+            ))
+        })
+        .collect();
+    let total = format!("{:.3} ms", metadata.wall_time_s * 1e3);
+    if parts.is_empty() {
+        total
+    } else {
+        format!("{total} ({})", parts.join(", "))
+    }
+}
+
+/// The scalar facts of a solver's metadata (`key = value`), durations excepted (they go with the
+/// wall time); lists and long texts are left to the solver's JSON file, and named as such.
 fn details_of(extra: &std::collections::BTreeMap<String, serde_json::Value>) -> Vec<String> {
     let mut shown = Vec::new();
     let mut elsewhere = Vec::new();
-    for (key, value) in extra {
+    for (key, value) in extra.iter().filter(|(key, _)| !is_duration(key)) {
         match value {
             serde_json::Value::Number(n) => match n.as_f64() {
                 Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => shown.push(format!("{key} = {x}")),
@@ -590,7 +617,7 @@ pub fn solver_table(run: &CaseRun) -> Table {
                         Cell::plain(&m.resolution),
                         Cell::plain(&m.version),
                         Cell::plain(details.join("; ")),
-                        Cell::with_class(format!("{:.3} ms", m.wall_time_s * 1e3), "timing"),
+                        Cell::with_class(wall_time_of(m), "timing"),
                     ]
                 }
                 Some(Err(e)) => {
