@@ -26,6 +26,7 @@
 pub mod analytic;
 pub mod case;
 pub mod check;
+pub mod fem;
 pub mod history;
 pub mod io;
 pub mod pair;
