@@ -35,3 +35,4 @@ pub mod report;
 pub mod scene;
 pub mod solver;
 pub mod verify;
+pub mod vtu;

@@ -5,8 +5,10 @@
 //! in z ≥ 0. A sphere of radius R has its centre at (0, R) and surface z_s(r) = R − √(R² − r²);
 //! a flat (R = ∞) has z_s = 0.
 //!
-//! The generated domain is the part of the body within distance D of the pole: the body is
-//! loaded as the paper loads it, its far part (the arc |x| = D) displaced rigidly. Rings of
+//! The generated domain is either a sphere's whole hemisphere, loaded through its flat
+//! equatorial face (the paper's loading: the far part displaced rigidly along the axis), or the
+//! part of the body within distance D of the pole, loaded through the arc |x| = D (for a flat,
+//! whose far field must be cut somewhere). Rings of
 //! nodes centred on the pole pass through surface points r_k; their spacing is the pole size h0
 //! up to the fine radius (the contact zone) and grows linearly beyond it, and each ring gets as
 //! many nodes as keep its arc spacing close to the radial one. Neighbouring rings are joined by
@@ -55,14 +57,23 @@ impl Mesh {
 pub struct Grading {
     /// Body radius R [m]; `f64::INFINITY` for a flat.
     pub radius: f64,
-    /// Domain radius D: distance from the pole of the rigidly displaced far arc [m] (≤ R).
-    pub domain: f64,
+    /// The extent of the meshed body.
+    pub domain: Domain,
     /// Element size h0 at the pole and throughout the fine zone [m].
     pub pole_size: f64,
     /// Surface radius of the uniformly fine zone [m].
     pub fine_radius: f64,
     /// Growth of the element size per unit distance beyond the fine zone (h = h0 + g (r − r_f)).
     pub growth: f64,
+}
+
+/// The extent of the meshed body and its far (rigidly displaced) boundary.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Domain {
+    /// The points within distance D ≤ R of the pole; far boundary: the arc |x| = D.
+    Lens(f64),
+    /// A sphere's hemisphere; far boundary: its flat equatorial face z = R.
+    Hemisphere,
 }
 
 /// Why a mesh cannot be built or read.
@@ -85,18 +96,31 @@ impl Grading {
         surface_height(self.radius, r)
     }
 
+    /// The largest distance from the pole: D, or √2 R for the hemisphere (its equator).
+    pub fn extent(&self) -> f64 {
+        match self.domain {
+            Domain::Lens(d) => d,
+            Domain::Hemisphere => std::f64::consts::SQRT_2 * self.radius,
+        }
+    }
+
     fn check(&self) -> Result<(), MeshError> {
+        let extent = self.extent();
+        let fits = match self.domain {
+            Domain::Lens(d) => d <= self.radius,
+            Domain::Hemisphere => self.radius.is_finite(),
+        };
         let ok = self.pole_size > 0.0
-            && self.domain > 2.0 * self.pole_size
-            && self.domain <= self.radius
+            && extent > 2.0 * self.pole_size
+            && fits
             && self.fine_radius >= 0.0
             && self.growth > 0.0
-            && [self.pole_size, self.domain, self.fine_radius, self.growth]
+            && [self.pole_size, extent, self.fine_radius, self.growth]
                 .iter()
                 .all(|v| v.is_finite());
         ok.then_some(()).ok_or_else(|| {
             MeshError::Parameters(format!(
-                "need 0 < 2 h0 < D ≤ R, finite, growth > 0; got {self:?}"
+                "need 0 < 2 h0 < D ≤ R (a hemisphere only of a sphere), finite, growth > 0; got {self:?}"
             ))
         })
     }
@@ -117,24 +141,59 @@ impl Grading {
         }
     }
 
+    /// Angle from the r axis where the ring at distance d ends: on the axis (d ≤ R), or on the
+    /// equatorial face z = R beyond it.
+    fn end_angle(&self, d: f64) -> f64 {
+        if d > self.radius {
+            (self.radius / d).asin()
+        } else {
+            FRAC_PI_2
+        }
+    }
+
+    /// The midside node of the surface edge p–q: at the mean radius in the fine zone, so that
+    /// the two bodies of a pair share their candidate node radii; beyond it at the arc's mid
+    /// angle, which keeps the large edges near a sphere's equator (where z_s(r) is steep) well
+    /// shaped.
+    fn surface_midpoint(&self, p: [f64; 2], q: [f64; 2]) -> [f64; 2] {
+        let r = 0.5 * (p[0] + q[0]);
+        if p[0].max(q[0]) <= self.fine_radius || !self.radius.is_finite() {
+            return [r, self.surface_height(r)];
+        }
+        let angle = |x: [f64; 2]| x[0].atan2(self.radius - x[1]);
+        let theta = 0.5 * (angle(p) + angle(q));
+        [self.radius * theta.sin(), self.radius * (1.0 - theta.cos())]
+    }
+
     /// Surface radius of the ring at distance d from the pole.
     fn ring_radius(&self, d: f64) -> f64 {
         d * self.surface_angle(d).cos()
     }
 
-    /// The ring distances d_k from the pole: d_0 = 0 (the pole itself), last = D.
+    /// The ring distances d_k from the pole: d_0 = 0 (the pole itself), last = the extent.
+    /// A hemisphere has a ring at exactly d = R (through the centre, where the axis meets the
+    /// equatorial face) and ends at its equator.
     fn rings(&self) -> Vec<f64> {
+        let extent = self.extent();
+        let mut marks = vec![extent];
+        if self.domain == Domain::Hemisphere {
+            marks.insert(0, self.radius);
+        }
         let mut rings = vec![0.0];
         let mut r = 0.0;
-        loop {
-            r += self.size(r);
-            let d = r.hypot(self.surface_height(r));
-            if d >= self.domain - 0.3 * self.size(r) {
-                rings.push(self.domain);
-                return rings;
+        for mark in marks {
+            loop {
+                r += self.size(r);
+                let d = r.hypot(self.surface_height(r));
+                if d >= mark - 0.3 * self.size(r) {
+                    rings.push(mark);
+                    r = self.ring_radius(mark);
+                    break;
+                }
+                rings.push(d);
             }
-            rings.push(d);
         }
+        rings
     }
 }
 
@@ -156,8 +215,8 @@ pub fn graded(grading: &Grading) -> Result<Mesh, MeshError> {
     let mut previous = builder.ring(grading, 0.0, 0);
     for (k, &d) in rings.iter().enumerate().skip(1) {
         let h = grading.size(grading.ring_radius(d)).min(d - rings[k - 1]).max(1e-300);
-        let arc = d * (FRAC_PI_2 - grading.surface_angle(d));
-        let segments = ((arc / h).round() as usize).max(1);
+        let arc = d * (grading.end_angle(d) - grading.surface_angle(d));
+        let segments = if arc > 1e-12 * d { ((arc / h).round() as usize).max(1) } else { 0 };
         let ring = builder.ring(grading, d, segments);
         builder.strip(&previous, &ring);
         previous = ring;
@@ -174,16 +233,18 @@ struct Builder {
 }
 
 impl Builder {
-    /// Adds a ring at distance d with `segments` arcs from the surface to the axis; returns its
-    /// node indices, surface first.
+    /// Adds a ring at distance d with `segments` arcs from the surface to the axis (or the
+    /// equatorial face); returns its node indices, surface first.
     fn ring(&mut self, g: &Grading, d: f64, segments: usize) -> Vec<usize> {
-        let start = g.surface_angle(d);
+        let (start, end) = (g.surface_angle(d), g.end_angle(d));
         let ids: Vec<usize> = (0..=segments)
             .map(|j| {
-                let phi = start + (FRAC_PI_2 - start) * j as f64 / segments.max(1) as f64;
+                let phi = start + (end - start) * j as f64 / segments.max(1) as f64;
                 let point = if j == 0 {
                     let r = g.ring_radius(d);
                     [r, g.surface_height(r)]
+                } else if j == segments && d > g.radius {
+                    [(d * d - g.radius * g.radius).sqrt(), g.radius]
                 } else if j == segments {
                     [0.0, d]
                 } else {
@@ -242,11 +303,12 @@ impl Builder {
                 t[3 + e] = *midside.entry(key).or_insert_with(|| {
                     let (p, q) = (nodes[a], nodes[b]);
                     let point = if on_surface.contains_key(&a) && on_surface.contains_key(&b) {
-                        let r = 0.5 * (p[0] + q[0]);
-                        [r, g.surface_height(r)]
-                    } else if on_far.contains(&a) && on_far.contains(&b) {
+                        g.surface_midpoint(p, q)
+                    } else if let (Domain::Lens(d), true) =
+                        (g.domain, on_far.contains(&a) && on_far.contains(&b))
+                    {
                         let phi = 0.5 * (p[1].atan2(p[0]) + q[1].atan2(q[0]));
-                        [g.domain * phi.cos(), g.domain * phi.sin()]
+                        [d * phi.cos(), d * phi.sin()]
                     } else {
                         [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]
                     };
@@ -261,11 +323,16 @@ impl Builder {
             .windows(2)
             .map(|w| [w[0], mid(w[0], w[1]), w[1]])
             .collect();
-        let far_nodes: Vec<usize> = far_ring
-            .iter()
-            .copied()
-            .chain(far_ring.windows(2).map(|w| mid(w[0], w[1])))
-            .collect();
+        let far_nodes: Vec<usize> = match g.domain {
+            Domain::Lens(_) => far_ring
+                .iter()
+                .copied()
+                .chain(far_ring.windows(2).map(|w| mid(w[0], w[1])))
+                .collect(),
+            Domain::Hemisphere => (0..nodes.len())
+                .filter(|&n| (nodes[n][1] - g.radius).abs() <= 1e-12 * g.radius)
+                .collect(),
+        };
         let axis = (0..nodes.len()).filter(|&n| nodes[n][0] == 0.0).collect();
         let mesh = Mesh {
             nodes,
@@ -298,10 +365,23 @@ pub fn validate(mesh: &Mesh) -> Result<(), MeshError> {
 mod tests {
     use super::*;
 
+    /// Meridian area by the isoparametric map (curved edges included).
+    fn meridian_area(mesh: &Mesh) -> f64 {
+        mesh.triangles
+            .iter()
+            .flat_map(|t| {
+                let x = t.map(|n| mesh.nodes[n]);
+                crate::fem::quadrature::triangle_degree4()
+                    .into_iter()
+                    .map(move |p| crate::fem::element::map(&x, p.at).unwrap().det * p.weight)
+            })
+            .sum()
+    }
+
     fn sphere() -> Grading {
         Grading {
             radius: 0.1,
-            domain: 0.1,
+            domain: Domain::Lens(0.1),
             pole_size: 1e-4,
             fine_radius: 1e-3,
             growth: 0.3,
@@ -311,17 +391,7 @@ mod tests {
     #[test]
     fn graded_mesh_covers_the_lens_and_is_valid() {
         let mesh = graded(&sphere()).unwrap();
-        // Meridian area by the isoparametric map (curved edges included).
-        let area: f64 = mesh
-            .triangles
-            .iter()
-            .flat_map(|t| {
-                let x = t.map(|n| mesh.nodes[n]);
-                crate::fem::quadrature::triangle_degree4()
-                    .into_iter()
-                    .map(move |p| crate::fem::element::map(&x, p.at).unwrap().det * p.weight)
-            })
-            .sum();
+        let area = meridian_area(&mesh);
         // Lens: circular sector of the pole-centred disc from 30° to 90° (area R²π/6) plus the
         // segment of the sphere between the pole and the 60° surface point (R²(π/3 − sin 60°)/2).
         let r = 0.1f64;
@@ -340,8 +410,21 @@ mod tests {
     }
 
     #[test]
+    fn hemisphere_mesh_has_the_quarter_disc_area_and_a_flat_far_face() {
+        let g = Grading { domain: Domain::Hemisphere, ..sphere() };
+        let mesh = graded(&g).unwrap();
+        let exact = std::f64::consts::FRAC_PI_4 * 0.01;
+        let err = (meridian_area(&mesh) - exact).abs() / exact;
+        assert!(err < 1e-4, "area error {err}");
+        assert!(mesh.far.iter().all(|&n| (mesh.nodes[n][1] - 0.1).abs() < 1e-15));
+        assert!(mesh.far.contains(&mesh.surface.last().unwrap()[2]), "equator is far");
+    }
+
+    #[test]
     fn rejects_a_domain_larger_than_the_body() {
-        let g = Grading { domain: 0.2, ..sphere() };
+        let g = Grading { domain: Domain::Lens(0.2), ..sphere() };
+        assert!(graded(&g).is_err());
+        let g = Grading { radius: f64::INFINITY, domain: Domain::Hemisphere, ..sphere() };
         assert!(graded(&g).is_err());
     }
 }

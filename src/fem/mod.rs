@@ -19,3 +19,8 @@ pub mod mesh;
 pub mod quadrature;
 pub mod contact;
 pub mod pressure;
+pub mod model;
+pub mod output;
+pub mod solver;
+
+pub use solver::FemAxisym;
