@@ -29,6 +29,11 @@ impl Dofs {
         for &n in &mesh.far {
             fixed[2 * n + 1] = true;
         }
+        Self::from_fixed(&fixed)
+    }
+
+    /// Numbers the DOFs not flagged in `fixed` (one flag per full DOF).
+    pub fn from_fixed(fixed: &[bool]) -> Self {
         let mut count = 0;
         let free = fixed
             .iter()
@@ -64,9 +69,19 @@ pub struct System {
     pub reaction: Vec<(usize, f64)>,
 }
 
-/// Assembles the stiffness of `mesh` for a material with Lamé constants `lame`.
+/// Assembles the stiffness of `mesh` for a material with Lamé constants `lame`, with the
+/// contact problem's boundary conditions ([`Dofs::of`]).
 pub fn assemble(mesh: &Mesh, lame: Lame, integration: Integration) -> Result<System, MeshError> {
-    let dofs = Dofs::of(mesh);
+    assemble_with(mesh, lame, integration, Dofs::of(mesh))
+}
+
+/// Assembles the stiffness of `mesh` on the free DOFs of `dofs`.
+pub fn assemble_with(
+    mesh: &Mesh,
+    lame: Lame,
+    integration: Integration,
+    dofs: Dofs,
+) -> Result<System, MeshError> {
     let mut far_z = vec![false; 2 * mesh.nodes.len()];
     for &n in &mesh.far {
         far_z[2 * n + 1] = true;
