@@ -20,6 +20,7 @@ pub mod quadrature;
 pub mod contact;
 pub mod pressure;
 pub mod model;
+pub mod msh;
 pub mod output;
 pub mod solver;
 

@@ -11,9 +11,10 @@ use std::time::Instant;
 use serde_json::json;
 
 use super::contact::State;
-use super::element::Integration;
+use super::element::{Integration, Lame};
 use super::factor::Ordering;
-use super::model::{Model, Settings};
+use super::model::{Model, Reduction, Settings};
+use super::msh;
 use super::output;
 use super::pressure::{self, Profile};
 use crate::history::{History, Metadata, StepResult, SurfaceField};
@@ -43,6 +44,9 @@ pub struct FemAxisym {
     pub ordering: Option<Ordering>,
     /// When set, displacement and stress fields are written there as VTU at every position.
     pub vtu_dir: Option<PathBuf>,
+    /// A gmsh MSH 4.1 mesh of the sphere to use instead of the generated one (symmetric
+    /// reduction only; see [`super::msh`] for its conventions).
+    pub mesh_file: Option<PathBuf>,
 }
 
 impl FemAxisym {
@@ -79,6 +83,18 @@ impl FemAxisym {
     }
 }
 
+impl FemAxisym {
+    /// The symmetric model on the sphere mesh in `file`.
+    fn read_model(&self, scene: &Scene, file: &std::path::Path, settings: &Settings) -> Result<Model, String> {
+        if Reduction::of(scene) != Reduction::Symmetric {
+            return Err("a mesh file is supported for identical spheres (one body) only".into());
+        }
+        let mesh = msh::read(file).map_err(|e| e.to_string())?;
+        let lame = Lame::of(&scene.pair.body1.material);
+        Model::from_meshes(Reduction::Symmetric, vec![mesh], vec![lame], settings)
+    }
+}
+
 impl Solver for FemAxisym {
     fn name(&self) -> &'static str {
         "fem-axisym"
@@ -93,7 +109,11 @@ impl Solver for FemAxisym {
             return Err(SolveError::NotApplicable("two flats have no Hertz contact".into()));
         }
         let settings = self.settings(scene)?;
-        let model = Model::generate(scene, &settings).map_err(SolveError::Failed)?;
+        let model = match &self.mesh_file {
+            None => Model::generate(scene, &settings),
+            Some(file) => self.read_model(scene, file, &settings),
+        }
+        .map_err(SolveError::Failed)?;
         let mut run = Run::new(&model, &settings);
         let t = Instant::now();
         for step in scene.steps() {
