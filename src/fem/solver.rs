@@ -44,6 +44,8 @@ pub struct FemAxisym {
     pub ordering: Option<Ordering>,
     /// When set, displacement and stress fields are written there as VTU at every position.
     pub vtu_dir: Option<PathBuf>,
+    /// Element integration (`None`: full, selective reduced above ν = 0.45).
+    pub integration: Option<Integration>,
     /// A gmsh MSH 4.1 mesh of the sphere to use instead of the generated one (symmetric
     /// reduction only; see [`super::msh`] for its conventions).
     pub mesh_file: Option<PathBuf>,
@@ -69,11 +71,11 @@ impl FemAxisym {
             }
         };
         let nu = [scene.pair.body1, scene.pair.body2].map(|b| b.material.poisson);
-        let integration = if nu.iter().any(|&n| n > NEAR_INCOMPRESSIBLE) {
+        let integration = self.integration.unwrap_or(if nu.iter().any(|&n| n > NEAR_INCOMPRESSIBLE) {
             Integration::SelectiveReduced
         } else {
             Integration::Full
-        };
+        });
         Ok(Settings {
             pole_size,
             candidate_radius: (CANDIDATE_ZONE * c).max(3.0 * pole_size),
@@ -223,9 +225,9 @@ impl Run {
         if let (Some(first), Some(last)) = (self.unresolved.first(), self.unresolved.last()) {
             warnings.push(format!(
                 "pole element ({:.3e} m) is not smaller than half the contact radius at {} steps \
-                 (δn from {first:.3e} to {last:.3e} m): the contact spans at most two elements; c and p0 \
-                 are left empty where no node beyond the axis is loaded and are unreliable elsewhere; \
-                 refine the mesh (pole size < c/10)",
+                 (δn from {first:.3e} to {last:.3e} m): the contact spans at most two elements, so P, c and \
+                 p0 are unreliable there (c and p0 are left empty where no node beyond the axis is \
+                 loaded); refine the mesh (pole size < c/10)",
                 self.pole_size,
                 self.unresolved.len()
             ));
