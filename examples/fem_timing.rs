@@ -18,11 +18,26 @@ use spherecontact::scene::Scene;
 use spherecontact::solver::run;
 
 fn scene(positions_um: &[f64], substeps: Vec<usize>) -> Scene {
-    let body = Body { radius: 0.1, material: Material { young: 70e9, poisson: 0.3 } };
-    let positions = positions_um.iter().map(|&d| Position { delta_n: d * 1e-6, delta_t: 0.0 }).collect();
+    let body = Body {
+        radius: 0.1,
+        material: Material {
+            young: 70e9,
+            poisson: 0.3,
+        },
+    };
+    let positions = positions_um
+        .iter()
+        .map(|&d| Position {
+            delta_n: d * 1e-6,
+            delta_t: 0.0,
+        })
+        .collect();
     Scene {
         name: "timing".into(),
-        pair: ContactPair { body1: body, body2: body },
+        pair: ContactPair {
+            body1: body,
+            body2: body,
+        },
         friction: 0.2,
         path: LoadingPath::try_new(positions, substeps).unwrap(),
     }
@@ -55,7 +70,9 @@ fn main() {
     let curve = scene(&[0.0, 25.0], vec![25]);
     let hertz = one_step.hertz();
     let d = 17e-6;
-    println!("paper spheres, δn = 17 µm (one sphere on a rigid plane at δn/2); errors against Hertz");
+    println!(
+        "paper spheres, δn = 17 µm (one sphere on a rigid plane at δn/2); errors against Hertz"
+    );
     println!("| pole size | DOFs | P err | p0 err | c err | factor | condense | one step (median) | 25-step curve (median) | per step |");
     println!("|---|---|---|---|---|---|---|---|---|---|");
     for h_um in [100.0, 50.0, 25.0, 20.0, 15.0, 10.0] {
@@ -81,10 +98,19 @@ fn main() {
     println!("\nCholesky ordering (factor time, entries of L):");
     for h_um in [25.0, 10.0] {
         for ordering in [Ordering::Amd, Ordering::ReverseCuthillMcKee] {
-            let solver = FemAxisym { ordering: Some(ordering), ..FemAxisym::with_pole_size(h_um * 1e-6) };
-            let times: Vec<f64> = (0..3).map(|_| extra(&run(&solver, &one_step).unwrap(), "factor_s")).collect();
+            let solver = FemAxisym {
+                ordering: Some(ordering),
+                ..FemAxisym::with_pole_size(h_um * 1e-6)
+            };
+            let times: Vec<f64> = (0..3)
+                .map(|_| extra(&run(&solver, &one_step).unwrap(), "factor_s"))
+                .collect();
             let h = run(&solver, &one_step).unwrap();
-            println!("  {h_um} µm {ordering:?}: {:.3} s, {} entries", median(times), extra(&h, "factor_entries"));
+            println!(
+                "  {h_um} µm {ordering:?}: {:.3} s, {} entries",
+                median(times),
+                extra(&h, "factor_entries")
+            );
         }
     }
     match Case::load(std::path::Path::new("cases/paper-fig7.toml")) {

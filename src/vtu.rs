@@ -81,8 +81,14 @@ impl Grid {
     fn validate(&self) -> Result<(), VtuError> {
         let n = self.points.len();
         let k = self.cell_type.nodes();
-        if let Some(c) = self.cells.iter().position(|c| c.len() != k || c.iter().any(|&p| p >= n)) {
-            return Err(VtuError::Invalid(format!("cell {c}: needs {k} point indices below {n}")));
+        if let Some(c) = self
+            .cells
+            .iter()
+            .position(|c| c.len() != k || c.iter().any(|&p| p >= n))
+        {
+            return Err(VtuError::Invalid(format!(
+                "cell {c}: needs {k} point indices below {n}"
+            )));
         }
         for d in &self.point_data {
             if !(1..=3).contains(&d.components) || d.values.len() != d.components * n {
@@ -94,7 +100,10 @@ impl Grid {
                 )));
             }
             if d.values.iter().any(|v| !v.is_finite()) {
-                return Err(VtuError::Invalid(format!("point data '{}' is not finite", d.name)));
+                return Err(VtuError::Invalid(format!(
+                    "point data '{}' is not finite",
+                    d.name
+                )));
             }
         }
         Ok(())
@@ -106,7 +115,10 @@ impl Grid {
         let mut s = String::new();
         let join = |it: &mut dyn Iterator<Item = String>| it.collect::<Vec<_>>().join(" ");
         let _ = writeln!(s, r#"<?xml version="1.0"?>"#);
-        let _ = writeln!(s, r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">"#);
+        let _ = writeln!(
+            s,
+            r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">"#
+        );
         let _ = writeln!(s, "<UnstructuredGrid>");
         let _ = writeln!(
             s,
@@ -122,25 +134,53 @@ impl Grid {
                 escape(&d.name),
                 d.components
             );
-            let _ = writeln!(s, "{}", join(&mut d.values.iter().map(|v| format!("{v:e}"))));
+            let _ = writeln!(
+                s,
+                "{}",
+                join(&mut d.values.iter().map(|v| format!("{v:e}")))
+            );
             let _ = writeln!(s, "</DataArray>");
         }
         let _ = writeln!(s, "</PointData>");
         let _ = writeln!(s, "<Points>");
-        let _ = writeln!(s, r#"<DataArray type="Float64" NumberOfComponents="3" format="ascii">"#);
-        let _ = writeln!(s, "{}", join(&mut self.points.iter().flatten().map(|v| format!("{v:e}"))));
+        let _ = writeln!(
+            s,
+            r#"<DataArray type="Float64" NumberOfComponents="3" format="ascii">"#
+        );
+        let _ = writeln!(
+            s,
+            "{}",
+            join(&mut self.points.iter().flatten().map(|v| format!("{v:e}")))
+        );
         let _ = writeln!(s, "</DataArray>\n</Points>\n<Cells>");
-        let _ = writeln!(s, r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#);
-        let _ = writeln!(s, "{}", join(&mut self.cells.iter().flatten().map(|v| v.to_string())));
+        let _ = writeln!(
+            s,
+            r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#
+        );
+        let _ = writeln!(
+            s,
+            "{}",
+            join(&mut self.cells.iter().flatten().map(|v| v.to_string()))
+        );
         let _ = writeln!(s, "</DataArray>");
-        let _ = writeln!(s, r#"<DataArray type="Int64" Name="offsets" format="ascii">"#);
+        let _ = writeln!(
+            s,
+            r#"<DataArray type="Int64" Name="offsets" format="ascii">"#
+        );
         let k = self.cell_type.nodes();
-        let _ = writeln!(s, "{}", join(&mut (1..=self.cells.len()).map(|i| (i * k).to_string())));
+        let _ = writeln!(
+            s,
+            "{}",
+            join(&mut (1..=self.cells.len()).map(|i| (i * k).to_string()))
+        );
         let _ = writeln!(s, "</DataArray>");
         let _ = writeln!(s, r#"<DataArray type="UInt8" Name="types" format="ascii">"#);
         let code = self.cell_type.code().to_string();
         let _ = writeln!(s, "{}", vec![code; self.cells.len()].join(" "));
-        let _ = writeln!(s, "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>");
+        let _ = writeln!(
+            s,
+            "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>"
+        );
         Ok(s)
     }
 
@@ -154,7 +194,10 @@ impl Grid {
 
 /// Escapes the XML attribute characters of a name.
 fn escape(name: &str) -> String {
-    name.replace('&', "&amp;").replace('"', "&quot;").replace('<', "&lt;").replace('>', "&gt;")
+    name.replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 #[cfg(test)]
@@ -163,7 +206,12 @@ mod tests {
 
     fn two_triangles() -> Grid {
         Grid {
-            points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
+            points: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [1.0, 1.0, 0.0],
+            ],
             cell_type: CellType::Triangle,
             cells: vec![vec![0, 1, 2], vec![1, 3, 2]],
             point_data: vec![PointData {

@@ -15,7 +15,9 @@ fn square(n: usize, r0: f64, distort: bool) -> Mesh {
     let m = 2 * n + 1; // nodes per side, midsides included
     let h = 1.0 / (m - 1) as f64;
     let id = |i: usize, j: usize| i * m + j;
-    let mut nodes: Vec<[f64; 2]> = (0..m * m).map(|k| [r0 + (k / m) as f64 * h, (k % m) as f64 * h]).collect();
+    let mut nodes: Vec<[f64; 2]> = (0..m * m)
+        .map(|k| [r0 + (k / m) as f64 * h, (k % m) as f64 * h])
+        .collect();
     if distort {
         for i in (2..m - 1).step_by(2) {
             for j in (2..m - 1).step_by(2) {
@@ -33,7 +35,10 @@ fn square(n: usize, r0: f64, distort: bool) -> Mesh {
                         (0, 1) => (id(i, j - 1), id(i, j + 1)),
                         _ => (id(i - 1, j + 1), id(i + 1, j - 1)),
                     };
-                    nodes[id(i, j)] = [0.5 * (nodes[a][0] + nodes[b][0]), 0.5 * (nodes[a][1] + nodes[b][1])];
+                    nodes[id(i, j)] = [
+                        0.5 * (nodes[a][0] + nodes[b][0]),
+                        0.5 * (nodes[a][1] + nodes[b][1]),
+                    ];
                 }
             }
         }
@@ -47,7 +52,11 @@ fn square(n: usize, r0: f64, distort: bool) -> Mesh {
             triangles.push([b, c, d, id(i + 2, j + 1), id(i + 1, j + 2), centre]);
         }
     }
-    Mesh { nodes, triangles, ..Mesh::default() }
+    Mesh {
+        nodes,
+        triangles,
+        ..Mesh::default()
+    }
 }
 
 fn on_boundary(x: [f64; 2], r0: f64) -> bool {
@@ -57,7 +66,13 @@ fn on_boundary(x: [f64; 2], r0: f64) -> bool {
 
 /// Solves K u = f with u = `exact` on the boundary (and u_r = 0 on the axis when r0 = 0);
 /// `force` is the body force. Returns nodal displacements.
-fn solve(mesh: &Mesh, lame: Lame, r0: f64, exact: &dyn Fn([f64; 2]) -> [f64; 2], force: &dyn Fn([f64; 2]) -> [f64; 2]) -> Vec<[f64; 2]> {
+fn solve(
+    mesh: &Mesh,
+    lame: Lame,
+    r0: f64,
+    exact: &dyn Fn([f64; 2]) -> [f64; 2],
+    force: &dyn Fn([f64; 2]) -> [f64; 2],
+) -> Vec<[f64; 2]> {
     let n = mesh.nodes.len();
     let mut fixed = vec![false; 2 * n];
     for (k, &x) in mesh.nodes.iter().enumerate() {
@@ -82,10 +97,10 @@ fn solve(mesh: &Mesh, lame: Lame, r0: f64, exact: &dyn Fn([f64; 2]) -> [f64; 2],
             let m = element::map(&x, p.at).unwrap();
             let point = [0, 1].map(|a| (0..6).map(|i| m.n[i] * x[i][a]).sum::<f64>());
             let f = force(point);
-            for i in 0..6 {
-                for a in 0..2 {
-                    if let Some(d) = dofs.free(2 * t[i] + a) {
-                        rhs[(d, 0)] += 2.0 * PI * m.n[i] * f[a] * m.r * m.det * p.weight;
+            for (&node, &n) in t.iter().zip(&m.n) {
+                for (a, &f_a) in f.iter().enumerate() {
+                    if let Some(d) = dofs.free(2 * node + a) {
+                        rhs[(d, 0)] += 2.0 * PI * n * f_a * m.r * m.det * p.weight;
                     }
                 }
             }
@@ -96,14 +111,22 @@ fn solve(mesh: &Mesh, lame: Lame, r0: f64, exact: &dyn Fn([f64; 2]) -> [f64; 2],
             }
         }
     }
-    Factor::new(&system.stiffness, Ordering::Amd).unwrap().solve_in_place(rhs.as_mut());
+    Factor::new(&system.stiffness, Ordering::Amd)
+        .unwrap()
+        .solve_in_place(rhs.as_mut());
     (0..n)
         .map(|k| [0, 1].map(|a| lifted[k][a] + dofs.free(2 * k + a).map_or(0.0, |d| rhs[(d, 0)])))
         .collect()
 }
 
 /// L2 and energy-norm errors against the exact field and its strain.
-fn errors(mesh: &Mesh, lame: Lame, u: &[[f64; 2]], exact: &dyn Fn([f64; 2]) -> [f64; 2], strain: &dyn Fn([f64; 2]) -> [f64; 4]) -> (f64, f64) {
+fn errors(
+    mesh: &Mesh,
+    lame: Lame,
+    u: &[[f64; 2]],
+    exact: &dyn Fn([f64; 2]) -> [f64; 2],
+    strain: &dyn Fn([f64; 2]) -> [f64; 4],
+) -> (f64, f64) {
     let (mut l2, mut energy) = (0.0, 0.0);
     for t in &mesh.triangles {
         let x = t.map(|k| mesh.nodes[k]);
@@ -126,7 +149,10 @@ fn errors(mesh: &Mesh, lame: Lame, u: &[[f64; 2]], exact: &dyn Fn([f64; 2]) -> [
 }
 
 fn lame() -> Lame {
-    Lame { lambda: 1.5, mu: 1.0 }
+    Lame {
+        lambda: 1.5,
+        mu: 1.0,
+    }
 }
 
 #[test]
@@ -139,7 +165,10 @@ fn patch_test_reproduces_a_linear_field_exactly() {
         let u = solve(&mesh, lame(), r0, &exact, &|_| [0.0, 0.0]);
         for (x, uh) in mesh.nodes.iter().zip(&u) {
             let e = exact(*x);
-            assert!((uh[0] - e[0]).abs() < 1e-13 && (uh[1] - e[1]).abs() < 1e-13, "r0 {r0}: {x:?}");
+            assert!(
+                (uh[0] - e[0]).abs() < 1e-13 && (uh[1] - e[1]).abs() < 1e-13,
+                "r0 {r0}: {x:?}"
+            );
         }
     }
 }
@@ -153,7 +182,12 @@ fn manufactured_solution_converges_at_the_optimal_rates() {
     let l = lame();
     let exact = |x: [f64; 2]| [x[0] * x[1] * x[1], x[0] * x[0] * x[1]];
     let strain = |x: [f64; 2]| [x[1] * x[1], x[0] * x[0], x[1] * x[1], 4.0 * x[0] * x[1]];
-    let force = move |x: [f64; 2]| [-(2.0 * l.lambda + 4.0 * l.mu) * x[0], -(4.0 * l.lambda + 8.0 * l.mu) * x[1]];
+    let force = move |x: [f64; 2]| {
+        [
+            -(2.0 * l.lambda + 4.0 * l.mu) * x[0],
+            -(4.0 * l.lambda + 8.0 * l.mu) * x[1],
+        ]
+    };
     let results: Vec<(f64, f64)> = [4, 8, 16]
         .iter()
         .map(|&n| {

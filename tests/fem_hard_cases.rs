@@ -11,10 +11,30 @@ use spherecontact::scene::Scene;
 use spherecontact::solver::run;
 
 fn scene(poisson: f64, delta_um: &[f64]) -> Scene {
-    let body = Body { radius: 0.1, material: Material { young: 70e9, poisson } };
-    let positions = delta_um.iter().map(|&d| Position { delta_n: d * 1e-6, delta_t: 0.0 }).collect();
+    let body = Body {
+        radius: 0.1,
+        material: Material {
+            young: 70e9,
+            poisson,
+        },
+    };
+    let positions = delta_um
+        .iter()
+        .map(|&d| Position {
+            delta_n: d * 1e-6,
+            delta_t: 0.0,
+        })
+        .collect();
     let path = LoadingPath::try_new(positions, vec![1; delta_um.len() - 1]).unwrap();
-    Scene { name: "hard".into(), pair: ContactPair { body1: body, body2: body }, friction: 0.2, path }
+    Scene {
+        name: "hard".into(),
+        pair: ContactPair {
+            body1: body,
+            body2: body,
+        },
+        friction: 0.2,
+        path,
+    }
 }
 
 fn force_error(h: &History, s: &Scene, position: usize) -> f64 {
@@ -29,11 +49,21 @@ fn near_incompressible_material_locks_mildly_and_reduced_integration_relieves_it
     let s = scene(0.499, &[0.0, 17.0]);
     let h0 = s.max_contact_radius() / 20.0;
     let solve = |integration| {
-        let solver = FemAxisym { integration: Some(integration), ..FemAxisym::with_pole_size(h0) };
+        let solver = FemAxisym {
+            integration: Some(integration),
+            ..FemAxisym::with_pole_size(h0)
+        };
         force_error(&run(&solver, &s).unwrap(), &s, 1)
     };
-    let (full, reduced) = (solve(Integration::Full), solve(Integration::SelectiveReduced));
-    println!("ν = 0.499, P against Hertz: full integration {:+.3} %, selective reduced {:+.3} %", 100.0 * full, 100.0 * reduced);
+    let (full, reduced) = (
+        solve(Integration::Full),
+        solve(Integration::SelectiveReduced),
+    );
+    println!(
+        "ν = 0.499, P against Hertz: full integration {:+.3} %, selective reduced {:+.3} %",
+        100.0 * full,
+        100.0 * reduced
+    );
     // Reduced integration: within 1 % of Hertz (finite body ≈ +0.4 %, mesh); and it is the
     // default the solver picks above ν = 0.45.
     assert!(reduced.abs() < 1e-2, "reduced {reduced}");
@@ -47,8 +77,18 @@ fn a_pole_element_larger_than_the_contact_warns_and_leaves_c_and_p0_empty() {
     let s = scene(0.3, &[0.0, 17.0]);
     let h = run(&FemAxisym::with_pole_size(2e-3), &s).unwrap(); // c = 0.92 mm
     let row = h.at_position(1).unwrap();
-    println!("pole 2 mm, c = 0.92 mm: P error {:+.1} %, c {:?}, p0 {:?}; warnings {:?}", 100.0 * force_error(&h, &s, 1), row.contact_radius, row.peak_pressure, h.metadata.warnings);
-    assert!(h.metadata.warnings.iter().any(|w| w.contains("pole element")));
+    println!(
+        "pole 2 mm, c = 0.92 mm: P error {:+.1} %, c {:?}, p0 {:?}; warnings {:?}",
+        100.0 * force_error(&h, &s, 1),
+        row.contact_radius,
+        row.peak_pressure,
+        h.metadata.warnings
+    );
+    assert!(h
+        .metadata
+        .warnings
+        .iter()
+        .any(|w| w.contains("pole element")));
     assert!(row.contact_radius.is_none() && row.peak_pressure.is_none());
 }
 
@@ -58,7 +98,11 @@ fn a_one_nanometre_approach_is_resolved_by_the_default_mesh() {
     let s = scene(0.3, &[0.0, 1e-3]);
     let h = run(&FemAxisym::default(), &s).unwrap();
     let e = force_error(&h, &s, 1);
-    println!("δn = 1 nm: P error {:+.4} %, warnings {:?}", 100.0 * e, h.metadata.warnings);
+    println!(
+        "δn = 1 nm: P error {:+.4} %, warnings {:?}",
+        100.0 * e,
+        h.metadata.warnings
+    );
     // Finite-body offset ∝ c/R: negligible at c/R = 7e-5; mesh part ≤ 0.1 % at c/40.
     assert!(e.abs() < 2e-3, "{e}");
     assert!(h.metadata.warnings.is_empty());
@@ -68,8 +112,16 @@ fn a_one_nanometre_approach_is_resolved_by_the_default_mesh() {
 fn an_approach_beyond_small_strain_warns() {
     let s = scene(0.3, &[0.0, 200.0]);
     let h = run(&FemAxisym::default(), &s).unwrap();
-    println!("δn = 200 µm: P error {:+.3} %, warnings {:?}", 100.0 * force_error(&h, &s, 1), h.metadata.warnings);
-    assert!(h.metadata.warnings.iter().any(|w| w.contains("small-strain")));
+    println!(
+        "δn = 200 µm: P error {:+.3} %, warnings {:?}",
+        100.0 * force_error(&h, &s, 1),
+        h.metadata.warnings
+    );
+    assert!(h
+        .metadata
+        .warnings
+        .iter()
+        .any(|w| w.contains("small-strain")));
 }
 
 #[test]
@@ -82,7 +134,10 @@ fn unloading_retraces_loading_and_separates() {
     assert!((force(1) - force(3)).abs() <= 1e-9 * force(1));
     for k in [4, 5] {
         let row = h.at_position(k).unwrap();
-        assert_eq!((row.normal_force, row.contact_radius), (Some(0.0), Some(0.0)));
+        assert_eq!(
+            (row.normal_force, row.contact_radius),
+            (Some(0.0), Some(0.0))
+        );
     }
     assert!(h.steps.iter().all(|r| r.tangential_force.is_none()));
 }
@@ -91,10 +146,18 @@ fn unloading_retraces_loading_and_separates() {
 fn writes_displacement_and_stress_fields_as_vtu() {
     let dir = tempfile::tempdir().unwrap();
     let s = scene(0.3, &[0.0, 17.0]);
-    let solver = FemAxisym { vtu_dir: Some(dir.path().to_path_buf()), ..FemAxisym::with_pole_size(1e-4) };
+    let solver = FemAxisym {
+        vtu_dir: Some(dir.path().to_path_buf()),
+        ..FemAxisym::with_pole_size(1e-4)
+    };
     let h = run(&solver, &s).unwrap();
     let text = std::fs::read_to_string(dir.path().join("hard-fem-axisym-1.vtu")).unwrap();
-    for name in ["displacement", "stress_zz", "von_mises", r#"types" format="ascii">"#] {
+    for name in [
+        "displacement",
+        "stress_zz",
+        "von_mises",
+        r#"types" format="ascii">"#,
+    ] {
         assert!(text.contains(name), "{name}");
     }
     // The surface field's axis value is the fitted p0 (the axis node's own force says nothing).

@@ -12,20 +12,52 @@ use spherecontact::scene::Scene;
 use spherecontact::solver::run;
 
 fn scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
-    let positions = delta_um.iter().map(|&d| Position { delta_n: d * 1e-6, delta_t: 0.0 }).collect();
+    let positions = delta_um
+        .iter()
+        .map(|&d| Position {
+            delta_n: d * 1e-6,
+            delta_t: 0.0,
+        })
+        .collect();
     let path = LoadingPath::try_new(positions, vec![1; delta_um.len() - 1]).unwrap();
-    Scene { name: "fem-hertz".into(), pair, friction: 0.2, path }
+    Scene {
+        name: "fem-hertz".into(),
+        pair,
+        friction: 0.2,
+        path,
+    }
 }
 
 fn paper() -> ContactPair {
-    let body = Body { radius: 0.1, material: Material { young: 70e9, poisson: 0.3 } };
-    ContactPair { body1: body, body2: body }
+    let body = Body {
+        radius: 0.1,
+        material: Material {
+            young: 70e9,
+            poisson: 0.3,
+        },
+    };
+    ContactPair {
+        body1: body,
+        body2: body,
+    }
 }
 
 fn ball_on_flat() -> ContactPair {
     ContactPair {
-        body1: Body { radius: 0.01, material: Material { young: 210e9, poisson: 0.29 } },
-        body2: Body { radius: f64::INFINITY, material: Material { young: 70e9, poisson: 0.3 } },
+        body1: Body {
+            radius: 0.01,
+            material: Material {
+                young: 210e9,
+                poisson: 0.29,
+            },
+        },
+        body2: Body {
+            radius: f64::INFINITY,
+            material: Material {
+                young: 70e9,
+                poisson: 0.3,
+            },
+        },
     }
 }
 
@@ -36,8 +68,13 @@ fn errors(history: &History, hertz: &Hertz) -> Vec<[f64; 3]> {
         .at_positions()
         .skip(1)
         .map(|row| {
-            let (p, c, p0) = (row.normal_force.unwrap(), row.contact_radius.unwrap(), row.peak_pressure.unwrap());
-            let c_local = (3.0 * p * hertz.effective_radius / (4.0 * hertz.effective_modulus)).cbrt();
+            let (p, c, p0) = (
+                row.normal_force.unwrap(),
+                row.contact_radius.unwrap(),
+                row.peak_pressure.unwrap(),
+            );
+            let c_local =
+                (3.0 * p * hertz.effective_radius / (4.0 * hertz.effective_modulus)).cbrt();
             [
                 p / hertz.force(row.delta_n) - 1.0,
                 p0 / (3.0 * p / (2.0 * std::f64::consts::PI * c * c)) - 1.0,
@@ -55,8 +92,7 @@ fn ladder(pair: ContactPair, deltas: &[f64], divisions: &[f64]) -> Vec<Vec<[f64;
         .iter()
         .map(|&n| {
             let history = run(&FemAxisym::with_pole_size(c / n), &s).unwrap();
-            let e = errors(&history, &s.hertz());
-            e
+            errors(&history, &s.hertz())
         })
         .collect()
 }
@@ -94,15 +130,32 @@ fn assert_hertz(e: &[Vec<[f64; 3]>], name: &str) {
     // is the finite body's (domain) part.
     let changes: Vec<f64> = e
         .windows(2)
-        .map(|w| (w[0].iter().zip(&w[1]).map(|(a, b)| (a[0] - b[0]).powi(2)).sum::<f64>() / w[0].len() as f64).sqrt())
+        .map(|w| {
+            (w[0]
+                .iter()
+                .zip(&w[1])
+                .map(|(a, b)| (a[0] - b[0]).powi(2))
+                .sum::<f64>()
+                / w[0].len() as f64)
+                .sqrt()
+        })
         .collect();
     let r = rate(&changes);
     println!(
         "{name}: P errors on the finest mesh {:?}; RMS change per refinement {:?}, rate {r:.2}",
-        finest.iter().map(|v| format!("{:+.3}%", 100.0 * v[0])).collect::<Vec<_>>(),
-        changes.iter().map(|v| format!("{:.4}%", 100.0 * v)).collect::<Vec<_>>()
+        finest
+            .iter()
+            .map(|v| format!("{:+.3}%", 100.0 * v[0]))
+            .collect::<Vec<_>>(),
+        changes
+            .iter()
+            .map(|v| format!("{:.4}%", 100.0 * v))
+            .collect::<Vec<_>>()
     );
-    assert!(r > 1.0 && *changes.last().unwrap() < 1e-3, "{name}: P mesh part {changes:?}");
+    assert!(
+        r > 1.0 && *changes.last().unwrap() < 1e-3,
+        "{name}: P mesh part {changes:?}"
+    );
     for (q, what) in [(1, "p0"), (2, "c")] {
         // Local relations within 0.5 % on the finest mesh at every position.
         assert!(worst(finest, q) < 5e-3, "{name}: {what} {finest:?}");
@@ -110,21 +163,31 @@ fn assert_hertz(e: &[Vec<[f64; 3]>], name: &str) {
         // located by a fit across nodes; h^1 is what a nodal contact edge guarantees).
         let errors: Vec<f64> = e.iter().map(|v| rms(v, q)).collect();
         let r = rate(&errors);
-        println!("{name}: {what} RMS errors {:?}, rate {r:.2}", errors.iter().map(|v| format!("{:.4}%", 100.0 * v)).collect::<Vec<_>>());
+        println!(
+            "{name}: {what} RMS errors {:?}, rate {r:.2}",
+            errors
+                .iter()
+                .map(|v| format!("{:.4}%", 100.0 * v))
+                .collect::<Vec<_>>()
+        );
         assert!(r > 1.0, "{name}: {what} rate {r}");
     }
 }
 
 #[test]
 fn paper_spheres_converge_to_hertz() {
-    let deltas: Vec<f64> = std::iter::once(0.0).chain((0..11).map(|k| 5.0 + 1.5 * f64::from(k))).collect();
+    let deltas: Vec<f64> = std::iter::once(0.0)
+        .chain((0..11).map(|k| 5.0 + 1.5 * f64::from(k)))
+        .collect();
     let e = ladder(paper(), &deltas, &[5.0, 10.0, 20.0, 40.0]);
     assert_hertz(&e, "paper spheres");
 }
 
 #[test]
 fn steel_ball_on_aluminium_flat_converges_to_hertz() {
-    let deltas: Vec<f64> = std::iter::once(0.0).chain((0..11).map(|k| 2.0 + 0.6 * f64::from(k))).collect();
+    let deltas: Vec<f64> = std::iter::once(0.0)
+        .chain((0..11).map(|k| 2.0 + 0.6 * f64::from(k)))
+        .collect();
     let e = ladder(ball_on_flat(), &deltas, &[5.0, 10.0, 20.0, 40.0]);
     assert_hertz(&e, "ball on flat");
 }
@@ -134,17 +197,25 @@ fn contact_holds_at_every_candidate_node() {
     // Non-penetration and non-negative forces at the converged active set, at each δn.
     for pair in [paper(), ball_on_flat()] {
         let s = scene(pair, &[0.0, 20.0]);
-        let settings: Settings = FemAxisym::with_pole_size(s.max_contact_radius() / 20.0).settings(&s).unwrap();
+        let settings: Settings = FemAxisym::with_pole_size(s.max_contact_radius() / 20.0)
+            .settings(&s)
+            .unwrap();
         let model = Model::generate(&s, &settings).unwrap();
         let mut active = vec![false; model.radii.len()];
         for delta in [1e-6, 5e-6, 10e-6, 20e-6, 3e-6, 0.0] {
-            let state = model.problem.solve(model.reduction.approach(delta), &mut active).unwrap();
+            let state = model
+                .problem
+                .solve(model.reduction.approach(delta), &mut active)
+                .unwrap();
             let scale = model.reduction.approach(delta).abs().max(1e-9);
             for (i, (&f, &g)) in state.forces.iter().zip(&state.gaps).enumerate() {
                 assert!(f >= 0.0, "negative force at node {i}");
                 // Exact on the active set (round-off of the dense solve), open elsewhere.
                 assert!(g >= -1e-11 * scale, "penetration {g} at node {i}");
-                assert!(f == 0.0 || g.abs() <= 1e-11 * scale, "complementarity at node {i}");
+                assert!(
+                    f == 0.0 || g.abs() <= 1e-11 * scale,
+                    "complementarity at node {i}"
+                );
             }
         }
     }

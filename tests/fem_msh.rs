@@ -22,7 +22,10 @@ fn reads_the_two_triangle_fixture_with_its_boundaries() {
     for t in &mesh.triangles {
         let x = t.map(|n| mesh.nodes[n]);
         for (mid, (p, q)) in [(3, (0, 1)), (4, (1, 2)), (5, (2, 0))] {
-            assert_eq!(x[mid], [0.5 * (x[p][0] + x[q][0]), 0.5 * (x[p][1] + x[q][1])]);
+            assert_eq!(
+                x[mid],
+                [0.5 * (x[p][0] + x[q][0]), 0.5 * (x[p][1] + x[q][1])]
+            );
         }
     }
 }

@@ -92,12 +92,12 @@ pub fn assemble_with(
         let x = t.map(|n| mesh.nodes[n]);
         let k = element::stiffness(&x, lame, integration).ok_or(MeshError::Inverted(e))?;
         let global = |a: usize| 2 * t[a / 2] + a % 2;
-        for a in 0..12 {
-            for b in 0..12 {
+        for (a, k_a) in k.iter().enumerate() {
+            for (b, &k_ab) in k_a.iter().enumerate() {
                 let (row, col) = (global(a), global(b));
                 match (dofs.free(row), dofs.free(col)) {
-                    (Some(i), Some(j)) if i >= j => triplets.push(Triplet::new(i, j, k[a][b])),
-                    (None, Some(j)) if far_z[row] => reaction[j] -= k[a][b],
+                    (Some(i), Some(j)) if i >= j => triplets.push(Triplet::new(i, j, k_ab)),
+                    (None, Some(j)) if far_z[row] => reaction[j] -= k_ab,
                     _ => {}
                 }
             }
@@ -111,5 +111,9 @@ pub fn assemble_with(
         .enumerate()
         .filter(|(_, v)| *v != 0.0)
         .collect();
-    Ok(System { dofs, stiffness, reaction })
+    Ok(System {
+        dofs,
+        stiffness,
+        reaction,
+    })
 }

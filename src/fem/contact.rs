@@ -60,7 +60,10 @@ pub fn condense(system: &System, factor: &Factor, dofs: &[usize]) -> Condensed {
             reaction[j] = system.reaction.iter().map(|&(d, v)| v * x[(d, c)]).sum();
         }
     }
-    Condensed { compliance, reaction }
+    Condensed {
+        compliance,
+        reaction,
+    }
 }
 
 /// The contact problem on m candidate nodes.
@@ -118,10 +121,20 @@ impl Problem {
                 })
                 .collect();
             let next: Vec<bool> = (0..m)
-                .map(|i| if active[i] { lambda[i] > 0.0 } else { gaps[i] < -tolerance })
+                .map(|i| {
+                    if active[i] {
+                        lambda[i] > 0.0
+                    } else {
+                        gaps[i] < -tolerance
+                    }
+                })
                 .collect();
             if next == active {
-                return Ok(State { forces: lambda, gaps, iterations: iteration });
+                return Ok(State {
+                    forces: lambda,
+                    gaps,
+                    iterations: iteration,
+                });
             }
             active.copy_from_slice(&next);
         }
@@ -148,7 +161,7 @@ impl Problem {
 pub(super) fn cholesky_solve(a: &mut [f64], k: usize, b: &mut [f64]) -> Result<(), String> {
     for j in 0..k {
         let d = a[j * k + j] - (0..j).map(|p| a[j * k + p] * a[j * k + p]).sum::<f64>();
-        if !(d > 0.0) {
+        if d.is_nan() || d <= 0.0 {
             return Err("the condensed compliance is not positive definite".into());
         }
         let d = d.sqrt();
@@ -177,7 +190,10 @@ mod tests {
     fn active_set_solves_a_small_complementarity_problem() {
         // Two uncoupled springs of compliance 1 and a coupled pair: h = (0, 1), δ = 0.5:
         // node 0 closes (λ0 = 0.5), node 1 stays open with gap 0.5.
-        let p = Problem { compliance: vec![1.0, 0.0, 0.0, 1.0], heights: vec![0.0, 1.0] };
+        let p = Problem {
+            compliance: vec![1.0, 0.0, 0.0, 1.0],
+            heights: vec![0.0, 1.0],
+        };
         let mut active = vec![false; 2];
         let s = p.solve(0.5, &mut active).unwrap();
         assert!((s.forces[0] - 0.5).abs() < 1e-15 && s.forces[1] == 0.0);
@@ -187,7 +203,10 @@ mod tests {
 
     #[test]
     fn a_gap_gives_no_force() {
-        let p = Problem { compliance: vec![2.0], heights: vec![0.0] };
+        let p = Problem {
+            compliance: vec![2.0],
+            heights: vec![0.0],
+        };
         let s = p.solve(-1.0, &mut [true]).unwrap();
         assert_eq!(s.forces, vec![0.0]);
     }

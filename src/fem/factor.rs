@@ -5,11 +5,11 @@
 //! reverse Cuthill–McKee, which makes the matrix of a graded 2D ring mesh banded.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::sparse::SparseColMat;
-use faer::perm::PermRef;
 use faer::{Conj, MatMut, Par, Side};
 use std::collections::VecDeque;
 
@@ -75,8 +75,10 @@ impl Factor {
     /// Overwrites each column of `rhs` with K⁻¹ times it.
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
         let par = Par::Seq;
-        let mut buffer =
-            MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(rhs.ncols(), par));
+        let mut buffer = MemBuffer::new(
+            self.symbolic
+                .solve_in_place_scratch::<f64>(rhs.ncols(), par),
+        );
         LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
             Conj::No,
             rhs,
@@ -108,7 +110,9 @@ fn reverse_cuthill_mckee(lower: &SparseColMat<usize, f64>) -> Vec<usize> {
     let mut order = Vec::with_capacity(n);
     while let Some(seed) = (0..n).filter(|&i| !visited[i]).min_by_key(|&i| degree[i]) {
         // Two sweeps: the last node reached from the seed starts the real one.
-        let start = *breadth_first(seed, &adjacency, &mut visited.clone()).last().unwrap_or(&seed);
+        let start = *breadth_first(seed, &adjacency, &mut visited.clone())
+            .last()
+            .unwrap_or(&seed);
         order.extend(breadth_first(start, &adjacency, &mut visited));
     }
     order.reverse();

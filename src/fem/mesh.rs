@@ -214,9 +214,16 @@ pub fn graded(grading: &Grading) -> Result<Mesh, MeshError> {
     let mut builder = Builder::default();
     let mut previous = builder.ring(grading, 0.0, 0);
     for (k, &d) in rings.iter().enumerate().skip(1) {
-        let h = grading.size(grading.ring_radius(d)).min(d - rings[k - 1]).max(1e-300);
+        let h = grading
+            .size(grading.ring_radius(d))
+            .min(d - rings[k - 1])
+            .max(1e-300);
         let arc = d * (grading.end_angle(d) - grading.surface_angle(d));
-        let segments = if arc > 1e-12 * d { ((arc / h).round() as usize).max(1) } else { 0 };
+        let segments = if arc > 1e-12 * d {
+            ((arc / h).round() as usize).max(1)
+        } else {
+            0
+        };
         let ring = builder.ring(grading, d, segments);
         builder.strip(&previous, &ring);
         previous = ring;
@@ -254,7 +261,11 @@ impl Builder {
                 self.nodes.len() - 1
             })
             .collect();
-        let ids = if segments == 0 { ids[..1].to_vec() } else { ids };
+        let ids = if segments == 0 {
+            ids[..1].to_vec()
+        } else {
+            ids
+        };
         self.surface.push(ids[0]);
         ids
     }
@@ -265,8 +276,8 @@ impl Builder {
         let t = |ring: &[usize], i: usize| i as f64 / (ring.len() - 1).max(1) as f64;
         let (mut i, mut j) = (0, 0);
         while i + 1 < inner.len() || j + 1 < outer.len() {
-            let advance_inner = j + 1 == outer.len()
-                || (i + 1 < inner.len() && t(inner, i + 1) <= t(outer, j + 1));
+            let advance_inner =
+                j + 1 == outer.len() || (i + 1 < inner.len() && t(inner, i + 1) <= t(outer, j + 1));
             let tri = if advance_inner {
                 i += 1;
                 [inner[i - 1], outer[j], inner[i]]
@@ -290,7 +301,11 @@ impl Builder {
 
     /// Adds midside nodes and boundary sets.
     fn finish(self, g: &Grading, far_ring: &[usize]) -> Result<Mesh, MeshError> {
-        let Builder { mut nodes, corners, surface } = self;
+        let Builder {
+            mut nodes,
+            corners,
+            surface,
+        } = self;
         let on_surface: HashMap<usize, usize> =
             surface.iter().enumerate().map(|(k, &n)| (n, k)).collect();
         let on_far: std::collections::HashSet<usize> = far_ring.iter().copied().collect();
@@ -298,7 +313,10 @@ impl Builder {
         let mut triangles = Vec::with_capacity(corners.len());
         for c in &corners {
             let mut t = [c[0], c[1], c[2], 0, 0, 0];
-            for (e, (a, b)) in [(c[0], c[1]), (c[1], c[2]), (c[2], c[0])].into_iter().enumerate() {
+            for (e, (a, b)) in [(c[0], c[1]), (c[1], c[2]), (c[2], c[0])]
+                .into_iter()
+                .enumerate()
+            {
                 let key = (a.min(b), a.max(b));
                 t[3 + e] = *midside.entry(key).or_insert_with(|| {
                     let (p, q) = (nodes[a], nodes[b]);
@@ -398,11 +416,16 @@ mod tests {
         let exact = r * r * std::f64::consts::PI / 6.0
             + 0.5 * r * r * (std::f64::consts::PI / 3.0 - (3.0f64).sqrt() / 2.0);
         // Quadratic arcs: the far arc's and surface's geometric error is O(h⁴) per unit length.
-        assert!((area - exact).abs() / exact < 1e-4, "area {area} vs {exact}");
+        assert!(
+            (area - exact).abs() / exact < 1e-4,
+            "area {area} vs {exact}"
+        );
         assert!((mesh.pole_size() - 1e-4).abs() < 1e-12);
         let s = mesh.surface_nodes();
         assert_eq!(s[0], 0);
-        assert!(s.windows(2).all(|w| mesh.nodes[w[1]][0] > mesh.nodes[w[0]][0]));
+        assert!(s
+            .windows(2)
+            .all(|w| mesh.nodes[w[1]][0] > mesh.nodes[w[0]][0]));
         for n in &s {
             let [r, z] = mesh.nodes[*n];
             assert!((z - surface_height(0.1, r)).abs() < 1e-15);
@@ -411,20 +434,36 @@ mod tests {
 
     #[test]
     fn hemisphere_mesh_has_the_quarter_disc_area_and_a_flat_far_face() {
-        let g = Grading { domain: Domain::Hemisphere, ..sphere() };
+        let g = Grading {
+            domain: Domain::Hemisphere,
+            ..sphere()
+        };
         let mesh = graded(&g).unwrap();
         let exact = std::f64::consts::FRAC_PI_4 * 0.01;
         let err = (meridian_area(&mesh) - exact).abs() / exact;
         assert!(err < 1e-4, "area error {err}");
-        assert!(mesh.far.iter().all(|&n| (mesh.nodes[n][1] - 0.1).abs() < 1e-15));
-        assert!(mesh.far.contains(&mesh.surface.last().unwrap()[2]), "equator is far");
+        assert!(mesh
+            .far
+            .iter()
+            .all(|&n| (mesh.nodes[n][1] - 0.1).abs() < 1e-15));
+        assert!(
+            mesh.far.contains(&mesh.surface.last().unwrap()[2]),
+            "equator is far"
+        );
     }
 
     #[test]
     fn rejects_a_domain_larger_than_the_body() {
-        let g = Grading { domain: Domain::Lens(0.2), ..sphere() };
+        let g = Grading {
+            domain: Domain::Lens(0.2),
+            ..sphere()
+        };
         assert!(graded(&g).is_err());
-        let g = Grading { radius: f64::INFINITY, domain: Domain::Hemisphere, ..sphere() };
+        let g = Grading {
+            radius: f64::INFINITY,
+            domain: Domain::Hemisphere,
+            ..sphere()
+        };
         assert!(graded(&g).is_err());
     }
 }

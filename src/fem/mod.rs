@@ -10,18 +10,27 @@
 //! | [`assembly`] | global stiffness, Dirichlet elimination, reaction row |
 //! | [`factor`] | sparse Cholesky with a fill-reducing ordering |
 //! | [`contact`] | condensed contact-surface compliance and the semi-smooth Newton contact solve |
+//! | [`pressure`] | nodal pressure, p0 and c from the contact forces |
+//! | [`model`] | the scene's reduction (symmetric or two bodies) and its discrete model |
+//! | [`output`] | displacement and stress fields, VTU files |
 //! | [`solver`] | the `Solver` implementation |
+//!
+//! The stiffness is assembled and factored once per mesh; the compliance of the candidate
+//! contact nodes is computed once by solves with the factor; each path step then re-solves only
+//! the small condensed contact problem. Verification: `tests/fem_element.rs` (patch test,
+//! manufactured-solution rates), `tests/fem_hertz.rs` (Hertz, convergence), `tests/fem_msh.rs`,
+//! `tests/fem_hard_cases.rs`; speed: `examples/fem_timing.rs`.
 
 pub mod assembly;
+pub mod contact;
 pub mod element;
 pub mod factor;
 pub mod mesh;
-pub mod quadrature;
-pub mod contact;
-pub mod pressure;
 pub mod model;
 pub mod msh;
 pub mod output;
+pub mod pressure;
+pub mod quadrature;
 pub mod solver;
 
 pub use solver::FemAxisym;

@@ -115,24 +115,42 @@ impl BodyModel {
             .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
         let condensed = contact::condense(&system, &factor, &dofs);
         let times = [t1 - t0, t2 - t1, t2.elapsed()].map(|d| d.as_secs_f64());
-        Ok(Self { mesh, system, factor, lame, candidates, condensed, times })
+        Ok(Self {
+            mesh,
+            system,
+            factor,
+            lame,
+            candidates,
+            condensed,
+            times,
+        })
     }
 
     /// Radii of the candidate nodes.
     pub fn radii(&self) -> Vec<f64> {
-        self.candidates.iter().map(|&n| self.mesh.nodes[n][0]).collect()
+        self.candidates
+            .iter()
+            .map(|&n| self.mesh.nodes[n][0])
+            .collect()
     }
 
     /// Surface heights of the candidate nodes.
     pub fn heights(&self) -> Vec<f64> {
-        self.candidates.iter().map(|&n| self.mesh.nodes[n][1]).collect()
+        self.candidates
+            .iter()
+            .map(|&n| self.mesh.nodes[n][1])
+            .collect()
     }
 
     /// Ring weights 2π ∫ N_i r ds of the candidate nodes on this body's surface.
     pub fn weights(&self) -> Vec<f64> {
         let mut by_node = vec![0.0; self.mesh.nodes.len()];
         for e in &self.mesh.surface {
-            let w = edge_weights(self.mesh.nodes[e[0]], self.mesh.nodes[e[1]], self.mesh.nodes[e[2]]);
+            let w = edge_weights(
+                self.mesh.nodes[e[0]],
+                self.mesh.nodes[e[1]],
+                self.mesh.nodes[e[2]],
+            );
             for (k, n) in e.iter().enumerate() {
                 by_node[*n] += w[k];
             }
@@ -212,14 +230,31 @@ impl Model {
         for body in &bodies {
             let r = body.radii();
             let same = r.len() == m
-                && r.iter().zip(&radii).all(|(a, b)| (a - b).abs() <= 1e-9 * (a.abs() + b.abs()));
+                && r.iter()
+                    .zip(&radii)
+                    .all(|(a, b)| (a - b).abs() <= 1e-9 * (a.abs() + b.abs()));
             if !same {
                 return Err("the bodies' candidate contact nodes are not at the same radii".into());
             }
-            heights.iter_mut().zip(body.heights()).for_each(|(h, b)| *h += b);
-            compliance.iter_mut().zip(&body.condensed.compliance).for_each(|(c, b)| *c += b);
+            heights
+                .iter_mut()
+                .zip(body.heights())
+                .for_each(|(h, b)| *h += b);
+            compliance
+                .iter_mut()
+                .zip(&body.condensed.compliance)
+                .for_each(|(c, b)| *c += b);
         }
         let weights = bodies[0].weights();
-        Ok(Self { reduction, problem: Problem { compliance, heights }, bodies, radii, weights })
+        Ok(Self {
+            reduction,
+            problem: Problem {
+                compliance,
+                heights,
+            },
+            bodies,
+            radii,
+            weights,
+        })
     }
 }

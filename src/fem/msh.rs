@@ -29,10 +29,14 @@ pub fn read(path: &Path) -> Result<Mesh, MeshError> {
 
 /// Parses MSH 4.1 bytes into a mesh.
 pub fn parse(bytes: &[u8]) -> Result<Mesh, MeshError> {
-    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| MeshError::File(format!("not MSH 4.1: {e}")))?;
+    let msh =
+        mshio::parse_msh_bytes(bytes).map_err(|e| MeshError::File(format!("not MSH 4.1: {e}")))?;
     let data = msh.data;
-    let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements) else {
-        return Err(MeshError::File("needs $Entities, $Nodes and $Elements sections".into()));
+    let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements)
+    else {
+        return Err(MeshError::File(
+            "needs $Entities, $Nodes and $Elements sections".into(),
+        ));
     };
     // Node tags to indices: explicit per block, or consecutive from min_node_tag.
     let mut index: HashMap<u64, usize> = HashMap::new();
@@ -41,21 +45,37 @@ pub fn parse(bytes: &[u8]) -> Result<Mesh, MeshError> {
         let base = coords.len();
         match &block.node_tags {
             Some(tags) => index.extend(tags.iter().map(|(&t, &i)| (t, base + i))),
-            None => index.extend((0..block.nodes.len()).map(|i| (nodes.min_node_tag + (base + i) as u64, base + i))),
+            None => index.extend(
+                (0..block.nodes.len()).map(|i| (nodes.min_node_tag + (base + i) as u64, base + i)),
+            ),
         }
         coords.extend(block.nodes.iter().map(|n| [n.x, n.y]));
     }
-    let physical: HashMap<i32, Vec<i32>> =
-        entities.curves.iter().map(|c| (c.tag, c.physical_tags.clone())).collect();
-    let node = |tag: &u64| index.get(tag).copied().ok_or_else(|| MeshError::File(format!("unknown node tag {tag}")));
-    let mut mesh = Mesh { nodes: coords, ..Mesh::default() };
+    let physical: HashMap<i32, Vec<i32>> = entities
+        .curves
+        .iter()
+        .map(|c| (c.tag, c.physical_tags.clone()))
+        .collect();
+    let node = |tag: &u64| {
+        index
+            .get(tag)
+            .copied()
+            .ok_or_else(|| MeshError::File(format!("unknown node tag {tag}")))
+    };
+    let mut mesh = Mesh {
+        nodes: coords,
+        ..Mesh::default()
+    };
     let mut edges: HashMap<i32, Vec<[usize; 3]>> = HashMap::new();
     for block in &elements.element_blocks {
         match block.element_type {
             ElementType::Tri6 => {
                 for e in &block.elements {
                     let t: Vec<usize> = e.nodes.iter().map(node).collect::<Result<_, _>>()?;
-                    mesh.triangles.push(counter_clockwise(&mesh.nodes, [t[0], t[1], t[2], t[3], t[4], t[5]]));
+                    mesh.triangles.push(counter_clockwise(
+                        &mesh.nodes,
+                        [t[0], t[1], t[2], t[3], t[4], t[5]],
+                    ));
                 }
             }
             ElementType::Lin3 => {
@@ -99,7 +119,10 @@ fn counter_clockwise(nodes: &[[f64; 2]], t: [usize; 6]) -> [usize; 6] {
 }
 
 /// Contact edges oriented outwards from the pole and chained by r; the pole must be on the axis.
-fn contact_surface(nodes: &[[f64; 2]], mut edges: Vec<[usize; 3]>) -> Result<Vec<[usize; 3]>, MeshError> {
+fn contact_surface(
+    nodes: &[[f64; 2]],
+    mut edges: Vec<[usize; 3]>,
+) -> Result<Vec<[usize; 3]>, MeshError> {
     for e in &mut edges {
         if nodes[e[0]][0] > nodes[e[2]][0] {
             e.swap(0, 2);

@@ -52,7 +52,12 @@ pub fn nodal_stress(mesh: &Mesh, lame: Lame, u: &[[f64; 2]]) -> Vec<[f64; 4]> {
 
 /// Writes each body's displacement and stress at contact state `state` (approach `approach`,
 /// split equally between two bodies) to `path` (`path-bodyK.vtu` when there are two bodies).
-pub fn write_fields(model: &Model, state: &State, approach: f64, path: &Path) -> Result<(), VtuError> {
+pub fn write_fields(
+    model: &Model,
+    state: &State,
+    approach: f64,
+    path: &Path,
+) -> Result<(), VtuError> {
     let shift = approach / model.bodies.len() as f64;
     for (k, body) in model.bodies.iter().enumerate() {
         let u = displacement(body, &state.forces, shift);

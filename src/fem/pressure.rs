@@ -42,14 +42,22 @@ pub fn recover(radii: &[f64], weights: &[f64], forces: &[f64]) -> Profile {
         .map(|(&f, &w)| if w > 0.0 { f / w } else { 0.0 })
         .collect();
     let Some(last) = forces.iter().rposition(|&f| f > 0.0) else {
-        return Profile { pressure, peak: Some(0.0), radius: Some(0.0) };
+        return Profile {
+            pressure,
+            peak: Some(0.0),
+            radius: Some(0.0),
+        };
     };
     let radius = contact_radius(radii, &pressure, last);
     let peak = radius.and_then(|c| peak_pressure(radii, &pressure, forces, c));
     if let (Some(p0), Some(first)) = (peak, weights.iter().position(|&w| w <= 0.0)) {
         pressure[first] = p0;
     }
-    Profile { pressure, peak, radius }
+    Profile {
+        pressure,
+        peak,
+        radius,
+    }
 }
 
 /// c from the zero of the least-squares quadratic (or line) in r through the last loaded nodes.
@@ -136,16 +144,33 @@ mod tests {
         // Nodes every 0.01 on a flat surface, Hertz pressure with c = 0.503, p0 = 2.
         let radii: Vec<f64> = (0..80).map(|i| 0.01 * f64::from(i)).collect();
         let (c, p0) = (0.503, 2.0);
-        let p = |r: f64| if r < c { p0 * (1.0 - (r / c).powi(2)).sqrt() } else { 0.0 };
+        let p = |r: f64| {
+            if r < c {
+                p0 * (1.0 - (r / c).powi(2)).sqrt()
+            } else {
+                0.0
+            }
+        };
         // Lumped weights 2π r Δr (2π r Δr / 2 at the ends), zero on the axis.
-        let weights: Vec<f64> = radii.iter().map(|r| 2.0 * std::f64::consts::PI * r * 0.01).collect();
+        let weights: Vec<f64> = radii
+            .iter()
+            .map(|r| 2.0 * std::f64::consts::PI * r * 0.01)
+            .collect();
         let forces: Vec<f64> = radii.iter().zip(&weights).map(|(r, w)| p(*r) * w).collect();
         let profile = recover(&radii, &weights, &forces);
         // Edge: p² = p0² (c − r)(c + r)/c² is a quadratic in r: the fit is exact up to round-off
         // (and the cubic-free form), so c is recovered to 1e-9.
-        assert!((profile.radius.unwrap() - c).abs() < 1e-9, "{:?}", profile.radius);
+        assert!(
+            (profile.radius.unwrap() - c).abs() < 1e-9,
+            "{:?}",
+            profile.radius
+        );
         // Fit of √(1 − x) by a quadratic in x on x ≤ 1/4: error ≈ the cubic term, 1e-4 of p0.
-        assert!((profile.peak.unwrap() - p0).abs() < 2e-4 * p0, "{:?}", profile.peak);
+        assert!(
+            (profile.peak.unwrap() - p0).abs() < 2e-4 * p0,
+            "{:?}",
+            profile.peak
+        );
         assert_eq!(profile.pressure[0], profile.peak.unwrap());
     }
 

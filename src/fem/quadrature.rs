@@ -17,7 +17,10 @@ pub fn triangle_degree2() -> Vec<Point> {
     let (a, b) = (1.0 / 6.0, 2.0 / 3.0);
     [[a, a], [b, a], [a, b]]
         .into_iter()
-        .map(|at| Point { at, weight: 1.0 / 6.0 })
+        .map(|at| Point {
+            at,
+            weight: 1.0 / 6.0,
+        })
         .collect()
 }
 
@@ -25,7 +28,10 @@ pub fn triangle_degree2() -> Vec<Point> {
 pub fn triangle_degree4() -> Vec<Point> {
     let orbit = |a: f64, w: f64| {
         let b = 1.0 - 2.0 * a;
-        [[a, a], [b, a], [a, b]].map(|at| Point { at, weight: w / 2.0 })
+        [[a, a], [b, a], [a, b]].map(|at| Point {
+            at,
+            weight: w / 2.0,
+        })
     };
     let mut points = orbit(0.445_948_490_915_965, 0.223_381_589_678_011).to_vec();
     points.extend(orbit(0.091_576_213_509_771, 0.109_951_743_655_322));
@@ -35,10 +41,17 @@ pub fn triangle_degree4() -> Vec<Point> {
 /// 3-point Gauss–Legendre on [0, 1], exact for polynomials of degree 5.
 pub fn line_gauss3() -> Vec<Point> {
     let d = 0.5 * (0.6f64).sqrt();
-    [(0.5 - d, 5.0 / 18.0), (0.5, 8.0 / 18.0), (0.5 + d, 5.0 / 18.0)]
-        .into_iter()
-        .map(|(x, weight)| Point { at: [x, 0.0], weight })
-        .collect()
+    [
+        (0.5 - d, 5.0 / 18.0),
+        (0.5, 8.0 / 18.0),
+        (0.5 + d, 5.0 / 18.0),
+    ]
+    .into_iter()
+    .map(|(x, weight)| Point {
+        at: [x, 0.0],
+        weight,
+    })
+    .collect()
 }
 
 #[cfg(test)]
@@ -72,7 +85,10 @@ mod tests {
     #[test]
     fn line_rule_is_exact_to_degree_five() {
         for k in 0..=5 {
-            let sum: f64 = line_gauss3().iter().map(|p| p.weight * p.at[0].powi(k)).sum();
+            let sum: f64 = line_gauss3()
+                .iter()
+                .map(|p| p.weight * p.at[0].powi(k))
+                .sum();
             assert!((sum - 1.0 / f64::from(k + 1)).abs() < 1e-15);
         }
     }

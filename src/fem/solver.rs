@@ -54,7 +54,10 @@ pub struct FemAxisym {
 impl FemAxisym {
     /// The solver with pole element size `h` [m].
     pub fn with_pole_size(h: f64) -> Self {
-        Self { pole_size: Some(h), ..Self::default() }
+        Self {
+            pole_size: Some(h),
+            ..Self::default()
+        }
     }
 
     /// The mesh and solver settings for `scene`.
@@ -62,7 +65,11 @@ impl FemAxisym {
         let c = scene.max_contact_radius();
         let pole_size = match self.pole_size {
             Some(h) if h > 0.0 && h.is_finite() => h,
-            Some(h) => return Err(SolveError::Failed(format!("pole size {h} m is not positive"))),
+            Some(h) => {
+                return Err(SolveError::Failed(format!(
+                    "pole size {h} m is not positive"
+                )))
+            }
             None if c > 0.0 => c / POLE_DIVISIONS,
             None => {
                 return Err(SolveError::NotApplicable(
@@ -71,11 +78,13 @@ impl FemAxisym {
             }
         };
         let nu = [scene.pair.body1, scene.pair.body2].map(|b| b.material.poisson);
-        let integration = self.integration.unwrap_or(if nu.iter().any(|&n| n > NEAR_INCOMPRESSIBLE) {
-            Integration::SelectiveReduced
-        } else {
-            Integration::Full
-        });
+        let integration =
+            self.integration
+                .unwrap_or(if nu.iter().any(|&n| n > NEAR_INCOMPRESSIBLE) {
+                    Integration::SelectiveReduced
+                } else {
+                    Integration::Full
+                });
         Ok(Settings {
             pole_size,
             candidate_radius: (CANDIDATE_ZONE * c).max(3.0 * pole_size),
@@ -87,7 +96,12 @@ impl FemAxisym {
 
 impl FemAxisym {
     /// The symmetric model on the sphere mesh in `file`.
-    fn read_model(&self, scene: &Scene, file: &std::path::Path, settings: &Settings) -> Result<Model, String> {
+    fn read_model(
+        &self,
+        scene: &Scene,
+        file: &std::path::Path,
+        settings: &Settings,
+    ) -> Result<Model, String> {
         if Reduction::of(scene) != Reduction::Symmetric {
             return Err("a mesh file is supported for identical spheres (one body) only".into());
         }
@@ -108,7 +122,9 @@ impl Solver for FemAxisym {
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         if !scene.pair.body1.radius.is_finite() && !scene.pair.body2.radius.is_finite() {
-            return Err(SolveError::NotApplicable("two flats have no Hertz contact".into()));
+            return Err(SolveError::NotApplicable(
+                "two flats have no Hertz contact".into(),
+            ));
         }
         let settings = self.settings(scene)?;
         let model = match &self.mesh_file {
@@ -116,7 +132,7 @@ impl Solver for FemAxisym {
             Some(file) => self.read_model(scene, file, &settings),
         }
         .map_err(SolveError::Failed)?;
-        let mut run = Run::new(&model, &settings);
+        let mut run = Run::new(&model);
         let t = Instant::now();
         for step in scene.steps() {
             run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
@@ -139,7 +155,7 @@ struct Run {
 }
 
 impl Run {
-    fn new(model: &Model, settings: &Settings) -> Self {
+    fn new(model: &Model) -> Self {
         Self {
             active: vec![false; model.radii.len()],
             steps: Vec::new(),
@@ -148,7 +164,7 @@ impl Run {
             balance: 0.0,
             unresolved: Vec::new(),
             max_strain: 0.0,
-            pole_size: settings.pole_size,
+            pole_size: model.bodies[0].mesh.pole_size(),
         }
     }
 
@@ -171,7 +187,10 @@ impl Run {
                 model.radii.last().copied().unwrap_or(0.0)
             )));
         }
-        self.iterations = (self.iterations.0 + state.iterations, self.iterations.1.max(state.iterations));
+        self.iterations = (
+            self.iterations.0 + state.iterations,
+            self.iterations.1.max(state.iterations),
+        );
         let force: f64 = state.forces.iter().sum();
         self.check_balance(model, &state, force);
         let profile = pressure::recover(&model.radii, &model.weights, &state.forces);
@@ -202,8 +221,13 @@ impl Run {
     /// Σλ against each body's far-boundary reaction ρ·λ.
     fn check_balance(&mut self, model: &Model, state: &State, force: f64) {
         for body in &model.bodies {
-            let reaction: f64 =
-                body.condensed.reaction.iter().zip(&state.forces).map(|(r, l)| r * l).sum();
+            let reaction: f64 = body
+                .condensed
+                .reaction
+                .iter()
+                .zip(&state.forces)
+                .map(|(r, l)| r * l)
+                .sum();
             if force > 0.0 {
                 self.balance = self.balance.max((reaction - force).abs() / force);
             }
@@ -211,16 +235,28 @@ impl Run {
     }
 
     fn judge_resolution(&mut self, profile: &Profile, force: f64, delta_n: f64, scene: &Scene) {
-        if force > 0.0 && (profile.radius.is_none() || profile.radius < Some(2.0 * self.pole_size)) {
+        if force > 0.0 && (profile.radius.is_none() || profile.radius < Some(2.0 * self.pole_size))
+        {
             self.unresolved.push(delta_n);
         }
-        let young = scene.pair.body1.material.young.min(scene.pair.body2.material.young);
+        let young = scene
+            .pair
+            .body1
+            .material
+            .young
+            .min(scene.pair.body2.material.young);
         if let Some(p0) = profile.peak {
             self.max_strain = self.max_strain.max(p0 / young);
         }
     }
 
-    fn finish(self, model: &Model, scene: &Scene, settings: &Settings, contact_time: f64) -> History {
+    fn finish(
+        self,
+        model: &Model,
+        scene: &Scene,
+        settings: &Settings,
+        contact_time: f64,
+    ) -> History {
         let mut warnings = scene.warnings();
         if let (Some(first), Some(last)) = (self.unresolved.first(), self.unresolved.last()) {
             warnings.push(format!(
