@@ -140,6 +140,10 @@ fn unloading_retraces_loading_and_separates() {
         );
     }
     assert!(h.steps.iter().all(|r| r.tangential_force.is_none()));
+    // P from the multipliers and from the reaction on the loaded face: the same equilibrium by
+    // two routes (round-off of the solves, relative).
+    let mismatch = h.metadata.extra["reaction_mismatch_max"].as_f64().unwrap();
+    assert!(mismatch < 1e-9, "{mismatch}");
 }
 
 #[test]

@@ -300,7 +300,7 @@ impl Run {
             ("iterations_max", json!(self.iterations.1)),
             ("reaction_mismatch_max", json!(self.balance)),
             ("p0_method", json!("least-squares fit a0 + a1 (r/c)^2 + a2 (r/c)^4 to nodal pressures on 0 < r <= c/2")),
-            ("c_method", json!("zero of p^2 extrapolated linearly from the last two loaded nodes")),
+            ("c_method", json!("zero of a least-squares quadratic in r fitted to p^2 at the last 16 loaded nodes")),
         ]
         .into_iter()
         .map(|(k, v)| (k.to_owned(), v))
