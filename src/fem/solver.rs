@@ -138,7 +138,7 @@ impl Solver for FemAxisym {
             run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
         }
         let contact_time = t.elapsed().as_secs_f64();
-        Ok(run.finish(&model, scene, &settings, contact_time))
+        Ok(run.finish(&model, &settings, contact_time))
     }
 }
 
@@ -250,14 +250,8 @@ impl Run {
         }
     }
 
-    fn finish(
-        self,
-        model: &Model,
-        scene: &Scene,
-        settings: &Settings,
-        contact_time: f64,
-    ) -> History {
-        let mut warnings = scene.warnings();
+    fn finish(self, model: &Model, settings: &Settings, contact_time: f64) -> History {
+        let mut warnings = Vec::new(); // the scene's own warnings are reported by verify
         if let (Some(first), Some(last)) = (self.unresolved.first(), self.unresolved.last()) {
             warnings.push(format!(
                 "pole element ({:.3e} m) is not smaller than half the contact radius at {} steps \
