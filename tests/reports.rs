@@ -30,14 +30,15 @@ fn paper_run() -> CaseRun {
     verify::run_case(case)
 }
 
-/// Text with the timing cells masked: HTML cells of class "timing" and Markdown cells "N ms".
+/// Text with the timing cells masked: HTML cells of class "timing", and the last Markdown cell of
+/// a row that holds a wall time ("N ms", or "N ms (assembly … s, …)").
 fn without_timings(text: &str) -> String {
     text.lines()
         .map(|line| {
             if let Some(start) = line.find("<td class=\"timing\">") {
                 let end = line[start..].find("</td>").map_or(line.len(), |e| start + e);
                 format!("{}TIMING{}", &line[..start], &line[end..])
-            } else if line.starts_with("| ") && line.ends_with(" ms |") {
+            } else if line.starts_with("| ") && (line.ends_with(" ms |") || line.contains(" ms (")) {
                 let cut = line[..line.len() - 2].rfind("| ").unwrap_or(0);
                 format!("{}| TIMING |", &line[..cut])
             } else {

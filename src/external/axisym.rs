@@ -72,7 +72,7 @@ pub struct AxisymSolver<D: Deck> {
 /// Pole element sizes of the external ladder, as fractions of the path's largest contact radius.
 pub const LADDER: [f64; 4] = [1.0 / 10.0, 1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0];
 
-impl<D: Deck + Clone + 'static> Solver for AxisymSolver<D> {
+impl<D: Deck + 'static> Solver for AxisymSolver<D> {
     fn name(&self) -> &'static str {
         self.deck.name()
     }

@@ -65,7 +65,7 @@ pub fn fill(template: &str, input: &DeckInput) -> String {
 }
 
 /// One external deck: its template, its program, and the meaning of its exit codes.
-pub trait Deck: Send + Sync {
+pub trait Deck: Send + Sync + Clone {
     /// The solver name (`freefem-axisym`, …).
     fn name(&self) -> &'static str;
     /// One line: model and method.
@@ -87,7 +87,7 @@ pub trait Deck: Send + Sync {
 }
 
 /// The reason a finished run failed, in words, or `None` if it succeeded.
-pub fn failure(deck: &dyn Deck, ending: &Ending, timeout: Duration) -> Option<String> {
+pub fn failure(deck: &impl Deck, ending: &Ending, timeout: Duration) -> Option<String> {
     match ending {
         Ending::Exited(0) => None,
         Ending::Exited(code) => Some(format!(

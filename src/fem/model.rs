@@ -1,0 +1,247 @@
+//! The discrete model of a scene: one or two meshed bodies, each assembled and factored once,
+//! condensed onto common candidate contact nodes.
+//!
+//! Reduction (chosen from the scene, recorded in the history):
+//! - identical spheres: by symmetry the contact plane stays flat and frictionless, so one sphere
+//!   is pushed by δn/2 against a rigid plane;
+//! - otherwise both bodies are meshed, each in its own frame touching the plane, with their
+//!   candidate nodes at the same radii; their compliances add and the approach is δn.
+
+use std::time::Instant;
+
+use super::assembly::{self, System};
+use super::contact::{self, Condensed, Problem};
+use super::element::{edge_weights, Integration, Lame};
+use super::factor::{Factor, Ordering};
+use super::mesh::{self, Domain, Grading, Mesh};
+use crate::pair::Body;
+use crate::scene::Scene;
+
+/// How the scene was reduced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reduction {
+    /// One sphere against a rigid frictionless plane at δn/2.
+    Symmetric,
+    /// Both bodies meshed; compliances added at common node radii.
+    TwoBodies,
+}
+
+impl Reduction {
+    /// The reduction a scene needs.
+    pub fn of(scene: &Scene) -> Self {
+        if scene.pair.is_symmetric() {
+            Self::Symmetric
+        } else {
+            Self::TwoBodies
+        }
+    }
+
+    /// In words, for the history's metadata.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::Symmetric => {
+                "identical spheres by symmetry: one sphere against a rigid frictionless plane at δn/2"
+            }
+            Self::TwoBodies => "both bodies meshed, compliances added at common node radii, approach δn",
+        }
+    }
+
+    /// The approach of the condensed problem at relative approach δn.
+    pub fn approach(self, delta_n: f64) -> f64 {
+        match self {
+            Self::Symmetric => 0.5 * delta_n,
+            Self::TwoBodies => delta_n,
+        }
+    }
+}
+
+/// Mesh and solver settings derived from the scene and the user's pole size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Pole element size h0 [m].
+    pub pole_size: f64,
+    /// Surface radius within which nodes are contact candidates [m].
+    pub candidate_radius: f64,
+    /// Fill-reducing ordering.
+    pub ordering: Ordering,
+    /// Element integration.
+    pub integration: Integration,
+}
+
+/// Uniformly fine zone: 5 % beyond the candidate zone, so the contact edge sits in it.
+const FINE_MARGIN: f64 = 1.05;
+/// Growth of the element size beyond the fine zone (h = h0 + g (r − r_f)).
+const GROWTH: f64 = 0.25;
+/// Domain of a flat, in units of the largest contact radius: the far-arc offset of a
+/// half-space region falls as c/D (Boussinesq), ≈ 1e-4 of P at 1000 c.
+pub(super) const FLAT_DOMAIN: f64 = 1000.0;
+
+/// One meshed, assembled, factored and condensed body.
+pub struct BodyModel {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// The assembled system.
+    pub system: System,
+    /// The factorisation of its stiffness.
+    pub factor: Factor,
+    /// Its material.
+    pub lame: Lame,
+    /// Candidate contact nodes, by r from the pole.
+    pub candidates: Vec<usize>,
+    /// The condensed response at the candidates.
+    pub condensed: Condensed,
+    /// Wall times [s]: assembly, factorisation, condensation.
+    pub times: [f64; 3],
+}
+
+impl BodyModel {
+    /// Builds the model of one body from its mesh.
+    pub fn new(mesh: Mesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
+        let t0 = Instant::now();
+        let system = assembly::assemble(&mesh, lame, settings.integration).map_err(|e| e.to_string())?;
+        let t1 = Instant::now();
+        let factor = Factor::new(&system.stiffness, settings.ordering)?;
+        let t2 = Instant::now();
+        let candidates: Vec<usize> = mesh
+            .surface_nodes()
+            .into_iter()
+            .filter(|&n| mesh.nodes[n][0] <= settings.candidate_radius)
+            .collect();
+        let dofs = candidates
+            .iter()
+            .map(|&n| system.dofs.free(2 * n + 1))
+            .collect::<Option<Vec<usize>>>()
+            .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
+        let condensed = contact::condense(&system, &factor, &dofs);
+        let times = [t1 - t0, t2 - t1, t2.elapsed()].map(|d| d.as_secs_f64());
+        Ok(Self {
+            mesh,
+            system,
+            factor,
+            lame,
+            candidates,
+            condensed,
+            times,
+        })
+    }
+
+    /// Radii of the candidate nodes.
+    pub fn radii(&self) -> Vec<f64> {
+        self.candidates.iter().map(|&n| self.mesh.nodes[n][0]).collect()
+    }
+
+    /// Surface heights of the candidate nodes.
+    pub fn heights(&self) -> Vec<f64> {
+        self.candidates.iter().map(|&n| self.mesh.nodes[n][1]).collect()
+    }
+
+    /// Ring weights 2π ∫ N_i r ds of the candidate nodes on this body's surface.
+    pub fn weights(&self) -> Vec<f64> {
+        let mut by_node = vec![0.0; self.mesh.nodes.len()];
+        for e in &self.mesh.surface {
+            let w = edge_weights(
+                self.mesh.nodes[e[0]],
+                self.mesh.nodes[e[1]],
+                self.mesh.nodes[e[2]],
+            );
+            for (k, n) in e.iter().enumerate() {
+                by_node[*n] += w[k];
+            }
+        }
+        self.candidates.iter().map(|&n| by_node[n]).collect()
+    }
+
+    /// Degrees of freedom (free).
+    pub fn dofs(&self) -> usize {
+        self.system.dofs.count()
+    }
+}
+
+/// The discrete model of a scene.
+pub struct Model {
+    /// The reduction.
+    pub reduction: Reduction,
+    /// The meshed bodies (one when symmetric).
+    pub bodies: Vec<BodyModel>,
+    /// The condensed contact problem of the pair.
+    pub problem: Problem,
+    /// Candidate radii [m].
+    pub radii: Vec<f64>,
+    /// Ring weights of the candidates (body 1's surface) [m²].
+    pub weights: Vec<f64>,
+}
+
+/// The generator's grading for `body` under `settings`.
+pub fn grading(body: &Body, settings: &Settings, contact_radius: f64) -> Grading {
+    let domain = if body.radius.is_finite() {
+        Domain::Hemisphere
+    } else {
+        Domain::Lens(FLAT_DOMAIN * contact_radius.max(settings.candidate_radius))
+    };
+    Grading {
+        radius: body.radius,
+        domain,
+        pole_size: settings.pole_size,
+        fine_radius: FINE_MARGIN * settings.candidate_radius,
+        growth: GROWTH,
+    }
+}
+
+impl Model {
+    /// Meshes (in-crate generator) and builds the model of `scene`.
+    pub fn generate(scene: &Scene, settings: &Settings) -> Result<Self, String> {
+        let reduction = Reduction::of(scene);
+        let c = scene.max_contact_radius();
+        let mut bodies = vec![scene.pair.body1];
+        if reduction == Reduction::TwoBodies {
+            bodies.push(scene.pair.body2);
+        }
+        let meshes = bodies
+            .iter()
+            .map(|b| mesh::graded(&grading(b, settings, c)).map_err(|e| e.to_string()))
+            .collect::<Result<Vec<_>, _>>()?;
+        let lames = bodies.iter().map(|b| Lame::of(&b.material)).collect();
+        Self::from_meshes(reduction, meshes, lames, settings)
+    }
+
+    /// Builds the model from given meshes (one per body of the reduction).
+    pub fn from_meshes(
+        reduction: Reduction,
+        meshes: Vec<Mesh>,
+        lames: Vec<Lame>,
+        settings: &Settings,
+    ) -> Result<Self, String> {
+        let bodies = meshes
+            .into_iter()
+            .zip(lames)
+            .map(|(mesh, lame)| BodyModel::new(mesh, lame, settings))
+            .collect::<Result<Vec<_>, _>>()?;
+        let radii = bodies[0].radii();
+        let m = radii.len();
+        let mut heights = vec![0.0; m];
+        let mut compliance = vec![0.0; m * m];
+        for body in &bodies {
+            let r = body.radii();
+            let same = r.len() == m
+                && r.iter()
+                    .zip(&radii)
+                    .all(|(a, b)| (a - b).abs() <= 1e-9 * (a.abs() + b.abs()));
+            if !same {
+                return Err("the bodies' candidate contact nodes are not at the same radii".into());
+            }
+            heights.iter_mut().zip(body.heights()).for_each(|(h, b)| *h += b);
+            compliance
+                .iter_mut()
+                .zip(&body.condensed.compliance)
+                .for_each(|(c, b)| *c += b);
+        }
+        let weights = bodies[0].weights();
+        Ok(Self {
+            reduction,
+            problem: Problem { compliance, heights },
+            bodies,
+            radii,
+            weights,
+        })
+    }
+}

@@ -1,0 +1,142 @@
+//! Reading a body's meridian mesh from a gmsh MSH 4.1 file (ASCII or binary, via `mshio`), so
+//! that the same mesh feeds this solver and the external decks.
+//!
+//! Conventions (those of `examples/feasibility/axisym_quarter.geo`): x = r, y = z, the body
+//! touching the plane z = 0 at its pole; 6-node triangles (gmsh type 9, `Mesh.ElementOrder = 2`);
+//! 3-node lines (type 8) in physical curves [`CONTACT`], [`FAR`] (displaced rigidly along z)
+//! and [`AXIS`] (r = 0).
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use mshio::mshfile::ElementType;
+
+use super::mesh::{self, Mesh, MeshError};
+
+/// Physical curve tag of the contact surface.
+pub const CONTACT: i32 = 1;
+/// Physical curve tag of the far boundary (displaced rigidly along the axis).
+pub const FAR: i32 = 2;
+/// Physical curve tag of the symmetry axis.
+pub const AXIS: i32 = 3;
+
+/// Reads the MSH 4.1 file at `path`.
+pub fn read(path: &Path) -> Result<Mesh, MeshError> {
+    let bytes =
+        std::fs::read(path).map_err(|e| MeshError::File(format!("cannot read {}: {e}", path.display())))?;
+    parse(&bytes)
+}
+
+/// Parses MSH 4.1 bytes into a mesh.
+pub fn parse(bytes: &[u8]) -> Result<Mesh, MeshError> {
+    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| MeshError::File(format!("not MSH 4.1: {e}")))?;
+    let data = msh.data;
+    let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements) else {
+        return Err(MeshError::File(
+            "needs $Entities, $Nodes and $Elements sections".into(),
+        ));
+    };
+    // Node tags to indices: explicit per block, or consecutive from min_node_tag.
+    let mut index: HashMap<u64, usize> = HashMap::new();
+    let mut coords = Vec::new();
+    for block in &nodes.node_blocks {
+        let base = coords.len();
+        match &block.node_tags {
+            Some(tags) => index.extend(tags.iter().map(|(&t, &i)| (t, base + i))),
+            None => index
+                .extend((0..block.nodes.len()).map(|i| (nodes.min_node_tag + (base + i) as u64, base + i))),
+        }
+        coords.extend(block.nodes.iter().map(|n| [n.x, n.y]));
+    }
+    let physical: HashMap<i32, Vec<i32>> = entities
+        .curves
+        .iter()
+        .map(|c| (c.tag, c.physical_tags.clone()))
+        .collect();
+    let node = |tag: &u64| {
+        index
+            .get(tag)
+            .copied()
+            .ok_or_else(|| MeshError::File(format!("unknown node tag {tag}")))
+    };
+    let mut mesh = Mesh {
+        nodes: coords,
+        ..Mesh::default()
+    };
+    let mut edges: HashMap<i32, Vec<[usize; 3]>> = HashMap::new();
+    for block in &elements.element_blocks {
+        match block.element_type {
+            ElementType::Tri6 => {
+                for e in &block.elements {
+                    let t: Vec<usize> = e.nodes.iter().map(node).collect::<Result<_, _>>()?;
+                    mesh.triangles.push(counter_clockwise(
+                        &mesh.nodes,
+                        [t[0], t[1], t[2], t[3], t[4], t[5]],
+                    ));
+                }
+            }
+            ElementType::Lin3 => {
+                for group in physical.get(&block.entity_tag).into_iter().flatten() {
+                    for e in &block.elements {
+                        let l: Vec<usize> = e.nodes.iter().map(node).collect::<Result<_, _>>()?;
+                        // gmsh order: two ends, then the middle.
+                        edges.entry(*group).or_default().push([l[0], l[2], l[1]]);
+                    }
+                }
+            }
+            ElementType::Pnt | ElementType::Lin2 | ElementType::Tri3 => {}
+            other => {
+                return Err(MeshError::File(format!(
+                    "element type {other:?} is not supported (6-node triangles and 3-node lines)"
+                )))
+            }
+        }
+    }
+    mesh.surface = contact_surface(&mesh.nodes, edges.remove(&CONTACT).unwrap_or_default())?;
+    mesh.far = nodes_of(edges.remove(&FAR).unwrap_or_default());
+    mesh.axis = nodes_of(edges.remove(&AXIS).unwrap_or_default());
+    if mesh.triangles.is_empty() || mesh.far.is_empty() || mesh.axis.is_empty() {
+        return Err(MeshError::File(format!(
+            "needs 6-node triangles and 3-node lines in physical curves {CONTACT} (contact), {FAR} (far), {AXIS} (axis)"
+        )));
+    }
+    mesh::validate(&mesh)?;
+    Ok(mesh)
+}
+
+/// Reorders a 6-node triangle counter-clockwise (gmsh's may be either way round).
+fn counter_clockwise(nodes: &[[f64; 2]], t: [usize; 6]) -> [usize; 6] {
+    let [a, b, c] = [t[0], t[1], t[2]].map(|n| nodes[n]);
+    let area = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    if area > 0.0 {
+        t
+    } else {
+        [t[0], t[2], t[1], t[5], t[4], t[3]]
+    }
+}
+
+/// Contact edges oriented outwards from the pole and chained by r; the pole must be on the axis.
+fn contact_surface(nodes: &[[f64; 2]], mut edges: Vec<[usize; 3]>) -> Result<Vec<[usize; 3]>, MeshError> {
+    for e in &mut edges {
+        if nodes[e[0]][0] > nodes[e[2]][0] {
+            e.swap(0, 2);
+        }
+    }
+    edges.sort_by(|a, b| nodes[a[0]][0].total_cmp(&nodes[b[0]][0]));
+    let chained = edges.windows(2).all(|w| w[0][2] == w[1][0]);
+    let starts_on_axis = edges.first().is_some_and(|e| nodes[e[0]][0] == 0.0);
+    if edges.is_empty() || !chained || !starts_on_axis {
+        return Err(MeshError::File(format!(
+            "the contact curve (physical {CONTACT}) must be one chain of 3-node lines starting on the axis"
+        )));
+    }
+    Ok(edges)
+}
+
+/// The distinct nodes of some edges.
+fn nodes_of(edges: Vec<[usize; 3]>) -> Vec<usize> {
+    let mut nodes: Vec<usize> = edges.into_iter().flatten().collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes
+}

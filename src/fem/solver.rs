@@ -1,0 +1,348 @@
+//! `fem-axisym`: the axisymmetric finite element solver of frictionless normal contact.
+//!
+//! Per path step the contact is re-solved on the condensed system (the stiffness is factored
+//! once per mesh). It reports P from the multipliers (Σλ) and checks it against the reaction on
+//! each body's far boundary; c and p0 come from [`super::pressure`] (p0 is a fit to the nodal
+//! pressures near the axis, not the axis node's multiplier). Tangential quantities are `None`.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use serde_json::json;
+
+use super::contact::State;
+use super::element::{Integration, Lame};
+use super::factor::Ordering;
+use super::model::{Model, Reduction, Settings};
+use super::msh;
+use super::output;
+use super::pressure::{self, Profile};
+use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::scene::Scene;
+use crate::solver::{SolveError, Solver};
+
+/// Default pole element size in units of the path's largest contact radius. At c/40 the P, p0
+/// and c errors on the paper's spheres are within 0.5 % (`examples/fem_timing.rs`).
+pub const POLE_DIVISIONS: f64 = 40.0;
+/// Candidate contact zone, in units of the largest contact radius.
+const CANDIDATE_ZONE: f64 = 1.25;
+/// Poisson ratio above which the volumetric term is under-integrated against locking.
+const NEAR_INCOMPRESSIBLE: f64 = 0.45;
+/// p0/E above which the small-strain model is doubtful: strains ~ p0/E exceed 1 %, where the
+/// neglected quadratic strain terms and the parabolic profile are no longer below 0.5 %.
+const SMALL_STRAIN: f64 = 0.01;
+/// Relative disagreement of Σλ and the far-boundary reaction that is reported: both are the
+/// same equilibrium, so anything above round-off means an assembly or solve error.
+const BALANCE: f64 = 1e-6;
+
+/// The solver and its resolution.
+#[derive(Clone, Debug, Default)]
+pub struct FemAxisym {
+    /// Pole element size h0 [m]; `None`: the largest contact radius / [`POLE_DIVISIONS`].
+    pub pole_size: Option<f64>,
+    /// Fill-reducing ordering of the Cholesky factorisation (`None`: AMD).
+    pub ordering: Option<Ordering>,
+    /// When set, displacement and stress fields are written there as VTU at every position.
+    pub vtu_dir: Option<PathBuf>,
+    /// Element integration (`None`: full, selective reduced above ν = 0.45).
+    pub integration: Option<Integration>,
+    /// A gmsh MSH 4.1 mesh of the sphere to use instead of the generated one (symmetric
+    /// reduction only; see [`super::msh`] for its conventions).
+    pub mesh_file: Option<PathBuf>,
+}
+
+impl FemAxisym {
+    /// The solver with pole element size `h` [m].
+    pub fn with_pole_size(h: f64) -> Self {
+        Self {
+            pole_size: Some(h),
+            ..Self::default()
+        }
+    }
+
+    /// The mesh and solver settings for `scene`.
+    pub fn settings(&self, scene: &Scene) -> Result<Settings, SolveError> {
+        let c = scene.max_contact_radius();
+        let pole_size = match self.pole_size {
+            Some(h) if h > 0.0 && h.is_finite() => h,
+            Some(h) => return Err(SolveError::Failed(format!("pole size {h} m is not positive"))),
+            None if c > 0.0 => c / POLE_DIVISIONS,
+            None => {
+                return Err(SolveError::NotApplicable(
+                    "the path never closes the gap: nothing to size the mesh by".into(),
+                ))
+            }
+        };
+        let nu = [scene.pair.body1, scene.pair.body2].map(|b| b.material.poisson);
+        let integration = self
+            .integration
+            .unwrap_or(if nu.iter().any(|&n| n > NEAR_INCOMPRESSIBLE) {
+                Integration::SelectiveReduced
+            } else {
+                Integration::Full
+            });
+        Ok(Settings {
+            pole_size,
+            candidate_radius: (CANDIDATE_ZONE * c).max(3.0 * pole_size),
+            ordering: self.ordering.unwrap_or(Ordering::Amd),
+            integration,
+        })
+    }
+}
+
+impl FemAxisym {
+    /// The symmetric model on the sphere mesh in `file`.
+    fn read_model(
+        &self,
+        scene: &Scene,
+        file: &std::path::Path,
+        settings: &Settings,
+    ) -> Result<Model, String> {
+        if Reduction::of(scene) != Reduction::Symmetric {
+            return Err("a mesh file is supported for identical spheres (one body) only".into());
+        }
+        let mesh = msh::read(file).map_err(|e| e.to_string())?;
+        let lame = Lame::of(&scene.pair.body1.material);
+        Model::from_meshes(Reduction::Symmetric, vec![mesh], vec![lame], settings)
+    }
+}
+
+impl Solver for FemAxisym {
+    fn name(&self) -> &'static str {
+        "fem-axisym"
+    }
+
+    fn description(&self) -> &'static str {
+        "axisymmetric FEM (6-node triangles, graded mesh), frictionless contact by semi-smooth Newton on the condensed surface"
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        if !scene.pair.body1.radius.is_finite() && !scene.pair.body2.radius.is_finite() {
+            return Err(SolveError::NotApplicable(
+                "two flats have no Hertz contact".into(),
+            ));
+        }
+        let settings = self.settings(scene)?;
+        let model = match &self.mesh_file {
+            None => Model::generate(scene, &settings),
+            Some(file) => self.read_model(scene, file, &settings),
+        }
+        .map_err(SolveError::Failed)?;
+        let mut run = Run::new(&model);
+        let t = Instant::now();
+        for step in scene.steps() {
+            run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
+        }
+        let contact_time = t.elapsed().as_secs_f64();
+        Ok(run.finish(&model, &settings, contact_time))
+    }
+}
+
+/// The state carried along the path and the rows produced.
+struct Run {
+    active: Vec<bool>,
+    steps: Vec<StepResult>,
+    fields: Vec<SurfaceField>,
+    iterations: (usize, usize),
+    balance: f64,
+    unresolved: Vec<f64>,
+    max_strain: f64,
+    pole_size: f64,
+}
+
+impl Run {
+    fn new(model: &Model) -> Self {
+        Self {
+            active: vec![false; model.radii.len()],
+            steps: Vec::new(),
+            fields: Vec::new(),
+            iterations: (0, 0),
+            balance: 0.0,
+            unresolved: Vec::new(),
+            max_strain: 0.0,
+            pole_size: model.bodies[0].mesh.pole_size(),
+        }
+    }
+
+    fn step(
+        &mut self,
+        model: &Model,
+        scene: &Scene,
+        step: &crate::path::Step,
+        vtu_dir: Option<&std::path::Path>,
+    ) -> Result<(), SolveError> {
+        let approach = model.reduction.approach(step.delta_n);
+        let state = model
+            .problem
+            .solve(approach, &mut self.active)
+            .map_err(|e| SolveError::Failed(format!("step {}: {e}", step.index)))?;
+        if self.active.last() == Some(&true) {
+            return Err(SolveError::Failed(format!(
+                "step {}: the contact reached the edge of the candidate zone ({} m)",
+                step.index,
+                model.radii.last().copied().unwrap_or(0.0)
+            )));
+        }
+        self.iterations = (
+            self.iterations.0 + state.iterations,
+            self.iterations.1.max(state.iterations),
+        );
+        let force: f64 = state.forces.iter().sum();
+        self.check_balance(model, &state, force);
+        let profile = pressure::recover(&model.radii, &model.weights, &state.forces);
+        self.judge_resolution(&profile, force, step.delta_n, scene);
+        if let Some(position) = step.position {
+            self.fields.push(SurfaceField {
+                position,
+                points: model.radii.iter().map(|&r| [r, 0.0]).collect(),
+                pressure: profile.pressure.clone(),
+                traction: None,
+                stick: None,
+            });
+            if let Some(dir) = vtu_dir {
+                let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));
+                output::write_fields(model, &state, approach, &path)
+                    .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
+            }
+        }
+        self.steps.push(StepResult {
+            normal_force: Some(force),
+            contact_radius: profile.radius,
+            peak_pressure: profile.peak,
+            ..StepResult::at(step)
+        });
+        Ok(())
+    }
+
+    /// Σλ against each body's far-boundary reaction ρ·λ.
+    fn check_balance(&mut self, model: &Model, state: &State, force: f64) {
+        for body in &model.bodies {
+            let reaction: f64 = body
+                .condensed
+                .reaction
+                .iter()
+                .zip(&state.forces)
+                .map(|(r, l)| r * l)
+                .sum();
+            if force > 0.0 {
+                self.balance = self.balance.max((reaction - force).abs() / force);
+            }
+        }
+    }
+
+    fn judge_resolution(&mut self, profile: &Profile, force: f64, delta_n: f64, scene: &Scene) {
+        if force > 0.0 && (profile.radius.is_none() || profile.radius < Some(2.0 * self.pole_size)) {
+            self.unresolved.push(delta_n);
+        }
+        let young = scene
+            .pair
+            .body1
+            .material
+            .young
+            .min(scene.pair.body2.material.young);
+        if let Some(p0) = profile.peak {
+            self.max_strain = self.max_strain.max(p0 / young);
+        }
+    }
+
+    fn finish(self, model: &Model, settings: &Settings, contact_time: f64) -> History {
+        let mut warnings = Vec::new(); // the scene's own warnings are reported by verify
+        if let (Some(first), Some(last)) = (self.unresolved.first(), self.unresolved.last()) {
+            warnings.push(format!(
+                "pole element ({:.3e} m) is not smaller than half the contact radius at {} steps \
+                 (δn from {first:.3e} to {last:.3e} m): the contact spans at most two elements, so P, c and \
+                 p0 are unreliable there (c and p0 are left empty where no node beyond the axis is \
+                 loaded); refine the mesh (pole size < c/10)",
+                self.pole_size,
+                self.unresolved.len()
+            ));
+        }
+        if self.max_strain > SMALL_STRAIN {
+            warnings.push(format!(
+                "peak pressure reaches {:.2} % of Young's modulus: strains beyond 1 %, outside the \
+                 small-strain (linear elastic, linear kinematics) validity of this model",
+                100.0 * self.max_strain
+            ));
+        }
+        if self.balance > BALANCE {
+            warnings.push(format!(
+                "contact force and far-boundary reaction differ by {:.2e} (relative)",
+                self.balance
+            ));
+        }
+        let dofs: usize = model.bodies.iter().map(|b| b.dofs()).sum();
+        let extra = [
+            ("reduction", json!(format!("{:?}", model.reduction))),
+            ("dofs", json!(dofs)),
+            (
+                "nodes",
+                json!(model.bodies.iter().map(|b| b.mesh.nodes.len()).sum::<usize>()),
+            ),
+            (
+                "elements",
+                json!(model.bodies.iter().map(|b| b.mesh.triangles.len()).sum::<usize>()),
+            ),
+            ("pole_size_m", json!(settings.pole_size)),
+            ("candidates", json!(model.radii.len())),
+            ("integration", json!(format!("{:?}", settings.integration))),
+            ("ordering", json!(format!("{:?}", settings.ordering))),
+            (
+                "factor_entries",
+                json!(model
+                    .bodies
+                    .iter()
+                    .map(|b| b.factor.factor_entries())
+                    .sum::<usize>()),
+            ),
+            (
+                "assembly_s",
+                json!(model.bodies.iter().map(|b| b.times[0]).sum::<f64>()),
+            ),
+            (
+                "factor_s",
+                json!(model.bodies.iter().map(|b| b.times[1]).sum::<f64>()),
+            ),
+            (
+                "condense_s",
+                json!(model.bodies.iter().map(|b| b.times[2]).sum::<f64>()),
+            ),
+            ("contact_s", json!(contact_time)),
+            ("iterations_total", json!(self.iterations.0)),
+            ("iterations_max", json!(self.iterations.1)),
+            ("reaction_mismatch_max", json!(self.balance)),
+            (
+                "p0_method",
+                json!("least-squares fit a0 + a1 (r/c)^2 + a2 (r/c)^4 to nodal pressures on 0 < r <= c/2"),
+            ),
+            (
+                "c_method",
+                json!("zero of a least-squares quadratic in r fitted to p^2 at the last 16 loaded nodes"),
+            ),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_owned(), v))
+        .collect();
+        History {
+            metadata: Metadata {
+                model: format!(
+                    "axisymmetric linear elasticity, frictionless, small strain; {}; far part of each body \
+                     displaced rigidly along the axis, free radially (a sphere: its hemisphere, loaded on the \
+                     equatorial face; a flat: the region within {} c_max of the pole, loaded on that arc)",
+                    model.reduction.describe(),
+                    super::model::FLAT_DOMAIN
+                ),
+                resolution: format!(
+                    "6-node triangles, pole size {:.3e} m, {} DOFs, {} candidate contact nodes",
+                    settings.pole_size,
+                    dofs,
+                    model.radii.len()
+                ),
+                warnings,
+                extra,
+                ..Metadata::default()
+            },
+            steps: self.steps,
+            fields: self.fields,
+        }
+    }
+}

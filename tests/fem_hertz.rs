@@ -1,0 +1,262 @@
+//! `fem-axisym` against Hertz: the paper's spheres (symmetric reduction) and a steel ball on an
+//! aluminium flat (two bodies). Run: `cargo test --test fem_hertz` (about 20 s in the dev
+//! profile); the finer ladder with the domain/mesh split of the P error:
+//! `cargo test --release --test fem_hertz -- --ignored --nocapture`.
+
+use spherecontact::analytic::hertz::Hertz;
+use spherecontact::fem::model::{Model, Settings};
+use spherecontact::fem::FemAxisym;
+use spherecontact::history::History;
+use spherecontact::pair::{Body, ContactPair, Material};
+use spherecontact::path::{LoadingPath, Position};
+use spherecontact::scene::Scene;
+use spherecontact::solver::run;
+
+fn scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
+    let positions = delta_um
+        .iter()
+        .map(|&d| Position {
+            delta_n: d * 1e-6,
+            delta_t: 0.0,
+        })
+        .collect();
+    let path = LoadingPath::try_new(positions, vec![1; delta_um.len() - 1]).unwrap();
+    Scene {
+        name: "fem-hertz".into(),
+        pair,
+        friction: 0.2,
+        path,
+    }
+}
+
+fn paper() -> ContactPair {
+    let body = Body {
+        radius: 0.1,
+        material: Material {
+            young: 70e9,
+            poisson: 0.3,
+        },
+    };
+    ContactPair {
+        body1: body,
+        body2: body,
+    }
+}
+
+fn ball_on_flat() -> ContactPair {
+    ContactPair {
+        body1: Body {
+            radius: 0.01,
+            material: Material {
+                young: 210e9,
+                poisson: 0.29,
+            },
+        },
+        body2: Body {
+            radius: f64::INFINITY,
+            material: Material {
+                young: 70e9,
+                poisson: 0.3,
+            },
+        },
+    }
+}
+
+/// Per path position (after the start): P/P_Hertz − 1, and the local Hertz relations
+/// p0 / (3P/(2πc²)) − 1 and c / (3PR*/4E*)^{1/3} − 1.
+fn errors(history: &History, hertz: &Hertz) -> Vec<[f64; 3]> {
+    history
+        .at_positions()
+        .skip(1)
+        .map(|row| {
+            let (p, c, p0) = (
+                row.normal_force.unwrap(),
+                row.contact_radius.unwrap(),
+                row.peak_pressure.unwrap(),
+            );
+            let c_local = (3.0 * p * hertz.effective_radius / (4.0 * hertz.effective_modulus)).cbrt();
+            [
+                p / hertz.force(row.delta_n) - 1.0,
+                p0 / (3.0 * p / (2.0 * std::f64::consts::PI * c * c)) - 1.0,
+                c / c_local - 1.0,
+            ]
+        })
+        .collect()
+}
+
+/// Runs the ladder of pole sizes; returns errors[h][position][quantity].
+fn ladder(pair: ContactPair, deltas: &[f64], divisions: &[f64]) -> Vec<Vec<[f64; 3]>> {
+    let s = scene(pair, deltas);
+    let c = s.max_contact_radius();
+    divisions
+        .iter()
+        .map(|&n| {
+            let history = run(&FemAxisym::with_pole_size(c / n), &s).unwrap();
+            errors(&history, &s.hertz())
+        })
+        .collect()
+}
+
+/// Largest |error| of quantity q over the positions.
+fn worst(e: &[[f64; 3]], q: usize) -> f64 {
+    e.iter().map(|v| v[q].abs()).fold(0.0, f64::max)
+}
+
+/// Root mean square of quantity q over the positions: the edge's place between two nodes
+/// changes with δn, so one position's error scatters; the mean over many does not.
+fn rms(e: &[[f64; 3]], q: usize) -> f64 {
+    (e.iter().map(|v| v[q] * v[q]).sum::<f64>() / e.len() as f64).sqrt()
+}
+
+/// Least-squares slope of log(error) against log(h) over a ladder halving h per rung.
+fn rate(errors: &[f64]) -> f64 {
+    let n = errors.len() as f64;
+    let x: Vec<f64> = (0..errors.len()).map(|k| -(k as f64) * 2f64.ln()).collect();
+    let y: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+fn assert_hertz(e: &[Vec<[f64; 3]>], name: &str) {
+    let finest = e.last().unwrap();
+    // P: within 0.5 % of Hertz. The finite body accounts for most of the offset (hemisphere
+    // loaded on its equatorial face: +0.37 % at 17 µm for the paper's spheres, as FreeFEM and
+    // dolfinx give on the same model); the mesh part is the change under refinement below.
+    assert!(worst(finest, 0) < 5e-3, "{name}: P {finest:?}");
+    // Mesh part of the P error: the RMS over positions of the change per refinement. It must
+    // fall (rate ≥ 1) and be below 0.1 % at the last rung; what remains of the finest P error
+    // is the finite body's (domain) part.
+    let changes: Vec<f64> = e
+        .windows(2)
+        .map(|w| {
+            (w[0]
+                .iter()
+                .zip(&w[1])
+                .map(|(a, b)| (a[0] - b[0]).powi(2))
+                .sum::<f64>()
+                / w[0].len() as f64)
+                .sqrt()
+        })
+        .collect();
+    let r = rate(&changes);
+    println!(
+        "{name}: P errors on the finest mesh {:?}; RMS change per refinement {:?}, rate {r:.2}",
+        finest
+            .iter()
+            .map(|v| format!("{:+.3}%", 100.0 * v[0]))
+            .collect::<Vec<_>>(),
+        changes
+            .iter()
+            .map(|v| format!("{:.4}%", 100.0 * v))
+            .collect::<Vec<_>>()
+    );
+    assert!(
+        r > 1.0 && *changes.last().unwrap() < 1e-3,
+        "{name}: P mesh part {changes:?}"
+    );
+    for (q, what) in [(1, "p0"), (2, "c")] {
+        // Local relations within 0.5 % on the finest mesh at every position.
+        assert!(worst(finest, q) < 5e-3, "{name}: {what} {finest:?}");
+        // Convergence: the RMS error over the positions falls at least as h^1 (the edge is
+        // located by a fit across nodes; h^1 is what a nodal contact edge guarantees).
+        let errors: Vec<f64> = e.iter().map(|v| rms(v, q)).collect();
+        let r = rate(&errors);
+        println!(
+            "{name}: {what} RMS errors {:?}, rate {r:.2}",
+            errors
+                .iter()
+                .map(|v| format!("{:.4}%", 100.0 * v))
+                .collect::<Vec<_>>()
+        );
+        assert!(r > 1.0, "{name}: {what} rate {r}");
+    }
+}
+
+#[test]
+fn paper_spheres_converge_to_hertz() {
+    let deltas: Vec<f64> = std::iter::once(0.0)
+        .chain((0..11).map(|k| 5.0 + 1.5 * f64::from(k)))
+        .collect();
+    let e = ladder(paper(), &deltas, &[5.0, 10.0, 20.0, 40.0]);
+    assert_hertz(&e, "paper spheres");
+}
+
+/// The finer ladder, with the split of the P error into its domain part (Richardson
+/// extrapolation of P in h at each position, with the measured rate) and its mesh part.
+/// Run: `cargo test --release --test fem_hertz -- --ignored --nocapture` (about 10 s).
+#[test]
+#[ignore]
+fn paper_spheres_finer_ladder_and_domain_part_of_p() {
+    let deltas: Vec<f64> = std::iter::once(0.0)
+        .chain((0..11).map(|k| 5.0 + 1.5 * f64::from(k)))
+        .collect();
+    let e = ladder(paper(), &deltas, &[10.0, 20.0, 40.0, 80.0]);
+    assert_hertz(&e, "paper spheres (finer)");
+    let changes: Vec<f64> = e
+        .windows(2)
+        .map(|w| {
+            (w[0]
+                .iter()
+                .zip(&w[1])
+                .map(|(a, b)| (a[0] - b[0]).powi(2))
+                .sum::<f64>()
+                / w[0].len() as f64)
+                .sqrt()
+        })
+        .collect();
+    let k = rate(&changes[1..]);
+    let factor = 2f64.powf(k) - 1.0;
+    for (position, (fine, coarse)) in e[3].iter().zip(&e[2]).enumerate() {
+        let extrapolated = fine[0] + (fine[0] - coarse[0]) / factor;
+        println!(
+            "δn = {:4.1} µm: P error {:+.3} % at c/80 = domain {:+.3} % + mesh {:+.3} %",
+            deltas[position + 1],
+            100.0 * fine[0],
+            100.0 * extrapolated,
+            100.0 * (fine[0] - extrapolated)
+        );
+        // Reason: the domain part is a property of the hemisphere, not of the mesh: it must lie
+        // within the measured range for a hemisphere loaded on its equatorial face (0.1–0.5 %).
+        assert!((1e-3..5e-3).contains(&extrapolated), "domain part {extrapolated}");
+    }
+}
+
+#[test]
+fn steel_ball_on_aluminium_flat_converges_to_hertz() {
+    let deltas: Vec<f64> = std::iter::once(0.0)
+        .chain((0..11).map(|k| 2.0 + 0.6 * f64::from(k)))
+        .collect();
+    let e = ladder(ball_on_flat(), &deltas, &[5.0, 10.0, 20.0, 40.0]);
+    assert_hertz(&e, "ball on flat");
+}
+
+#[test]
+fn contact_holds_at_every_candidate_node() {
+    // Non-penetration and non-negative forces at the converged active set, at each δn.
+    for pair in [paper(), ball_on_flat()] {
+        let s = scene(pair, &[0.0, 20.0]);
+        let settings: Settings = FemAxisym::with_pole_size(s.max_contact_radius() / 20.0)
+            .settings(&s)
+            .unwrap();
+        let model = Model::generate(&s, &settings).unwrap();
+        let mut active = vec![false; model.radii.len()];
+        for delta in [1e-6, 5e-6, 10e-6, 20e-6, 3e-6, 0.0] {
+            let state = model
+                .problem
+                .solve(model.reduction.approach(delta), &mut active)
+                .unwrap();
+            let scale = model.reduction.approach(delta).abs().max(1e-9);
+            for (i, (&f, &g)) in state.forces.iter().zip(&state.gaps).enumerate() {
+                assert!(f >= 0.0, "negative force at node {i}");
+                // Exact on the active set (round-off of the dense solve), open elsewhere.
+                assert!(g >= -1e-11 * scale, "penetration {g} at node {i}");
+                assert!(
+                    f == 0.0 || g.abs() <= 1e-11 * scale,
+                    "complementarity at node {i}"
+                );
+            }
+        }
+    }
+}
