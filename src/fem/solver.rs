@@ -116,6 +116,20 @@ impl Solver for FemAxisym {
         "axisymmetric FEM (6-node triangles, graded mesh), frictionless contact by semi-smooth Newton on the condensed surface"
     }
 
+    /// Pole sizes c_max/5 … c_max/80, halving (the external decks' ladder and beyond).
+    fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
+        [5.0, 10.0, 20.0, 40.0, 80.0]
+            .into_iter()
+            .map(|divisions| {
+                let rung = FemAxisym {
+                    pole_size: Some(scene.max_contact_radius() / divisions),
+                    ..self.clone()
+                };
+                Box::new(rung) as Box<dyn Solver>
+            })
+            .collect()
+    }
+
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         if !scene.pair.body1.radius.is_finite() && !scene.pair.body2.radius.is_finite() {
             return Err(SolveError::NotApplicable(
