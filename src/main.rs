@@ -36,6 +36,9 @@ enum Command {
         /// Output folder (created if missing).
         #[arg(long, default_value = "out")]
         out: PathBuf,
+        /// Also write VTU fields (ParaView) into DIR/<solver>-vtu/ for solvers that have them.
+        #[arg(long)]
+        vtu: bool,
     },
     /// Run cases and judge their checks; exit 1 on any NOOK.
     Verify {
@@ -109,7 +112,12 @@ impl<E: std::fmt::Display> From<E> for InputError {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { case, solvers, out } => run(&case, &solvers, &out),
+        Command::Run {
+            case,
+            solvers,
+            out,
+            vtu,
+        } => run(&case, &solvers, &out, vtu),
         Command::Verify {
             cases,
             junit,
@@ -176,10 +184,19 @@ fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::
         .collect()
 }
 
-fn run(case: &Path, solvers: &[String], out: &Path) -> Result<ExitCode, InputError> {
+fn run(case: &Path, solvers: &[String], out: &Path, vtu: bool) -> Result<ExitCode, InputError> {
     // Plan: the case and every solver named must be valid before anything is written.
     let case = Case::load(case)?;
-    let plan = planned_solvers(&case, solvers)?;
+    let mut plan = planned_solvers(&case, solvers)?;
+    if vtu {
+        plan = plan
+            .into_iter()
+            .map(|s| {
+                let dir = out.join(format!("{}-vtu", s.name()));
+                s.writing_fields_to(&dir).unwrap_or(s)
+            })
+            .collect();
+    }
     std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     let mut code = ExitCode::SUCCESS;
     for warning in case.scene.warnings() {

@@ -42,6 +42,12 @@ pub trait Solver: Send + Sync {
     fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
         Vec::new()
     }
+
+    /// The same solver writing its volume or surface fields as VTU files (for ParaView) into
+    /// `dir`; `None` for solvers without such fields.
+    fn writing_fields_to(&self, _dir: &std::path::Path) -> Option<Box<dyn Solver>> {
+        None
+    }
 }
 
 /// Runs `solver` on `scene`, timing it and completing the history's metadata.

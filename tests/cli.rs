@@ -315,3 +315,40 @@ fn verify_fails_with_exit_code_one_on_a_nook() {
     assert_eq!(output.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&output.stdout).contains("NOOK  cli-test | mdr normal_force"));
 }
+
+#[test]
+fn run_writes_vtu_fields_for_solvers_that_have_them() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), VALID).unwrap();
+    let output = spherecontact(
+        &[
+            "run",
+            "case.toml",
+            "--solver",
+            "fem-axisym",
+            "--solver",
+            "mdr",
+            "--out",
+            "out",
+            "--vtu",
+        ],
+        dir.path(),
+    );
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let vtu_dir = dir.path().join("out/fem-axisym-vtu");
+    let files: Vec<_> = std::fs::read_dir(&vtu_dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(files.len(), 3, "one VTU per path position: {files:?}");
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        let xml = roxmltree::Document::parse(&text).unwrap();
+        assert_eq!(xml.root_element().attribute("type"), Some("UnstructuredGrid"));
+    }
+    assert!(!dir.path().join("out/mdr-vtu").exists(), "MDR has no VTU fields");
+}

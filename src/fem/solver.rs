@@ -116,6 +116,13 @@ impl Solver for FemAxisym {
         "axisymmetric FEM (6-node triangles, graded mesh), frictionless contact by semi-smooth Newton on the condensed surface"
     }
 
+    fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
+        Some(Box::new(FemAxisym {
+            vtu_dir: Some(dir.to_path_buf()),
+            ..self.clone()
+        }))
+    }
+
     /// Pole sizes c_max/5 … c_max/80, halving (the external decks' ladder and beyond).
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
         [5.0, 10.0, 20.0, 40.0, 80.0]
@@ -215,6 +222,8 @@ impl Run {
             });
             if let Some(dir) = vtu_dir {
                 let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));
+                std::fs::create_dir_all(dir)
+                    .map_err(|e| SolveError::Failed(format!("creating {}: {e}", dir.display())))?;
                 output::write_fields(model, &state, approach, &path)
                     .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
             }
