@@ -2,36 +2,18 @@
 //! a 1 nm approach, an approach beyond small strain, unloading to separation, VTU output.
 //! Run: `cargo test --test fem_hard_cases -- --nocapture` (prints the measured figures).
 
+mod common;
+
+use common::{identical_spheres, normal_scene};
 use spherecontact::fem::element::Integration;
 use spherecontact::fem::FemAxisym;
 use spherecontact::history::History;
-use spherecontact::pair::{Body, ContactPair, Material};
-use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver::run;
 
+/// The paper's spheres with Poisson ratio `poisson`, through the approaches `delta_um` [µm].
 fn scene(poisson: f64, delta_um: &[f64]) -> Scene {
-    let body = Body {
-        radius: 0.1,
-        material: Material { young: 70e9, poisson },
-    };
-    let positions = delta_um
-        .iter()
-        .map(|&d| Position {
-            delta_n: d * 1e-6,
-            delta_t: 0.0,
-        })
-        .collect();
-    let path = LoadingPath::try_new(positions, vec![1; delta_um.len() - 1]).unwrap();
-    Scene {
-        name: "hard".into(),
-        pair: ContactPair {
-            body1: body,
-            body2: body,
-        },
-        friction: 0.2,
-        path,
-    }
+    normal_scene(identical_spheres(0.1, 70e9, poisson), delta_um)
 }
 
 fn force_error(h: &History, s: &Scene, position: usize) -> f64 {

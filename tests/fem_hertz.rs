@@ -3,44 +3,23 @@
 //! profile); the finer ladder with the domain/mesh split of the P error:
 //! `cargo test --release --test fem_hertz -- --ignored --nocapture`.
 
+mod common;
+
+use common::{identical_spheres, normal_scene};
 use spherecontact::analytic::hertz::Hertz;
 use spherecontact::fem::model::{Model, Settings};
 use spherecontact::fem::FemAxisym;
 use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
-use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver::run;
 
 fn scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
-    let positions = delta_um
-        .iter()
-        .map(|&d| Position {
-            delta_n: d * 1e-6,
-            delta_t: 0.0,
-        })
-        .collect();
-    let path = LoadingPath::try_new(positions, vec![1; delta_um.len() - 1]).unwrap();
-    Scene {
-        name: "fem-hertz".into(),
-        pair,
-        friction: 0.2,
-        path,
-    }
+    normal_scene(pair, delta_um)
 }
 
 fn paper() -> ContactPair {
-    let body = Body {
-        radius: 0.1,
-        material: Material {
-            young: 70e9,
-            poisson: 0.3,
-        },
-    };
-    ContactPair {
-        body1: body,
-        body2: body,
-    }
+    identical_spheres(0.1, 70e9, 0.3)
 }
 
 fn ball_on_flat() -> ContactPair {

@@ -376,16 +376,7 @@ fn cell_size(field: &SurfaceField) -> f64 {
 
 /// " (0.0–451.5)" for a map of levels, "" otherwise.
 fn level_range(values: &[Option<MapValue>]) -> String {
-    let levels: Vec<f64> = values
-        .iter()
-        .filter_map(|v| {
-            if let Some(MapValue::Level(l)) = v {
-                Some(*l)
-            } else {
-                None
-            }
-        })
-        .collect();
+    let levels = super::plot::levels(values);
     if levels.is_empty() {
         return String::new();
     }

@@ -222,6 +222,24 @@ pub enum MapValue {
     Stick(bool),
 }
 
+impl MapValue {
+    /// The magnitude of a level cell.
+    pub fn level(self) -> Option<f64> {
+        match self {
+            MapValue::Level(l) => Some(l),
+            MapValue::Stick(_) => None,
+        }
+    }
+}
+
+/// The levels among a map's cells.
+pub fn levels(values: &[Option<MapValue>]) -> Vec<f64> {
+    values
+        .iter()
+        .filter_map(|v| v.and_then(MapValue::level))
+        .collect()
+}
+
 /// A sequential colour scale (dark blue → yellow), `t` in [0, 1].
 fn sequential(t: f64) -> RGBColor {
     const STOPS: [(f64, [f64; 3]); 4] = [
@@ -246,17 +264,7 @@ impl MapPlot {
     /// The map as an SVG document; the title carries the scale's extremes.
     pub fn to_svg(&self) -> Result<String> {
         register_font()?;
-        let levels: Vec<f64> = self
-            .values
-            .iter()
-            .filter_map(|v| {
-                if let Some(MapValue::Level(l)) = v {
-                    Some(*l)
-                } else {
-                    None
-                }
-            })
-            .collect();
+        let levels = levels(&self.values);
         let (lo, hi) = span(levels.iter().copied(), false);
         let half = 0.5 * self.cell;
         let (x0, x1) = span(self.points.iter().map(|p| p[0]), false);

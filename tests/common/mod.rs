@@ -3,6 +3,7 @@
 
 use spherecontact::case::Case;
 use spherecontact::history::History;
+use spherecontact::pair::{Body, ContactPair, Material};
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver;
@@ -64,4 +65,35 @@ pub fn paper_scene_with_substeps(substeps: usize) -> Scene {
 pub fn solve(name: &str, scene: &Scene) -> History {
     let solver = solver::by_name(name).unwrap_or_else(|| panic!("no solver {name}"));
     solver::run(solver.as_ref(), scene).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// Two identical spheres of radius `radius` [m], modulus `young` [Pa] and Poisson ratio `poisson`.
+pub fn identical_spheres(radius: f64, young: f64, poisson: f64) -> ContactPair {
+    let body = Body {
+        radius,
+        material: Material { young, poisson },
+    };
+    ContactPair {
+        body1: body,
+        body2: body,
+    }
+}
+
+/// A normal-only scene of `pair` (μ = 0.2) through the approaches `delta_um` [µm], one increment
+/// per segment.
+pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
+    let positions = delta_um
+        .iter()
+        .map(|&d| Position {
+            delta_n: d * 1e-6,
+            delta_t: 0.0,
+        })
+        .collect();
+    let path = LoadingPath::try_new(positions, vec![1; delta_um.len() - 1]).unwrap();
+    Scene {
+        name: "test".into(),
+        pair,
+        friction: 0.2,
+        path,
+    }
 }
