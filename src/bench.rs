@@ -28,7 +28,7 @@ pub struct Timing {
     pub solver: String,
     /// Wall times [s], sorted.
     pub seconds: Vec<f64>,
-    /// CPU times of the running thread [s], sorted.
+    /// CPU times of the running thread and the external programs it ran [s], sorted.
     pub cpu_seconds: Vec<f64>,
     /// The history of the first (untimed, warm-up) run.
     pub history: History,
@@ -44,15 +44,16 @@ pub fn median(sorted: &[f64]) -> f64 {
     }
 }
 
-/// The CPU time consumed so far by the calling thread [s].
-fn thread_cpu_time() -> f64 {
+/// The CPU time consumed so far by the calling thread and by the external programs it has run
+/// (gmsh, FreeFem++, python3: external solvers do their work in child processes) [s].
+fn cpu_time() -> f64 {
     let mut now = libc::timespec {
         tv_sec: 0,
         tv_nsec: 0,
     };
     // SAFETY: `now` is a valid, writable timespec; CLOCK_THREAD_CPUTIME_ID exists on Linux.
     unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut now) };
-    now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9
+    now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9 + crate::external::process::child_cpu_seconds()
 }
 
 /// Runs every solver `repeat` times (≥ 1) on `scene`, round-robin, after one warm-up run each.
@@ -78,9 +79,9 @@ pub fn time_solvers(
     for _ in 0..repeat.max(1) {
         for (solver, result) in solvers.iter().zip(results.iter_mut()) {
             if let Ok(timing) = result {
-                let (start, cpu_start) = (Instant::now(), thread_cpu_time());
+                let (start, cpu_start) = (Instant::now(), cpu_time());
                 let outcome = solver.solve(scene);
-                timing.cpu_seconds.push(thread_cpu_time() - cpu_start);
+                timing.cpu_seconds.push(cpu_time() - cpu_start);
                 timing.seconds.push(start.elapsed().as_secs_f64());
                 std::hint::black_box(outcome.ok());
             }
@@ -200,13 +201,29 @@ mod tests {
     }
 
     #[test]
-    fn thread_cpu_time_advances_with_work() {
-        let start = thread_cpu_time();
+    fn cpu_time_counts_the_thread_and_the_external_programs() {
+        let start = cpu_time();
         let mut x = 0.0_f64;
         for i in 0..2_000_000 {
             x = std::hint::black_box(x + (i as f64).sqrt());
         }
-        assert!(thread_cpu_time() > start, "{x}");
+        assert!(cpu_time() > start, "{x}");
+        // An external program that burns CPU, run as external solvers run theirs.
+        let dir = tempfile::tempdir().unwrap();
+        let job = crate::external::process::Job {
+            program: "sh".into(),
+            args: vec![
+                "-c".into(),
+                "i=0; while [ $i -lt 200000 ]; do i=$((i+1)); done".into(),
+            ],
+            env: Vec::new(),
+            timeout: std::time::Duration::from_secs(60),
+        };
+        let before = cpu_time();
+        let run = crate::external::process::run(&job, dir.path(), "burn").unwrap();
+        assert!(run.succeeded());
+        let spent = cpu_time() - before;
+        assert!(spent > 0.01, "the program's CPU time is not counted: {spent}");
     }
 
     #[test]

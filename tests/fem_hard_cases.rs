@@ -120,7 +120,7 @@ fn writes_displacement_and_stress_fields_as_vtu() {
         ..FemAxisym::with_pole_size(1e-4)
     };
     let h = run(&solver, &s).unwrap();
-    let text = std::fs::read_to_string(dir.path().join("hard-fem-axisym-1.vtu")).unwrap();
+    let text = std::fs::read_to_string(dir.path().join(format!("{}-fem-axisym-1.vtu", s.name))).unwrap();
     for name in [
         "displacement",
         "stress_zz",

@@ -6,6 +6,7 @@ use std::fs::File;
 use std::os::unix::process::{CommandExt, ExitStatusExt};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus};
+use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 use std::time::{Duration, Instant};
 
 /// How often a running program is polled for its exit.
@@ -89,12 +90,12 @@ pub fn run(job: &Job, dir: &Path, stem: &str) -> std::io::Result<Run> {
         .process_group(0)
         .spawn()?;
     let ending = loop {
-        if let Some(status) = child.try_wait()? {
+        if let Some(status) = reap(child.id(), libc::WNOHANG)? {
             break ending_of(status);
         }
         if start.elapsed() >= job.timeout {
             kill_group(child.id());
-            child.wait()?;
+            reap(child.id(), 0)?;
             break Ending::TimedOut;
         }
         std::thread::sleep(POLL);
@@ -108,6 +109,34 @@ pub fn run(job: &Job, dir: &Path, stem: &str) -> std::io::Result<Run> {
         stderr: read(&err_path),
         wall_s: start.elapsed().as_secs_f64(),
     })
+}
+
+/// CPU time [ns] of every child that [`run`] has reaped, with the children they waited for.
+static CHILD_CPU_NS: AtomicU64 = AtomicU64::new(0);
+
+/// The CPU time (user + system) of all external programs this process has run so far [s]: a
+/// clock that benchmarks read before and after a solve, as the thread's own CPU clock.
+pub fn child_cpu_seconds() -> f64 {
+    CHILD_CPU_NS.load(AtomicOrdering::Relaxed) as f64 * 1e-9
+}
+
+/// Waits for `pid` with `wait4` (blocking, or not with `WNOHANG`), adding its CPU time to
+/// [`child_cpu_seconds`]; `None` while it still runs.
+fn reap(pid: u32, options: libc::c_int) -> std::io::Result<Option<ExitStatus>> {
+    let mut status: libc::c_int = 0;
+    // SAFETY: an all-zero rusage is a valid value; wait4 only writes into it.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: valid pointers to a c_int and an rusage that outlive the call.
+    let reaped = unsafe { libc::wait4(pid as libc::pid_t, &mut status, options, &mut usage) };
+    match reaped {
+        0 => Ok(None),
+        r if r < 0 => Err(std::io::Error::last_os_error()),
+        _ => {
+            let ns = |t: libc::timeval| t.tv_sec as u64 * 1_000_000_000 + t.tv_usec as u64 * 1_000;
+            CHILD_CPU_NS.fetch_add(ns(usage.ru_utime) + ns(usage.ru_stime), AtomicOrdering::Relaxed);
+            Ok(Some(ExitStatus::from_raw(status)))
+        }
+    }
 }
 
 fn ending_of(status: ExitStatus) -> Ending {
