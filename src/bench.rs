@@ -94,6 +94,9 @@ pub fn time_solvers(
     results
 }
 
+/// A measured rung, or the solver and why it gave no history.
+pub type RungResult = Result<Rung, (String, SolveError)>;
+
 /// One measured rung of a solver's resolution ladder.
 #[derive(Clone, Debug)]
 pub struct Rung {
@@ -161,7 +164,7 @@ pub fn sweep(
     solvers: &[Box<dyn Solver>],
     scene: &Scene,
     repeat: usize,
-) -> Result<Vec<Result<Rung, (String, SolveError)>>, SolveError> {
+) -> Result<Vec<RungResult>, SolveError> {
     let references = References::of(scene)?;
     let rungs: Vec<Box<dyn Solver>> = solvers
         .iter()

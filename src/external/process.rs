@@ -80,7 +80,7 @@ pub fn run(job: &Job, dir: &Path, stem: &str) -> std::io::Result<Run> {
         dir.join(format!("{stem}.stderr")),
     );
     let start = Instant::now();
-    let mut child = Command::new(&job.program)
+    let child = Command::new(&job.program)
         .args(&job.args)
         .envs(job.env.iter().map(|(k, v)| (k, v)))
         .current_dir(dir)

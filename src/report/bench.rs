@@ -5,7 +5,7 @@ use anyhow::Result;
 
 use super::document::{Cell, Document, Figure, Section, Table};
 use super::plot::{Axes, LinePlot, Series, Style};
-use crate::bench::{median, Rung, REFERENCE_SPRINGS};
+use crate::bench::{median, Rung, RungResult, REFERENCE_SPRINGS};
 use crate::solver::SolveError;
 
 /// Facts about the machine that make timings comparable: CPU, cores, load, versions.
@@ -46,12 +46,7 @@ pub fn machine() -> Vec<String> {
 }
 
 /// The bench report of a sweep.
-pub fn document(
-    case: &str,
-    increments: usize,
-    repeat: usize,
-    rungs: &[Result<Rung, (String, SolveError)>],
-) -> Result<Document> {
+pub fn document(case: &str, increments: usize, repeat: usize, rungs: &[RungResult]) -> Result<Document> {
     let format_error = |e: Option<f64>| e.map_or_else(|| "—".to_owned(), |e| format!("{e:.3e}"));
     let table = Table {
         header: [
