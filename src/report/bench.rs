@@ -6,7 +6,6 @@ use anyhow::Result;
 use super::document::{Cell, Document, Figure, Section, Table};
 use super::plot::{Axes, LinePlot, Series, Style};
 use crate::bench::{median, Rung, RungResult, REFERENCE_SPRINGS};
-use crate::solver::SolveError;
 
 /// Facts about the machine that make timings comparable: CPU, cores, load, versions.
 pub fn machine() -> Vec<String> {
