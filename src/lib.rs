@@ -24,6 +24,7 @@
 //! Units are SI throughout (m, N, Pa); a case file may give its path in µm or mm and says so.
 
 pub mod analytic;
+pub mod bem;
 pub mod case;
 pub mod check;
 pub mod history;

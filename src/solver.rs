@@ -76,7 +76,9 @@ fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
 
 /// Every solver this build knows, in listing order.
 pub fn registry() -> Vec<Box<dyn Solver>> {
-    analytic::solvers()
+    let mut solvers = analytic::solvers();
+    solvers.push(Box::new(crate::bem::Bem::default()));
+    solvers
 }
 
 /// The solver called `name`, if this build has it.
