@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use spherecontact::analytic::cattaneo_mindlin::CattaneoMindlin;
 use spherecontact::analytic::mdr::Mdr;
-use spherecontact::bem::state::{ContactState, Tolerances};
+use spherecontact::bem::state::ContactState;
 use spherecontact::bem::{grid::Grid, Bem};
 use spherecontact::case::Case;
 use spherecontact::path::{LoadingPath, Position};
@@ -184,44 +184,7 @@ fn paper_path(scene: &Scene, ladder: &[usize]) {
     }
 }
 
-fn explore(scene: &Scene) {
-    let mdr = Mdr::default().solve(scene).expect("mdr");
-    let peak = 191.868;
-    for (tn, tt) in [(1e-9, 1e-7), (1e-7, 1e-6), (1e-7, 1e-5), (1e-6, 1e-4)] {
-        let mut bem = Bem::with_grid(64);
-        bem.tolerances = Tolerances {
-            normal: tn,
-            tangential: tt,
-            max_iterations: 5000,
-        };
-        let start = Instant::now();
-        let history = bem.solve(scene).expect("path");
-        let t = start.elapsed().as_secs_f64();
-        let error = history
-            .at_positions()
-            .zip(mdr.at_positions())
-            .map(|(b, m)| {
-                (b.tangential_force.unwrap_or(f64::NAN) - m.tangential_force.unwrap_or(f64::NAN))
-                    .abs()
-            })
-            .fold(0.0, f64::max)
-            / peak;
-        println!(
-            "tol {tn:e} {tt:e}: err {error:.3e} its {} {} wall {t:.3}",
-            history.metadata.extra["normal_cg_iterations"],
-            history.metadata.extra["tangential_apg_iterations"]
-        );
-    }
-}
-
 fn main() {
-    if std::env::args().any(|a| a == "explore") {
-        let mut paper = case("paper-fig7.toml").scene;
-        paper.path =
-            LoadingPath::try_new(paper.path.positions().to_vec(), vec![20; 11]).expect("valid");
-        explore(&paper);
-        return;
-    }
     let quick = std::env::args().any(|a| a == "quick");
     let ladder: &[usize] = if quick {
         &[32, 64, 128, 256]

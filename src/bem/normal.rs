@@ -73,8 +73,10 @@ impl NormalProblem<'_> {
         let mut previous_norm = 1.0;
         let mut restart = true;
         let mut residual = f64::INFINITY;
+        // u = K p, kept up to date: recomputed after the pressure is clamped or re-admitted, and
+        // otherwise advanced as u − τ K t with the product the step needs anyway.
+        let mut u = op.apply(p);
         for iteration in 0..self.max_iterations {
-            let u = op.apply(p);
             let gap: Vec<f64> = (0..count)
                 .map(|i| u[i] + self.separation[i] - self.approach)
                 .collect();
@@ -90,6 +92,7 @@ impl NormalProblem<'_> {
                     *p = (-g).max(0.0) * self.stiffness;
                 }
                 restart = true;
+                u = op.apply(p);
                 continue;
             }
             residual = (norm / active as f64).sqrt() / self.approach;
@@ -113,9 +116,12 @@ impl NormalProblem<'_> {
                     (a + gap[i] * direction[i], b + r[i] * direction[i])
                 });
             let step = if den > 0.0 { num / den } else { 0.0 };
+            let mut clamped = false;
             for i in 0..count {
                 if p[i] > 0.0 {
-                    p[i] = (p[i] - step * direction[i]).max(0.0);
+                    let next = p[i] - step * direction[i];
+                    clamped |= next < 0.0;
+                    p[i] = next.max(0.0);
                 }
             }
             // Panels out of contact that penetrate re-enter (P&K, eq. 13), restarting the CG.
@@ -125,6 +131,11 @@ impl NormalProblem<'_> {
                     p[i] = -step * gap[i];
                     restart = true;
                 }
+            }
+            if clamped || restart {
+                u = op.apply(p);
+            } else {
+                u.iter_mut().zip(&r).for_each(|(u, r)| *u -= step * r);
             }
         }
         Err(NotConverged {

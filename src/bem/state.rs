@@ -75,7 +75,7 @@ impl Snapshot {
             .iter()
             .map(|panel| {
                 let panels: Vec<usize> = (0..)
-                    .map_while(|i| panel(i))
+                    .map_while(*panel)
                     .take_while(|&k| self.pressure[k] > 0.0)
                     .collect();
                 let outer = &panels[panels.len() / 2..];
@@ -290,8 +290,8 @@ impl ContactState {
         {
             // No shift and no traction: q = 0 solves the increment exactly (zero gradient), and
             // every panel in contact sticks where friction can hold it.
-            for k in 0..self.grid.len() {
-                snapshot.stick[k] = bound[k] > 0.0;
+            for (k, &g) in bound.iter().enumerate() {
+                snapshot.stick[k] = g > 0.0;
                 if snapshot.pressure[k] <= 0.0 {
                     snapshot.slip.x[k] = 0.0;
                     snapshot.slip.y[k] = 0.0;
@@ -329,10 +329,10 @@ impl ContactState {
                 iterations: e.iterations,
                 residual: e.residual,
             })?;
-        for k in 0..self.grid.len() {
+        for (k, &g) in bound.iter().enumerate() {
             let in_contact = snapshot.pressure[k] > 0.0;
             snapshot.stick[k] =
-                in_contact && solution.traction.magnitude(k) < (1.0 - STICK_MARGIN) * bound[k];
+                in_contact && solution.traction.magnitude(k) < (1.0 - STICK_MARGIN) * g;
             // Stick panels take the shift up elastically: their slip increment is zero up to the
             // solver's residual, which is not accumulated.
             let (sx, sy) = if in_contact && !snapshot.stick[k] {
