@@ -102,26 +102,29 @@ impl Snapshot {
             .equivalent_radius(self.contact().filter(|&k| self.stick[k]).count())
     }
 
-    /// The pressure at the contact centre, where the peak of a Hertz contact is [Pa].
+    /// The largest panel pressure [Pa] (the centre panel's, for a Hertz contact).
     pub fn peak_pressure(&self) -> f64 {
         self.pressure.iter().copied().fold(0.0, f64::max)
     }
 
-    /// The stick zone's half-widths along x and along y through the centre [m] (panel-centre
-    /// extents plus half a panel; zero without stick at the centre row or column).
-    pub fn stick_half_widths(&self) -> [f64; 2] {
-        let grid = &self.grid;
-        let centre = grid.n / 2;
-        let extent = |index: &dyn Fn(usize) -> usize| {
-            (0..grid.n)
-                .filter(|&i| self.stick[index(i)] && self.pressure[index(i)] > 0.0)
-                .map(|i| grid.coordinate(i).abs() + 0.5 * grid.h)
-                .fold(0.0, f64::max)
-        };
-        [
-            extent(&|i| centre * grid.n + i),
-            extent(&|i| i * grid.n + centre),
-        ]
+    /// The stick zone's semi-axes along x and y [m] from its second moments: a disc of radius a
+    /// has ⟨x²⟩ = ⟨y²⟩ = a²/4, so a_x = 2√⟨x²⟩ and a_y = 2√⟨y²⟩ over the stick panels. Resolves
+    /// departures from a disc well below one panel (whole-panel extents cannot).
+    pub fn stick_semi_axes(&self) -> [f64; 2] {
+        let stick: Vec<[f64; 2]> = self
+            .contact()
+            .filter(|&k| self.stick[k])
+            .map(|k| self.grid.centre(k))
+            .collect();
+        if stick.is_empty() {
+            return [0.0, 0.0];
+        }
+        let count = stick.len() as f64;
+        // Each panel's own second moment h²/12 completes the sum of centres to the area integral.
+        let own = self.grid.h * self.grid.h / 12.0;
+        let moment =
+            |axis: usize| stick.iter().map(|c| c[axis] * c[axis]).sum::<f64>() / count + own;
+        [2.0 * moment(0).sqrt(), 2.0 * moment(1).sqrt()]
     }
 }
 
