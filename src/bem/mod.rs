@@ -10,6 +10,12 @@
 //! [`tangential`] solves Kalker's incremental Coulomb problem; [`state`] carries the fields from
 //! one increment to the next and [`solver`] runs the path.
 //!
+//! Outputs: per step the History quantities (P, Q, contact radius from the pressure edge, peak
+//! pressure, stick radius as the area-equivalent disc of the stick panels); at every path
+//! position a `SurfaceField` over the whole grid (pressure, traction (q_x, q_y), stick/slip).
+//! [`Bem::solve_with_fields`] also returns the grid and the slip accumulated since each panel
+//! came into contact, for a grid writer (VTU).
+//!
 //! Normal–tangential coupling is neglected: it vanishes for elastically similar bodies
 //! (Dundurs β = 0, e.g. identical spheres) and the solver warns when β ≠ 0.
 

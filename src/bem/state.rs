@@ -37,6 +37,8 @@ pub struct Snapshot {
     pub stick: Vec<bool>,
     /// Slip accumulated since the panel last came into contact [m]; zero outside.
     pub slip: Vector2Field,
+    /// The friction coefficient μ that bounds the traction.
+    pub friction: f64,
 }
 
 impl Snapshot {
@@ -55,14 +57,16 @@ impl Snapshot {
         self.traction.x.iter().sum::<f64>() * self.grid.panel_area()
     }
 
-    /// The contact radius [m], from the edge of the pressure along the four half-axes.
+    /// Where a field that vanishes like a square root at an edge (p at the contact edge, μp − |q|
+    /// at the stick edge) reaches zero along the four half-axes +x, −x, +y, −y [m].
     ///
-    /// Near the edge of a smooth non-conforming contact p² falls linearly to zero (p ∝ √(c − r),
-    /// Johnson 1985, §5.1), and for Hertz p² = p0² (1 − r²/c²) exactly. Along each half-axis a
-    /// least-squares line of p² against r² through the panels of the outer half of the contact
-    /// meets zero at r = c; the four are averaged. Far less noisy than the area-equivalent radius
-    /// of whole panels, to which it falls back when an axis has fewer than two panels in contact.
-    pub fn contact_radius(&self) -> f64 {
+    /// Near the edge of a smooth non-conforming contact p ∝ √(c − r) (Johnson 1985, §5.1), and
+    /// for Hertz p² = p0² (1 − r²/c²) exactly; Cattaneo's stick-zone deficit μp − q is
+    /// μp0 (c_s/c) √(1 − r²/c_s²) (Johnson 1985, eq. 7.38). So along each half-axis a
+    /// least-squares line of value² against r² through the panels of the outer half of the zone
+    /// (value > 0) meets zero at the edge: sub-panel resolution, where counting whole panels is
+    /// first order and noisy. `None` when an axis has fewer than two panels in the zone.
+    fn axis_edges(&self, value: impl Fn(usize) -> f64) -> Option<[f64; 4]> {
         let grid = &self.grid;
         let centre = grid.n / 2;
         let half_axes: [&dyn Fn(usize) -> Option<usize>; 4] = [
@@ -71,32 +75,34 @@ impl Snapshot {
             &|i| (centre + i < grid.n).then(|| (centre + i) * grid.n + centre),
             &|i| (i <= centre).then(|| (centre - i) * grid.n + centre),
         ];
-        let edges: Option<Vec<f64>> = half_axes
-            .iter()
-            .map(|panel| {
-                let panels: Vec<usize> = (0..)
-                    .map_while(*panel)
-                    .take_while(|&k| self.pressure[k] > 0.0)
-                    .collect();
-                let outer = &panels[panels.len() / 2..];
-                if outer.len() < 2 {
-                    return None;
-                }
-                let points = outer.iter().enumerate().map(|(j, &k)| {
-                    let r = (panels.len() / 2 + j) as f64 * grid.h;
-                    (r * r, self.pressure[k] * self.pressure[k])
-                });
-                let c_squared = zero_of_line(points.collect::<Vec<_>>().as_slice())?;
-                Some(c_squared.max(0.0).sqrt())
-            })
-            .collect();
-        match edges {
+        let mut edges = [0.0; 4];
+        for (edge, panel) in edges.iter_mut().zip(half_axes) {
+            let panels: Vec<usize> = (0..)
+                .map_while(panel)
+                .take_while(|&k| value(k) > 0.0)
+                .collect();
+            let first = panels.len() / 2;
+            if panels.len() - first < 2 {
+                return None;
+            }
+            let points: Vec<(f64, f64)> = (first..panels.len())
+                .map(|i| ((i as f64 * grid.h).powi(2), value(panels[i]).powi(2)))
+                .collect();
+            *edge = zero_of_line(&points)?.max(0.0).sqrt();
+        }
+        Some(edges)
+    }
+
+    /// The contact radius [m]: the mean of the pressure's edges on the four half-axes, or the
+    /// area-equivalent radius of the contact panels when the contact is too small to fit.
+    pub fn contact_radius(&self) -> f64 {
+        match self.axis_edges(|k| self.pressure[k]) {
             Some(edges) => edges.iter().sum::<f64>() / 4.0,
             None => self.grid.equivalent_radius(self.contact().count()),
         }
     }
 
-    /// The radius of the disc with the stick area [m].
+    /// The radius of the disc with the stick area [m] (0 in gross sliding).
     pub fn stick_radius(&self) -> f64 {
         self.grid
             .equivalent_radius(self.contact().filter(|&k| self.stick[k]).count())
@@ -107,24 +113,21 @@ impl Snapshot {
         self.pressure.iter().copied().fold(0.0, f64::max)
     }
 
-    /// The stick zone's semi-axes along x and y [m] from its second moments: a disc of radius a
-    /// has ⟨x²⟩ = ⟨y²⟩ = a²/4, so a_x = 2√⟨x²⟩ and a_y = 2√⟨y²⟩ over the stick panels. Resolves
-    /// departures from a disc well below one panel (whole-panel extents cannot).
-    pub fn stick_semi_axes(&self) -> [f64; 2] {
-        let stick: Vec<[f64; 2]> = self
-            .contact()
-            .filter(|&k| self.stick[k])
-            .map(|k| self.grid.centre(k))
-            .collect();
-        if stick.is_empty() {
-            return [0.0, 0.0];
-        }
-        let count = stick.len() as f64;
-        // Each panel's own second moment h²/12 completes the sum of centres to the area integral.
-        let own = self.grid.h * self.grid.h / 12.0;
-        let moment =
-            |axis: usize| stick.iter().map(|c| c[axis] * c[axis]).sum::<f64>() / count + own;
-        [2.0 * moment(0).sqrt(), 2.0 * moment(1).sqrt()]
+    /// The stick zone's semi-axes along x (the loading direction) and y [m]: the mean edge of the
+    /// stick deficit μp − |q| on the ±x and on the ±y half-axes (see `axis_edges`); `None` when the
+    /// stick zone is too small to fit. Valid in partial slip under monotonic loading from a virgin
+    /// state, where the deficit has Cattaneo's √ form; after a reversal it does not (the locked-in
+    /// traction of the previous branch), and the area-equivalent `stick_radius` is the measure.
+    pub fn stick_semi_axes(&self) -> Option<[f64; 2]> {
+        let deficit = |k: usize| {
+            if self.stick[k] {
+                self.friction * self.pressure[k] - self.traction.magnitude(k)
+            } else {
+                0.0
+            }
+        };
+        self.axis_edges(deficit)
+            .map(|e| [0.5 * (e[0] + e[1]), 0.5 * (e[2] + e[3])])
     }
 }
 
@@ -182,7 +185,6 @@ pub struct ContactState {
     separation: Vec<f64>,
     /// Pressure per unit overlap of Hertz's order, E*/c_max, to seed the normal solver [Pa/m].
     stiffness: f64,
-    friction: f64,
     tolerances: Tolerances,
     snapshot: Snapshot,
     /// The last increment's traction change and shift, to extrapolate the next starting guess.
@@ -207,7 +209,6 @@ impl ContactState {
             tangential: None,
             separation,
             stiffness: scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h),
-            friction: scene.friction,
             tolerances,
             snapshot: Snapshot {
                 grid,
@@ -215,6 +216,7 @@ impl ContactState {
                 traction: Vector2Field::zeros(len),
                 stick: vec![false; len],
                 slip: Vector2Field::zeros(len),
+                friction: scene.friction,
             },
             last_change: Vector2Field::zeros(len),
             last_shift: 0.0,
@@ -281,7 +283,7 @@ impl ContactState {
         let bound: Vec<f64> = snapshot
             .pressure
             .iter()
-            .map(|p| self.friction * p)
+            .map(|p| snapshot.friction * p)
             .collect();
         if shift == 0.0
             && snapshot
