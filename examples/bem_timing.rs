@@ -3,8 +3,10 @@
 //! Run in release: `cargo run --release --example bem_timing` (add `quick` to skip 512²).
 //!
 //! 1. Normal Hertz contact of the paper's spheres at δn = 17 µm: errors of P, p0, c.
-//! 2. One Cattaneo partial-slip increment at δn = 17 µm, δt = 0 → 2 µm (Q/μP ≈ 0.8): stick radius
-//!    against c(1 − Q/μP)^{1/3} with BEM's own Q, and Q against Cattaneo–Mindlin; the wall time
+//! 2. One Cattaneo partial-slip increment at δn = 17 µm, δt = 0 → 2 µm (Q/μP ≈ 0.63): stick radius
+//!    (area-equivalent disc of the stick panels, and the mean of the semi-axes fitted to the stick
+//!    deficit on the axes) against c(1 − Q/μP)^{1/3} with BEM's own c, Q and P, and Q against
+//!    Cattaneo–Mindlin; the wall time
 //!    of the tangential solve alone and of the whole solve (grid set-up, normal, tangential).
 //! 3. The paper's path (cases/paper-fig7.toml) with 20 substeps a segment (220 increments): wall
 //!    time and the largest tangential-force error against MDR over the positions.
@@ -106,8 +108,8 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
         "\n## Cattaneo partial slip, δn = 17 µm, δt = 0 → 2 µm in one increment (Q/μP = {:.3})",
         q_ref / mu_p
     );
-    println!("| grid | Q err (vs C–M) | stick radius err (vs c(1−Q/μP)^1/3, BEM's Q, P) | APG its | median tangential | median whole solve |");
-    println!("|---|---|---|---|---|---|");
+    println!("| grid | Q err (vs C–M) | stick radius err, area-equivalent | stick radius err, edge fit | APG its | median tangential | median whole solve |");
+    println!("|---|---|---|---|---|---|---|");
     let c_max = path_scene.max_contact_radius();
     for &n in ladder {
         let bem = Bem::with_grid(n);
@@ -128,10 +130,14 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
         let (s, cost) = outcome.expect("at least one run");
         let (q, p) = (s.tangential_force(), s.normal_force());
         let expected = s.contact_radius() * (1.0 - q / (scene.friction * p)).cbrt();
+        let fitted = s
+            .stick_semi_axes()
+            .map_or(f64::NAN, |[ax, ay]| 0.5 * (ax + ay));
         println!(
-            "| {n}² | {:+.3e} | {:+.3e} | {} | {:.1} ms | {:.1} ms |",
+            "| {n}² | {:+.3e} | {:+.3e} | {:+.3e} | {} | {:.1} ms | {:.1} ms |",
             (q - q_ref) / q_ref,
             (s.stick_radius() - expected) / expected,
+            (fitted - expected) / expected,
             cost.tangential_iterations,
             1e3 * median(tangential),
             1e3 * median(whole)

@@ -128,6 +128,9 @@ impl Bem {
             ));
         }
         metadata.extra.insert("panels".into(), json!(grid.len()));
+        metadata
+            .extra
+            .insert("dundurs_beta".into(), json!(scene.pair.dundurs_beta()));
         metadata.extra.insert("panel_size_m".into(), json!(grid.h));
         metadata.extra.insert(
             "normal_cg_iterations".into(),
