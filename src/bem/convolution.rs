@@ -154,6 +154,12 @@ impl Spectrum {
         Spectrum(out)
     }
 
+    /// This spectrum multiplied by `kernel`, in place: one convolution without a new buffer.
+    pub fn times(mut self, kernel: &Spectrum) -> Spectrum {
+        self.0.iter_mut().zip(&kernel.0).for_each(|(f, k)| *f *= k);
+        self
+    }
+
     /// The values, in the half-spectrum layout.
     pub fn values(&self) -> &[Complex<f64>] {
         &self.0

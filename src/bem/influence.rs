@@ -69,20 +69,21 @@ impl PairCompliance {
     }
 }
 
-/// The four kernels on the 2n × 2n circulant layout of the zero-padded convolution: entry
-/// (a, b) holds the relative displacement at a collocation point per unit traction on the panel
-/// at offset (dx, dy) = (a, b) panels for a, b < n and (a − 2n, b − 2n) beyond n; row and column
-/// n (offset ±n, never needed) are zero.
+/// The kernels on the 2n × 2n circulant layout of the zero-padded convolution: entry (a, b)
+/// holds the relative displacement at a collocation point per unit traction on the panel at
+/// offset (dx, dy) = (a, b) panels for a, b < n and (a − 2n, b − 2n) beyond n; row and column n
+/// (offset ±n, never needed) are zero.
 ///
 /// ```text
 /// zz = 𝒞[1/ρ] / (π E*)
 /// xx = [Σ(1−ν)/G 𝒞[1/ρ] + Σν/G 𝒞[X²/ρ³]] / 2π,   yy the same with Y²/ρ³
 /// xy = Σν/G 𝒞[XY/ρ³] / 2π   (also y from x: the matrix is symmetric)
 /// ```
+pub struct Kernels;
+
+/// The three tangential kernels (Cerruti), in the circulant layout of [`Kernels`].
 #[derive(Clone, Debug, PartialEq)]
-pub struct Kernels {
-    /// Normal–normal.
-    pub zz: Vec<f64>,
+pub struct TangentialKernels {
     /// x–x.
     pub xx: Vec<f64>,
     /// x–y (= y–x).
@@ -118,38 +119,56 @@ impl VertexTable {
 }
 
 impl Kernels {
-    /// The kernels of `grid` for the pair's compliances.
-    pub fn of(grid: &Grid, compliance: &PairCompliance) -> Self {
+    /// Calls `fill(k, 𝒞[X²/ρ³], 𝒞[Y²/ρ³], offset)` for every used entry k of the layout.
+    fn for_each_offset(grid: &Grid, mut fill: impl FnMut(usize, f64, f64, (isize, isize))) {
         let (n, m) = (grid.n, 2 * grid.n);
+        // ∫∫ Y²/ρ³ at offset (dx, dy) is ∫∫ X²/ρ³ at (dy, dx): one table serves both.
         let x2 = VertexTable::of(primitive_x2, n, grid.h);
-        let y2 = VertexTable::of(|x, y| primitive_x2(y, x), n, grid.h);
-        let xy = VertexTable::of(primitive_xy, n, grid.h);
         let offset = |a: usize| match a.cmp(&n) {
             std::cmp::Ordering::Less => Some(a as isize),
             std::cmp::Ordering::Greater => Some(a as isize - m as isize),
             std::cmp::Ordering::Equal => None,
         };
-        let mut kernels = Self {
-            zz: vec![0.0; m * m],
-            xx: vec![0.0; m * m],
-            xy: vec![0.0; m * m],
-            yy: vec![0.0; m * m],
-        };
-        let tau = 2.0 * std::f64::consts::PI;
         for b in 0..m {
             for a in 0..m {
-                let (Some(dx), Some(dy)) = (offset(a), offset(b)) else {
-                    continue;
-                };
-                let (cx2, cy2) = (x2.corner_sum(dx, dy), y2.corner_sum(dx, dy));
-                let inverse = cx2 + cy2; // ∫∫ 1/ρ = ∫∫ (X² + Y²)/ρ³
-                let k = b * m + a;
-                kernels.zz[k] = compliance.normal * inverse / std::f64::consts::PI;
-                kernels.xx[k] = (compliance.shear * inverse + compliance.poisson_shear * cx2) / tau;
-                kernels.yy[k] = (compliance.shear * inverse + compliance.poisson_shear * cy2) / tau;
-                kernels.xy[k] = compliance.poisson_shear * xy.corner_sum(dx, dy) / tau;
+                if let (Some(dx), Some(dy)) = (offset(a), offset(b)) {
+                    fill(
+                        b * m + a,
+                        x2.corner_sum(dx, dy),
+                        x2.corner_sum(dy, dx),
+                        (dx, dy),
+                    );
+                }
             }
         }
+    }
+
+    /// The Boussinesq kernel zz of `grid`.
+    pub fn normal(grid: &Grid, compliance: &PairCompliance) -> Vec<f64> {
+        let mut zz = vec![0.0; 4 * grid.len()];
+        Self::for_each_offset(grid, |k, cx2, cy2, _| {
+            // ∫∫ 1/ρ = ∫∫ (X² + Y²)/ρ³
+            zz[k] = compliance.normal * (cx2 + cy2) / std::f64::consts::PI;
+        });
+        zz
+    }
+
+    /// The Cerruti kernels xx, xy, yy of `grid`.
+    pub fn tangential(grid: &Grid, compliance: &PairCompliance) -> TangentialKernels {
+        let len = 4 * grid.len();
+        let mut kernels = TangentialKernels {
+            xx: vec![0.0; len],
+            xy: vec![0.0; len],
+            yy: vec![0.0; len],
+        };
+        let xy = VertexTable::of(primitive_xy, grid.n, grid.h);
+        let tau = 2.0 * std::f64::consts::PI;
+        Self::for_each_offset(grid, |k, cx2, cy2, (dx, dy)| {
+            let inverse = cx2 + cy2;
+            kernels.xx[k] = (compliance.shear * inverse + compliance.poisson_shear * cx2) / tau;
+            kernels.yy[k] = (compliance.shear * inverse + compliance.poisson_shear * cy2) / tau;
+            kernels.xy[k] = compliance.poisson_shear * xy.corner_sum(dx, dy) / tau;
+        });
         kernels
     }
 }
@@ -171,9 +190,13 @@ mod tests {
     fn self_influence_is_loves_closed_form() {
         // Love (1929): the centre of a uniformly loaded square of side h sinks by
         // (1 − ν²)/E · p · (4h/π) asinh(1); here 1/E* = 1, h = 2.
-        let k = Kernels::of(&Grid { n: 4, h: 2.0 }, &unit());
+        let grid = Grid { n: 4, h: 2.0 };
+        let (zz, k) = (
+            Kernels::normal(&grid, &unit()),
+            Kernels::tangential(&grid, &unit()),
+        );
         let love = 4.0 * 2.0 * 1.0_f64.asinh() / std::f64::consts::PI;
-        assert_relative_eq!(k.zz[0], love, max_relative = 1e-14);
+        assert_relative_eq!(zz[0], love, max_relative = 1e-14);
         // By symmetry ∫∫X²/ρ³ = ∫∫Y²/ρ³ = ½∫∫1/ρ at the centre, and XY/ρ³ integrates to zero.
         assert_relative_eq!(k.xx[0], k.yy[0], max_relative = 1e-14);
         assert!(k.xy[0].abs() < 1e-14);
@@ -183,7 +206,11 @@ mod tests {
     fn far_panels_act_as_point_forces() {
         // At distance ρ ≫ h the panel is a point force h² p: Boussinesq and Cerruti directly.
         let (n, h) = (64, 1e-3);
-        let k = Kernels::of(&Grid { n, h }, &unit());
+        let grid = Grid { n, h };
+        let (zz, k) = (
+            Kernels::normal(&grid, &unit()),
+            Kernels::tangential(&grid, &unit()),
+        );
         let (dx, dy) = (30, -40);
         let index = (2 * n as isize + dy) as usize * 2 * n + dx as usize;
         let (x, y) = (dx as f64 * h, dy as f64 * h);
@@ -192,7 +219,7 @@ mod tests {
         let tau = 2.0 * std::f64::consts::PI;
         // Tolerance: the next term of the multipole expansion is O((h/ρ)²) = 4e-4 at 50 panels.
         assert_relative_eq!(
-            k.zz[index],
+            zz[index],
             area / (std::f64::consts::PI * rho),
             max_relative = 1e-4
         );
@@ -204,13 +231,17 @@ mod tests {
 
     #[test]
     fn kernels_are_even_in_each_offset_and_xy_odd() {
-        let k = Kernels::of(&Grid { n: 4, h: 1.0 }, &unit());
+        let grid = Grid { n: 4, h: 1.0 };
+        let (zz, k) = (
+            Kernels::normal(&grid, &unit()),
+            Kernels::tangential(&grid, &unit()),
+        );
         let m = 8;
         // Offset (1, 2) at (1, 2); offset (−1, 2) at (7, 2); (1, −2) at (1, 6).
-        assert_relative_eq!(k.zz[2 * m + 1], k.zz[2 * m + 7], max_relative = 1e-14);
+        assert_relative_eq!(zz[2 * m + 1], zz[2 * m + 7], max_relative = 1e-14);
         assert_relative_eq!(k.xx[2 * m + 1], k.xx[6 * m + 1], max_relative = 1e-14);
         assert_relative_eq!(k.xy[2 * m + 1], -k.xy[2 * m + 7], max_relative = 1e-14);
         assert_relative_eq!(k.xy[2 * m + 1], -k.xy[6 * m + 1], max_relative = 1e-14);
-        assert_eq!(k.zz[4 * m + 1], 0.0);
+        assert_eq!(zz[4 * m + 1], 0.0);
     }
 }

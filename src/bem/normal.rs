@@ -27,9 +27,8 @@ impl NormalOperator {
 
     /// u = K p.
     pub fn apply(&mut self, p: &[f64]) -> Vec<f64> {
-        let spectrum = self.convolver.field_spectrum(p);
-        self.convolver
-            .field(Spectrum::combination(&[(&self.kernel, &spectrum)]))
+        let spectrum = self.convolver.field_spectrum(p).times(&self.kernel);
+        self.convolver.field(spectrum)
     }
 }
 
@@ -77,13 +76,16 @@ impl NormalProblem<'_> {
         // u = K p, kept up to date: recomputed after the pressure is clamped or re-admitted, and
         // otherwise advanced as u − τ K t with the product the step needs anyway.
         let mut u = op.apply(p);
+        let mut gap = vec![0.0; count];
         for iteration in 0..self.max_iterations {
-            let gap: Vec<f64> = (0..count)
-                .map(|i| u[i] + self.separation[i] - self.approach)
-                .collect();
-            let (norm, active) = (0..count)
-                .filter(|&i| p[i] > 0.0)
-                .fold((0.0, 0usize), |(s, k), i| (s + gap[i] * gap[i], k + 1));
+            let (mut norm, mut active) = (0.0, 0usize);
+            for i in 0..count {
+                gap[i] = u[i] + self.separation[i] - self.approach;
+                if p[i] > 0.0 {
+                    norm += gap[i] * gap[i];
+                    active += 1;
+                }
+            }
             if active == 0 {
                 // Nothing in contact: done unless a panel penetrates, which seeds the contact.
                 if gap.iter().all(|&g| g >= 0.0) {
@@ -164,8 +166,8 @@ mod tests {
         };
         let c = (0.05_f64 * 17e-6).sqrt();
         let grid = Grid::covering(32, 1.1 * c);
-        let kernels = Kernels::of(&grid, &compliance);
-        let mut op = NormalOperator::new(Convolver::new(grid.n), &kernels.zz);
+        let zz = Kernels::normal(&grid, &compliance);
+        let mut op = NormalOperator::new(Convolver::new(grid.n), &zz);
         let separation: Vec<f64> = grid
             .centres()
             .iter()

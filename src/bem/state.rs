@@ -178,8 +178,8 @@ pub enum IncrementError {
 pub struct ContactState {
     grid: Grid,
     normal: NormalOperator,
-    /// The Cerruti kernels, turned into the tangential operator when friction is first needed.
-    kernels: Kernels,
+    /// The pair's compliances, for the tangential operator built when friction is first needed.
+    compliance: PairCompliance,
     tangential: Option<TangentialOperator>,
     /// Initial separation r²/2R* of each panel [m].
     separation: Vec<f64>,
@@ -195,7 +195,7 @@ pub struct ContactState {
 impl ContactState {
     /// The unloaded contact of `scene` on `grid`.
     pub fn new(scene: &Scene, grid: Grid, tolerances: Tolerances) -> Self {
-        let kernels = Kernels::of(&grid, &PairCompliance::of(&scene.pair));
+        let compliance = PairCompliance::of(&scene.pair);
         let r_star = scene.pair.effective_radius();
         let separation = grid
             .centres()
@@ -204,8 +204,11 @@ impl ContactState {
             .collect();
         let len = grid.len();
         Self {
-            normal: NormalOperator::new(Convolver::new(grid.n), &kernels.zz),
-            kernels,
+            normal: NormalOperator::new(
+                Convolver::new(grid.n),
+                &Kernels::normal(&grid, &compliance),
+            ),
+            compliance,
             tangential: None,
             separation,
             stiffness: scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h),
@@ -304,9 +307,15 @@ impl ContactState {
             }
             return Ok(0);
         }
-        let (kernels, n) = (&self.kernels, self.grid.n);
+        let (grid, compliance) = (&self.grid, &self.compliance);
         let operator = self.tangential.get_or_insert_with(|| {
-            TangentialOperator::new(Convolver::new(n), &kernels.xx, &kernels.xy, &kernels.yy)
+            let kernels = Kernels::tangential(grid, compliance);
+            TangentialOperator::new(
+                Convolver::new(grid.n),
+                &kernels.xx,
+                &kernels.xy,
+                &kernels.yy,
+            )
         });
         let ratio = if self.last_shift != 0.0 {
             shift / self.last_shift
