@@ -25,6 +25,7 @@
 //! Units are SI throughout (m, N, Pa); a case file may give its path in µm or mm and says so.
 
 pub mod analytic;
+pub mod bem;
 pub mod bench;
 pub mod case;
 pub mod check;

@@ -91,6 +91,7 @@ fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
 /// Every solver this build knows, in listing order.
 pub fn registry() -> Vec<Box<dyn Solver>> {
     let mut solvers = analytic::solvers();
+    solvers.push(Box::new(crate::bem::Bem::default()));
     solvers.push(Box::new(crate::fem::FemAxisym::default()));
     solvers.extend(crate::external::solvers());
     solvers

@@ -1,0 +1,33 @@
+//! Half-space boundary elements for the normal and frictional contact of two elastic spheres
+//! along a loading path, with pressure, traction and stick/slip maps (the `bem` solver).
+//!
+//! When the contact radius is small against the radii the two spheres are two elastic
+//! half-spaces loaded over the contact. The contact plane is cut into a square [`grid`] of
+//! constant-traction panels over a window sized from the path's largest Hertz contact radius;
+//! [`influence`] gives the Boussinesq and Cerruti coefficients of a panel in closed form;
+//! [`convolution`] applies them by zero-padded FFT; [`normal`] solves the frictionless normal
+//! problem (Polonsky–Keer constrained conjugate gradients, exact non-penetration);
+//! [`tangential`] solves Kalker's incremental Coulomb problem; [`state`] carries the fields from
+//! one increment to the next and [`solver`] runs the path.
+//!
+//! Outputs: per step the History quantities (P, Q, contact radius from the pressure edge, peak
+//! pressure, stick radius as the area-equivalent disc of the stick panels); at every path
+//! position a `SurfaceField` over the whole grid (pressure, traction (q_x, q_y), stick/slip).
+//! [`Bem::solve_with_fields`] also returns the grid and the slip accumulated since each panel
+//! came into contact, for a grid writer (VTU).
+//!
+//! Normal–tangential coupling is neglected: it vanishes for elastically similar bodies
+//! (Dundurs β = 0, e.g. identical spheres) and the solver warns when β ≠ 0.
+
+pub mod convolution;
+pub mod grid;
+pub mod influence;
+pub mod normal;
+pub mod solver;
+pub mod state;
+pub mod tangential;
+
+pub use solver::Bem;
+
+#[cfg(test)]
+mod verification;
