@@ -4,6 +4,11 @@
 //! Format: VTK File Formats, "XML File Formats: UnstructuredGrid" (Kitware, VTK User's Guide,
 //! 11th ed., ch. 19). Written atomically through [`crate::io::write_atomically`].
 
+use std::path::PathBuf;
+
+use crate::history::{History, SurfaceField};
+use crate::scene::Scene;
+use crate::solver::{SolveError, Solver};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -195,6 +200,39 @@ fn escape(name: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    use crate::history::SurfaceField;
+
+    #[test]
+    fn a_profile_is_not_a_grid_and_a_grid_becomes_quads() {
+        let profile = SurfaceField {
+            position: 1,
+            points: (0..5).map(|k| [k as f64, 0.0]).collect(),
+            pressure: vec![1.0; 5],
+            traction: None,
+            stick: None,
+        };
+        assert!(Grid::of_surface_field(&profile).is_none());
+        let points: Vec<[f64; 2]> = (0..12).map(|k| [(k % 4) as f64, (k / 4) as f64]).collect();
+        let field = SurfaceField {
+            position: 1,
+            pressure: points
+                .iter()
+                .map(|p| if p[0] > 0.0 { 1.0 } else { 0.0 })
+                .collect(),
+            traction: Some(points.iter().map(|p| [p[1], 0.0]).collect()),
+            stick: Some(points.iter().map(|p| p[1] > 0.0).collect()),
+            points,
+        };
+        let grid = Grid::of_surface_field(&field).unwrap();
+        assert_eq!(grid.cells.len(), 3 * 2, "4 × 3 samples make 3 × 2 quads");
+        let stick = &grid.point_data.iter().find(|d| d.name == "stick").unwrap().values;
+        assert_eq!(
+            (stick[0], stick[1], stick[5]),
+            (-1.0, 0.0, 1.0),
+            "out of contact, slip, stick"
+        );
+    }
+
     use super::*;
 
     fn two_triangles() -> Grid {
@@ -234,5 +272,103 @@ mod tests {
         let mut g = two_triangles();
         g.point_data[0].values[0] = f64::NAN;
         assert!(g.to_xml().is_err());
+    }
+}
+
+impl Grid {
+    /// A surface field sampled on a full rectangular grid, as quads joining neighbouring samples
+    /// on the plane z = 0, with point data `pressure`, `traction` (q_x, q_y, 0) and `stick`
+    /// (1 stick, 0 slip, −1 out of contact); `None` when the samples are not such a grid (a
+    /// profile along the axis, for instance).
+    pub fn of_surface_field(field: &SurfaceField) -> Option<Grid> {
+        let axis = |k: usize| {
+            let mut values: Vec<f64> = field.points.iter().map(|p| p[k]).collect();
+            values.sort_by(f64::total_cmp);
+            values.dedup();
+            values
+        };
+        let (xs, ys) = (axis(0), axis(1));
+        if xs.len() < 2 || ys.len() < 2 || xs.len() * ys.len() != field.points.len() {
+            return None;
+        }
+        let mut index = vec![usize::MAX; field.points.len()];
+        for (k, p) in field.points.iter().enumerate() {
+            let i = xs.binary_search_by(|x| x.total_cmp(&p[0])).ok()?;
+            let j = ys.binary_search_by(|y| y.total_cmp(&p[1])).ok()?;
+            index[j * xs.len() + i] = k;
+        }
+        if index.contains(&usize::MAX) {
+            return None;
+        }
+        let at = |i: usize, j: usize| index[j * xs.len() + i];
+        let cells = (0..ys.len() - 1)
+            .flat_map(|j| (0..xs.len() - 1).map(move |i| (i, j)))
+            .map(|(i, j)| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            .collect();
+        let mut point_data = vec![PointData {
+            name: "pressure".into(),
+            components: 1,
+            values: field.pressure.clone(),
+        }];
+        if let Some(traction) = &field.traction {
+            point_data.push(PointData {
+                name: "traction".into(),
+                components: 3,
+                values: traction.iter().flat_map(|q| [q[0], q[1], 0.0]).collect(),
+            });
+        }
+        if let Some(stick) = &field.stick {
+            let status = |k: usize| match (field.pressure[k] > 0.0, stick[k]) {
+                (false, _) => -1.0,
+                (true, true) => 1.0,
+                (true, false) => 0.0,
+            };
+            point_data.push(PointData {
+                name: "stick".into(),
+                components: 1,
+                values: (0..stick.len()).map(status).collect(),
+            });
+        }
+        Some(Grid {
+            points: field.points.iter().map(|p| [p[0], p[1], 0.0]).collect(),
+            cell_type: CellType::Quad,
+            cells,
+            point_data,
+        })
+    }
+}
+
+/// A solver whose surface fields on a grid are also written as VTU files, one per path position
+/// (`<dir>/<case>-<solver>-<position>.vtu`).
+pub struct SurfaceVtu {
+    /// The solver.
+    pub inner: Box<dyn Solver>,
+    /// Where the files go.
+    pub dir: PathBuf,
+}
+
+impl Solver for SurfaceVtu {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+
+    fn description(&self) -> &'static str {
+        self.inner.description()
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        let history = self.inner.solve(scene)?;
+        for field in &history.fields {
+            let Some(grid) = Grid::of_surface_field(field) else {
+                continue;
+            };
+            let path = self
+                .dir
+                .join(format!("{}-{}-{}.vtu", scene.name, self.name(), field.position));
+            std::fs::create_dir_all(&self.dir)
+                .and_then(|()| grid.write(&path).map_err(std::io::Error::other))
+                .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
+        }
+        Ok(history)
     }
 }

@@ -352,3 +352,31 @@ fn run_writes_vtu_fields_for_solvers_that_have_them() {
     }
     assert!(!dir.path().join("out/mdr-vtu").exists(), "MDR has no VTU fields");
 }
+
+#[test]
+fn run_writes_the_bem_maps_as_vtu_grids() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), VALID).unwrap();
+    let output = spherecontact(
+        &["run", "case.toml", "--solver", "bem", "--out", "out", "--vtu"],
+        dir.path(),
+    );
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let file = dir.path().join("out/bem-vtu/cli-test-bem-2.vtu");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let xml = roxmltree::Document::parse(&text).unwrap();
+    let piece = xml.descendants().find(|n| n.has_tag_name("Piece")).unwrap();
+    // 64² panel centres joined by 63² quads.
+    assert_eq!(piece.attribute("NumberOfPoints"), Some("4096"));
+    assert_eq!(piece.attribute("NumberOfCells"), Some("3969"));
+    for name in ["pressure", "traction", "stick"] {
+        assert!(
+            xml.descendants().any(|n| n.attribute("Name") == Some(name)),
+            "no {name} array"
+        );
+    }
+}

@@ -228,4 +228,25 @@ impl Solver for Bem {
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         self.solve_with_fields(scene).map(|(history, _)| history)
     }
+
+    /// Grids of 16² … 128² panels over the same window.
+    fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
+        [16, 32, 64, 128]
+            .into_iter()
+            .map(|n| {
+                Box::new(Bem {
+                    window: self.window,
+                    ..Bem::with_grid(n)
+                }) as Box<dyn Solver>
+            })
+            .collect()
+    }
+
+    /// Pressure, traction and stick/slip of every path position as a grid of quads.
+    fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
+        Some(Box::new(crate::vtu::SurfaceVtu {
+            inner: Box::new(*self),
+            dir: dir.to_path_buf(),
+        }))
+    }
 }
