@@ -198,83 +198,6 @@ fn escape(name: &str) -> String {
         .replace('>', "&gt;")
 }
 
-#[cfg(test)]
-mod tests {
-    use crate::history::SurfaceField;
-
-    #[test]
-    fn a_profile_is_not_a_grid_and_a_grid_becomes_quads() {
-        let profile = SurfaceField {
-            position: 1,
-            points: (0..5).map(|k| [k as f64, 0.0]).collect(),
-            pressure: vec![1.0; 5],
-            traction: None,
-            stick: None,
-        };
-        assert!(Grid::of_surface_field(&profile).is_none());
-        let points: Vec<[f64; 2]> = (0..12).map(|k| [(k % 4) as f64, (k / 4) as f64]).collect();
-        let field = SurfaceField {
-            position: 1,
-            pressure: points
-                .iter()
-                .map(|p| if p[0] > 0.0 { 1.0 } else { 0.0 })
-                .collect(),
-            traction: Some(points.iter().map(|p| [p[1], 0.0]).collect()),
-            stick: Some(points.iter().map(|p| p[1] > 0.0).collect()),
-            points,
-        };
-        let grid = Grid::of_surface_field(&field).unwrap();
-        assert_eq!(grid.cells.len(), 3 * 2, "4 × 3 samples make 3 × 2 quads");
-        let stick = &grid.point_data.iter().find(|d| d.name == "stick").unwrap().values;
-        assert_eq!(
-            (stick[0], stick[1], stick[5]),
-            (-1.0, 0.0, 1.0),
-            "out of contact, slip, stick"
-        );
-    }
-
-    use super::*;
-
-    fn two_triangles() -> Grid {
-        Grid {
-            points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
-            cell_type: CellType::Triangle,
-            cells: vec![vec![0, 1, 2], vec![1, 3, 2]],
-            point_data: vec![PointData {
-                name: "u".into(),
-                components: 2,
-                values: vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
-            }],
-        }
-    }
-
-    #[test]
-    fn writes_offsets_types_and_arrays() {
-        let xml = two_triangles().to_xml().unwrap();
-        assert!(xml.contains(r#"NumberOfPoints="4" NumberOfCells="2""#));
-        assert!(xml.contains("\n3 6\n"), "offsets");
-        assert!(xml.contains("\n5 5\n"), "types");
-        assert!(xml.contains(r#"Name="u" NumberOfComponents="2""#));
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("g.vtu");
-        two_triangles().write(&path).unwrap();
-        assert_eq!(std::fs::read_to_string(path).unwrap(), xml);
-    }
-
-    #[test]
-    fn rejects_bad_cells_and_data() {
-        let mut g = two_triangles();
-        g.cells[1][0] = 9;
-        assert!(g.to_xml().is_err());
-        let mut g = two_triangles();
-        g.point_data[0].values.pop();
-        assert!(g.to_xml().is_err());
-        let mut g = two_triangles();
-        g.point_data[0].values[0] = f64::NAN;
-        assert!(g.to_xml().is_err());
-    }
-}
-
 impl Grid {
     /// A surface field sampled on a full rectangular grid, as quads joining neighbouring samples
     /// on the plane z = 0, with point data `pressure`, `traction` (q_x, q_y, 0) and `stick`
@@ -370,5 +293,82 @@ impl Solver for SurfaceVtu {
                 .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
         }
         Ok(history)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::history::SurfaceField;
+
+    #[test]
+    fn a_profile_is_not_a_grid_and_a_grid_becomes_quads() {
+        let profile = SurfaceField {
+            position: 1,
+            points: (0..5).map(|k| [k as f64, 0.0]).collect(),
+            pressure: vec![1.0; 5],
+            traction: None,
+            stick: None,
+        };
+        assert!(Grid::of_surface_field(&profile).is_none());
+        let points: Vec<[f64; 2]> = (0..12).map(|k| [(k % 4) as f64, (k / 4) as f64]).collect();
+        let field = SurfaceField {
+            position: 1,
+            pressure: points
+                .iter()
+                .map(|p| if p[0] > 0.0 { 1.0 } else { 0.0 })
+                .collect(),
+            traction: Some(points.iter().map(|p| [p[1], 0.0]).collect()),
+            stick: Some(points.iter().map(|p| p[1] > 0.0).collect()),
+            points,
+        };
+        let grid = Grid::of_surface_field(&field).unwrap();
+        assert_eq!(grid.cells.len(), 3 * 2, "4 × 3 samples make 3 × 2 quads");
+        let stick = &grid.point_data.iter().find(|d| d.name == "stick").unwrap().values;
+        assert_eq!(
+            (stick[0], stick[1], stick[5]),
+            (-1.0, 0.0, 1.0),
+            "out of contact, slip, stick"
+        );
+    }
+
+    use super::*;
+
+    fn two_triangles() -> Grid {
+        Grid {
+            points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
+            cell_type: CellType::Triangle,
+            cells: vec![vec![0, 1, 2], vec![1, 3, 2]],
+            point_data: vec![PointData {
+                name: "u".into(),
+                components: 2,
+                values: vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
+            }],
+        }
+    }
+
+    #[test]
+    fn writes_offsets_types_and_arrays() {
+        let xml = two_triangles().to_xml().unwrap();
+        assert!(xml.contains(r#"NumberOfPoints="4" NumberOfCells="2""#));
+        assert!(xml.contains("\n3 6\n"), "offsets");
+        assert!(xml.contains("\n5 5\n"), "types");
+        assert!(xml.contains(r#"Name="u" NumberOfComponents="2""#));
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("g.vtu");
+        two_triangles().write(&path).unwrap();
+        assert_eq!(std::fs::read_to_string(path).unwrap(), xml);
+    }
+
+    #[test]
+    fn rejects_bad_cells_and_data() {
+        let mut g = two_triangles();
+        g.cells[1][0] = 9;
+        assert!(g.to_xml().is_err());
+        let mut g = two_triangles();
+        g.point_data[0].values.pop();
+        assert!(g.to_xml().is_err());
+        let mut g = two_triangles();
+        g.point_data[0].values[0] = f64::NAN;
+        assert!(g.to_xml().is_err());
     }
 }
