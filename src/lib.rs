@@ -31,6 +31,7 @@ pub mod case;
 pub mod check;
 pub mod external;
 pub mod fem;
+pub mod fit;
 pub mod history;
 pub mod io;
 pub mod pair;

@@ -85,7 +85,11 @@ impl Snapshot {
             let points: Vec<(f64, f64)> = (first..panels.len())
                 .map(|i| ((i as f64 * grid.h).powi(2), value(panels[i]).powi(2)))
                 .collect();
-            *edge = zero_of_line(&points)?.max(0.0).sqrt();
+            *edge = crate::fit::Line::fit(&points)
+                .filter(|l| l.slope < 0.0)?
+                .zero()?
+                .max(0.0)
+                .sqrt();
         }
         Some(edges)
     }
@@ -126,19 +130,6 @@ impl Snapshot {
         self.axis_edges(deficit)
             .map(|e| [0.5 * (e[0] + e[1]), 0.5 * (e[2] + e[3])])
     }
-}
-
-/// Where the least-squares line through `points` (x, y) crosses y = 0; `None` if it is flat.
-fn zero_of_line(points: &[(f64, f64)]) -> Option<f64> {
-    let k = points.len() as f64;
-    let (mx, my) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / k, b + y / k));
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
-    });
-    let slope = sxy / sxx;
-    (slope < 0.0).then(|| mx - my / slope)
 }
 
 /// What an increment reports besides the fields.

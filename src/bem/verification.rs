@@ -38,14 +38,9 @@ fn solve(n: usize, scene: &Scene) -> (History, Vec<PositionFields>) {
 /// The least-squares slope of log(error) against log(h): the observed convergence rate.
 fn rate(h: &[f64], error: &[f64]) -> f64 {
     let points: Vec<(f64, f64)> = h.iter().zip(error).map(|(h, e)| (h.ln(), e.abs().ln())).collect();
-    let k = points.len() as f64;
-    let (mx, my) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / k, b + y / k));
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
-    });
-    sxy / sxx
+    crate::fit::Line::fit(&points)
+        .expect("a ladder of distinct sizes")
+        .slope
 }
 
 #[test]

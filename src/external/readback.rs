@@ -174,19 +174,9 @@ pub fn contact_radius(profile: &[SurfacePoint]) -> Option<f64> {
         .take_while(|p| p.r - last_closed <= EDGE_FIT_BAND * last_closed)
         .map(|p| (p.r, p.gap.powf(2.0 / 3.0)))
         .collect();
-    if band.len() < 2 {
-        return None;
-    }
-    let n = band.len() as f64;
-    let (x_mean, y_mean) = (
-        band.iter().map(|p| p.0).sum::<f64>() / n,
-        band.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = band.iter().map(|(x, y)| (x - x_mean) * (y - y_mean)).sum();
-    let sxx: f64 = band.iter().map(|(x, _)| (x - x_mean).powi(2)).sum();
-    let slope = sxy / sxx;
-    let c = x_mean - y_mean / slope;
-    (slope > 0.0 && c.is_finite()).then(|| c.clamp(last_closed, band[band.len() - 1].0))
+    let line = crate::fit::Line::fit(&band)?;
+    let c = line.zero()?;
+    (line.slope > 0.0 && c.is_finite()).then(|| c.clamp(last_closed, band[band.len() - 1].0))
 }
 
 /// Extracts p(r) on the spherical surface (radius `radius_mm`, r ≤ `window_mm`) from each field
