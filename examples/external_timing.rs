@@ -13,6 +13,7 @@ use spherecontact::external::deck::Deck;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
 use spherecontact::history::History;
+use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, Solver};
 
@@ -34,14 +35,15 @@ fn seconds(history: &History, key: &str) -> f64 {
 }
 
 fn scene() -> Scene {
-    let text = std::fs::read_to_string("cases/hertz-normal.toml").expect("run from the crate root");
-    let text = text
-        .replace("delta_n = [0, 17, 25]", "delta_n = [0, 17]")
-        .replace("delta_t = [0, 0, 0]", "delta_t = [0, 0]");
-    let text = text.split("[[checks]]").next().unwrap_or_default().to_owned();
-    Case::parse(Path::new("cases/hertz-normal.toml"), &text)
-        .expect("valid case")
-        .scene
+    let mut scene = Case::load(Path::new("cases/hertz-normal.toml"))
+        .expect("run from the crate root")
+        .scene;
+    let position = |delta_n: f64| Position {
+        delta_n,
+        delta_t: 0.0,
+    };
+    scene.path = LoadingPath::try_new(vec![position(0.0), position(17e-6)], vec![17]).expect("a valid path");
+    scene
 }
 
 fn row(name: &str, resolution: &str, runs: &[History], scene: &Scene) {
