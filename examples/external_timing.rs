@@ -34,6 +34,15 @@ fn seconds(history: &History, key: &str) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
+/// A duration column: "—" where the solver does not split its time that way (never "NaN").
+fn column(seconds: f64) -> String {
+    if seconds.is_finite() {
+        format!("{seconds:.2}")
+    } else {
+        "—".to_owned()
+    }
+}
+
 fn scene() -> Scene {
     let mut scene = Case::load(Path::new("cases/hertz-normal.toml"))
         .expect("run from the crate root")
@@ -51,17 +60,19 @@ fn row(name: &str, resolution: &str, runs: &[History], scene: &Scene) {
     let dn = 17e-6;
     let last = runs.last().expect("one run at least");
     let at = last.at_position(1).expect("position 1");
-    let err = |v: Option<f64>, r: f64| v.map_or(f64::NAN, |v| (v / r - 1.0) * 100.0);
+    let err = |v: Option<f64>, r: f64| {
+        v.map_or_else(|| "—".to_owned(), |v| format!("{:+.3}", (v / r - 1.0) * 100.0))
+    };
     let med = |key: &str| median(runs.iter().map(|h| seconds(h, key)).collect());
     let wall = median(runs.iter().map(|h| h.metadata.wall_time_s).collect());
     println!(
-        "{name:<15} {resolution:<30} {:>+8.3} {:>+8.3} {:>+8.3} {:>8.2} {:>8.2} {:>8.2} {:>8.2}",
+        "{name:<15} {resolution:<30} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8.2}",
         err(at.normal_force, hertz.force(dn)),
         err(at.contact_radius, hertz.contact_radius(dn)),
         err(at.peak_pressure, hertz.peak_pressure(dn)),
-        med("meshing_s"),
-        med("solving_s"),
-        med("reading_back_s"),
+        column(med("meshing_s")),
+        column(med("solving_s")),
+        column(med("reading_back_s")),
         wall
     );
 }
@@ -91,7 +102,8 @@ fn main() {
             }
         }
     }
-    if let Some(fem) = solver::by_name("fem-axisym") {
+    // The in-crate FEM through its own ladder (c/5 … c/80), side by side in the same run.
+    for fem in solver::by_name("fem-axisym").map_or_else(Vec::new, |s| s.resolution_ladder(&scene)) {
         let runs: Result<Vec<History>, _> = (0..repeats).map(|_| solver::run(fem.as_ref(), &scene)).collect();
         match runs {
             Ok(runs) => row("fem-axisym", &runs[0].metadata.resolution, &runs, &scene),
