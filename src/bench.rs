@@ -132,20 +132,19 @@ impl References {
     /// The errors of `history` against the references.
     fn errors(&self, history: &History) -> (Option<f64>, Option<f64>) {
         let normal = (history.metadata.solver != "hertz")
-            .then(|| worst(history, &self.hertz, Quantity::NormalForce, false))
+            .then(|| worst_error(history, &self.hertz, Quantity::NormalForce, false))
             .flatten();
-        (normal, worst(history, &self.mdr, Quantity::TangentialForce, true))
+        (
+            normal,
+            worst_error(history, &self.mdr, Quantity::TangentialForce, true),
+        )
     }
 }
 
 /// The worst error of `quantity` against `reference` over the steps: relative to each step's
 /// reference value (steps with a zero reference skipped), or to the reference's peak.
-fn worst(history: &History, reference: &History, quantity: Quantity, to_peak: bool) -> Option<f64> {
-    let peak = reference
-        .steps
-        .iter()
-        .filter_map(|r| quantity.of(r))
-        .fold(0.0_f64, |m, v| m.max(v.abs()));
+pub fn worst_error(history: &History, reference: &History, quantity: Quantity, to_peak: bool) -> Option<f64> {
+    let peak = reference.peak(quantity);
     let errors = history
         .steps
         .iter()

@@ -167,6 +167,14 @@ impl History {
         self.steps.iter().filter(|r| r.position.is_some())
     }
 
+    /// The largest |value| of `quantity` over the steps (0 where the solver gives none).
+    pub fn peak(&self, quantity: Quantity) -> f64 {
+        self.steps
+            .iter()
+            .filter_map(|r| quantity.of(r))
+            .fold(0.0, |m, v| m.max(v.abs()))
+    }
+
     /// The row reaching path position `position`, if the path has it.
     pub fn at_position(&self, position: usize) -> Option<&StepResult> {
         self.steps.iter().find(|r| r.position == Some(position))

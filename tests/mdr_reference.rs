@@ -7,23 +7,13 @@ mod common;
 
 use common::{case, paper_scene_with_path, paper_scene_with_substeps, solve};
 use spherecontact::analytic::mdr::Mdr;
+use spherecontact::bench::worst_error;
 use spherecontact::history::{History, Quantity};
 use spherecontact::solver;
 
 /// The largest |a − b| over the steps, divided by the largest |b|.
 fn worst_relative_to_peak(a: &History, b: &History, quantity: Quantity) -> f64 {
-    let peak = b
-        .steps
-        .iter()
-        .filter_map(|r| quantity.of(r))
-        .fold(0.0_f64, |m, v| m.max(v.abs()));
-    let worst = a
-        .steps
-        .iter()
-        .zip(&b.steps)
-        .filter_map(|(x, y)| Some((quantity.of(x)? - quantity.of(y)?).abs()))
-        .fold(0.0_f64, f64::max);
-    worst / peak
+    worst_error(a, b, quantity, true).expect("both give the quantity")
 }
 
 #[test]
@@ -77,11 +67,7 @@ fn mdr_along_the_paper_path_does_not_depend_on_the_substep_count() {
     // same step: the springs entering contact during such a step take the whole step's Δδt.
     let coarse = solve("mdr", &paper_scene_with_substeps(20));
     let fine = solve("mdr", &paper_scene_with_substeps(2000));
-    let peak = fine
-        .steps
-        .iter()
-        .map(|r| r.tangential_force.unwrap().abs())
-        .fold(0.0, f64::max);
+    let peak = fine.peak(Quantity::TangentialForce);
     for k in 0..coarse.at_positions().count() {
         let (c, f) = (coarse.at_position(k).unwrap(), fine.at_position(k).unwrap());
         let difference = (c.tangential_force.unwrap() - f.tangential_force.unwrap()).abs() / peak;

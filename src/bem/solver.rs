@@ -62,7 +62,7 @@ impl Bem {
     /// Solves `scene`, returning the history and the full grid fields at every path position
     /// (pressure, traction, stick and accumulated slip: what a VTU writer needs).
     pub fn solve_with_fields(&self, scene: &Scene) -> Result<(History, Vec<PositionFields>), SolveError> {
-        if self.grid < 4 || self.grid % 2 != 0 {
+        if self.grid < 4 || !self.grid.is_multiple_of(2) {
             return Err(SolveError::Failed(format!(
                 "bem needs an even grid of at least 4 panels a side (got {})",
                 self.grid

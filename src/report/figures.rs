@@ -406,11 +406,7 @@ pub fn errors(run: &CaseRun) -> Result<Vec<Figure>> {
         let Some(reference_history) = reference_of(reference) else {
             continue;
         };
-        let peak = reference_history
-            .steps
-            .iter()
-            .filter_map(|r| quantity.of(r))
-            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let peak = reference_history.peak(quantity);
         let (mut series, mut exact) = (Vec::new(), Vec::new());
         for (name, history) in all.iter().filter(|(n, _)| n != reference) {
             let points: Vec<(f64, f64)> = history
