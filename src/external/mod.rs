@@ -5,6 +5,7 @@
 //! - [`toolchain`]: finding the tools, their versions, how to install them (`doctor`);
 //! - [`process`]: one run in its own directory and process group, with a timeout;
 //! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
+//! - [`solid_geo`]: the 3D geometry (half of a hemisphere or cap) and its quadratic tetrahedra;
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
 //! - [`axisym`]: the shared run (mesh → deck → read back → History);
 //! - [`readback`]: the decks' per-step CSV and the field files through meshio.
@@ -19,6 +20,7 @@ pub mod freefem;
 pub mod geo;
 pub mod process;
 pub mod readback;
+pub mod solid_geo;
 pub mod toolchain;
 
 use crate::solver::Solver;

@@ -8,6 +8,7 @@
 //! | [`assembly`] | global stiffness of a meridian mesh, Dirichlet elimination, reaction row |
 //! | [`factor`] | sparse Cholesky with a fill-reducing ordering |
 //! | [`axisym`] | the axisymmetric contact model and the `fem-axisym` solver |
+//! | [`solid3d`] | the 3D contact model (10-node tetrahedra, condensed contact surface) and the `fem-3d` solver |
 //!
 //! The stiffness is assembled and factored once per mesh; the compliance of the candidate
 //! contact nodes is computed once by solves with the factor; each path step then re-solves only
@@ -21,5 +22,6 @@ pub mod element;
 pub mod factor;
 pub mod mesh;
 pub mod quadrature;
+pub mod solid3d;
 
 pub use axisym::FemAxisym;

@@ -1,0 +1,15 @@
+//! The 3D finite element contact model (10-node tetrahedra) and its solver (`fem-3d`).
+//!
+//! | file | concept |
+//! |---|---|
+//! | [`system`] | DOFs (far face gripped, u_y = 0 on the symmetry plane) and the assembled stiffness |
+//! | [`ordering`] | the elimination order: minimum degree on the interior, contact DOFs last |
+//! | [`surface`] | the contact candidate surface and its sub-triangulated contact rule |
+//! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
+//! | [`model`] | the whole set-up of one body |
+
+pub mod condense;
+pub mod model;
+pub mod ordering;
+pub mod surface;
+pub mod system;
