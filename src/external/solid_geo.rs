@@ -8,10 +8,12 @@
 //! candidate), surface 2 the flat far face z = H (gripped), surface 3 the symmetry plane y = 0,
 //! volume 10 the body.
 //!
-//! Grading: element size h (the resolution) within distance `dfine` of the pole, growing
-//! linearly with the distance at rate `growth` up to `hmax` (a MathEval distance field and a
-//! Threshold field). The fine ball covers the candidate contact zone, so the contact surface is
-//! uniformly fine; the size growth beyond it is what keeps the DOF count small.
+//! Grading: element size h (the resolution) within distance `tfine` of the disc of radius
+//! `rfine` around the pole on the contact plane, growing linearly with that distance at rate
+//! `growth` up to `hmax` (a MathEval distance field and a Threshold field). The disc covers the
+//! candidate contact zone, so the contact surface is uniformly fine there, while the size grows
+//! with depth below it: the stresses of a contact of radius c vary over depths of order c, and
+//! a fine ball instead of a fine layer would hold most of the mesh's nodes.
 //!
 //! Files (metres): `<stem>.geo`, and `<stem>.msh` in MSH 4.1 with 10-node tetrahedra and 6-node
 //! triangles whose midside nodes lie on the sphere (`-order 2`), for the in-crate `fem-3d` and a
@@ -33,8 +35,10 @@ pub struct SolidGeometry {
     pub height: f64,
     /// Element size h at the pole [m].
     pub pole_size: f64,
-    /// Distance from the pole within which the size is h [m].
-    pub fine_distance: f64,
+    /// Radius of the disc around the pole (on the contact plane) where the surface is fine [m].
+    pub fine_radius: f64,
+    /// Distance from that disc within which the size is h [m].
+    pub fine_depth: f64,
     /// Growth of the element size per unit distance beyond it.
     pub growth: f64,
     /// The largest element size [m].
@@ -49,7 +53,8 @@ impl SolidGeometry {
             self.radius,
             self.height,
             self.pole_size,
-            self.fine_distance,
+            self.fine_radius,
+            self.fine_depth,
             self.growth,
             self.max_size,
         ]
@@ -60,25 +65,26 @@ impl SolidGeometry {
                 "every mesh parameter must be positive and finite: {self:?}"
             ));
         }
-        if self.height > self.radius * (1.0 + 1e-12) || self.height < 2.0 * self.fine_distance {
+        let fine = self.fine_radius + self.fine_depth;
+        if self.height > self.radius * (1.0 + 1e-12) || self.height < 2.0 * fine {
             return Err(format!(
                 "the far face at {:e} m must lie between twice the fine zone ({:e} m) and the equator ({:e} m)",
                 self.height,
-                2.0 * self.fine_distance,
+                2.0 * fine,
                 self.radius
             ));
         }
-        if self.pole_size > 0.5 * self.fine_distance || self.max_size < self.pole_size {
+        if self.pole_size > 0.5 * self.fine_radius || self.max_size < self.pole_size {
             return Err(format!(
-                "need pole size ≤ half the fine distance and ≤ the largest size: {self:?}"
+                "need pole size ≤ half the fine radius and ≤ the largest size: {self:?}"
             ));
         }
         Ok(())
     }
 
-    /// The distance at which the size reaches `max_size`.
+    /// The distance from the fine disc at which the size reaches `max_size`.
     fn coarse_distance(&self) -> f64 {
-        self.fine_distance + (self.max_size - self.pole_size) / self.growth
+        self.fine_depth + (self.max_size - self.pole_size) / self.growth
     }
 
     /// The gmsh `.geo` text (metres).
@@ -92,7 +98,8 @@ SetFactory(\"OpenCASCADE\");
 R = {r:e};
 H = {h_far:e};        // far face z = H (H = R: the hemisphere)
 h = {h:e};        // element size at the pole (the resolution)
-dfine = {dfine:e};    // size h up to this distance from the pole
+rfine = {rfine:e};    // radius of the fine disc around the pole on the contact plane
+tfine = {tfine:e};    // size h up to this distance from the disc
 dcoarse = {dcoarse:e};  // size grows linearly to hmax at this distance (growth {growth})
 hmax = {hmax:e};
 
@@ -111,13 +118,14 @@ Physical Surface(\"far\", 2) = far();
 Physical Surface(\"symmetry\", 3) = sym();
 Physical Volume(\"body\", 10) = {{3}};
 
+// Distance from the disc {{z = 0, x² + y² <= rfine²}}.
 Field[1] = MathEval;
-Field[1].F = \"Sqrt(x*x + y*y + z*z)\";
+Field[1].F = Sprintf(\"Sqrt(z*z + Max(0, Sqrt(x*x + y*y) - %g)^2)\", rfine);
 Field[2] = Threshold;
 Field[2].InField = 1;
 Field[2].SizeMin = h;
 Field[2].SizeMax = hmax;
-Field[2].DistMin = dfine;
+Field[2].DistMin = tfine;
 Field[2].DistMax = dcoarse;
 Background Field = 2;
 Mesh.MeshSizeExtendFromBoundary = 0;
@@ -132,7 +140,8 @@ Mesh.SecondOrderLinear = 0;    // midside nodes on the sphere
             r = self.radius,
             h_far = self.height,
             h = self.pole_size,
-            dfine = self.fine_distance,
+            rfine = self.fine_radius,
+            tfine = self.fine_depth,
             dcoarse = self.coarse_distance(),
             growth = self.growth,
             hmax = self.max_size,
@@ -211,7 +220,8 @@ mod tests {
             radius: 0.1,
             height: 0.1,
             pole_size: 1e-4,
-            fine_distance: 1.2e-3,
+            fine_radius: 1.2e-3,
+            fine_depth: 2e-4,
             growth: 0.4,
             max_size: 0.02,
         }
@@ -229,7 +239,7 @@ mod tests {
         ] {
             assert!(geo.contains(group), "{group}");
         }
-        assert!(geo.contains(&format!("dcoarse = {:e};", 1.2e-3 + (0.02 - 1e-4) / 0.4)));
+        assert!(geo.contains(&format!("dcoarse = {:e};", 2e-4 + (0.02 - 1e-4) / 0.4)));
     }
 
     #[test]

@@ -7,8 +7,10 @@
 //! | [`surface`] | the contact candidate surface and its sub-triangulated contact rule |
 //! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
 //! | [`model`] | the whole set-up of one body |
+//! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
 
 pub mod condense;
+pub mod meshing;
 pub mod model;
 pub mod ordering;
 pub mod surface;

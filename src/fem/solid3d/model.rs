@@ -10,7 +10,7 @@
 use std::time::Instant;
 
 use super::condense::{self, Condensation, Condensed};
-use super::ordering::{self, ContactLast};
+use super::ordering::{self, ContactLast, NodeOrder};
 use super::surface::Surface;
 use super::system::{self, System};
 use crate::fem::assembly::Dofs;
@@ -21,9 +21,9 @@ use crate::fem::mesh::solid::SolidMesh;
 /// The elimination order of the factorisation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Elimination {
-    /// Minimum degree on the node graph of the interior, the contact DOFs last
+    /// The interior's nodes ordered by `NodeOrder`, the contact DOFs last
     /// ([`ordering::contact_last`]); needed by [`Condensation::TrailingBlock`].
-    ContactLast,
+    ContactLast(NodeOrder),
     /// faer's minimum degree on the whole DOF graph (contact DOFs wherever it puts them).
     DofAmd,
 }
@@ -44,7 +44,7 @@ impl Settings {
     pub fn fastest(candidate_radius: f64) -> Self {
         Self {
             candidate_radius,
-            elimination: Elimination::ContactLast,
+            elimination: Elimination::ContactLast(NodeOrder::MinimumDegree),
             condensation: Condensation::TrailingBlock,
         }
     }
@@ -94,18 +94,21 @@ impl Model {
         }
         let system = system::assemble(&mesh, lame, Dofs::from_fixed(&fixed)).map_err(|e| e.to_string())?;
         let t1 = Instant::now();
-        let order: ContactLast = ordering::contact_last(&system.graph, &system.dofs, &surface.nodes)?;
+        let how = match settings.elimination {
+            Elimination::ContactLast(how) => how,
+            Elimination::DofAmd if settings.condensation == Condensation::TrailingBlock => {
+                return Err("the trailing-block condensation needs the contact DOFs ordered last".into())
+            }
+            Elimination::DofAmd => NodeOrder::MinimumDegree,
+        };
+        let order: ContactLast =
+            ordering::contact_last(&system.graph, &mesh.nodes, &system.dofs, &surface.nodes, how)?;
         let t2 = Instant::now();
         let factor = match settings.elimination {
-            Elimination::ContactLast => Factor::with_permutation(&system.stiffness, &order.forward)?,
+            Elimination::ContactLast(_) => Factor::with_permutation(&system.stiffness, &order.forward)?,
             Elimination::DofAmd => Factor::new(&system.stiffness, Ordering::Amd)?,
         };
         let t3 = Instant::now();
-        if settings.condensation == Condensation::TrailingBlock
-            && settings.elimination != Elimination::ContactLast
-        {
-            return Err("the trailing-block condensation needs the contact DOFs ordered last".into());
-        }
         let condensed = condense::condense(&system, &factor, &order, &surface, settings.condensation);
         let times = Times {
             assembly: (t1 - t0).as_secs_f64(),
