@@ -8,10 +8,12 @@
 //! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
 //! | [`model`] | the whole set-up of one body |
 //! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
+//! | [`output`] | displacement and stress of a contact state; VTU of the volume and the contact surface |
 
 pub mod condense;
 pub mod meshing;
 pub mod model;
 pub mod ordering;
+pub mod output;
 pub mod surface;
 pub mod system;
