@@ -45,11 +45,8 @@ fn a_diagonal_operator_has_the_closed_form_answer() {
             .unwrap();
         contact.advance(0.6, &[0.0]).unwrap();
         let expected = [0.6, 0.2, 0.0];
-        for i in 0..3 {
-            assert!(
-                (contact.pressure()[i] - expected[i]).abs() < 1e-12,
-                "{method:?} λ {i}"
-            );
+        for (i, (p, e)) in contact.pressure().iter().zip(expected).enumerate() {
+            assert!((p - e).abs() < 1e-12, "{method:?} λ {i}");
         }
         contact.advance(0.6, &[0.05]).unwrap();
         // w/K = 0.1, 0.05 against μλ = 0.18, 0.06: both stick.
