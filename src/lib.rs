@@ -34,6 +34,7 @@ pub mod fem;
 pub mod fit;
 pub mod history;
 pub mod io;
+pub mod number;
 pub mod pair;
 pub mod path;
 pub mod report;

@@ -73,9 +73,10 @@ fn the_valid_case_runs() {
 }
 
 #[test]
-fn young_modulus_must_be_positive() {
-    assert_rejected("young = 70e9", "young = 0.0", "body1.young", "E > 0");
-    assert_rejected("young = 70e9", "young = -70e9", "body1.young", "E > 0");
+fn young_modulus_must_be_in_its_physical_range() {
+    for bad in ["young = 0.0", "young = -70e9", "young = 999.0", "young = 1.1e13"] {
+        assert_rejected("young = 70e9", bad, "body1.young", "1e3 ≤ E ≤ 1e13 Pa");
+    }
 }
 
 #[test]
@@ -85,14 +86,16 @@ fn poisson_ratio_must_lie_between_minus_one_and_one_half() {
 }
 
 #[test]
-fn friction_must_be_non_negative() {
-    assert_rejected("friction = 0.2", "friction = -0.1", "friction", "μ ≥ 0");
+fn friction_must_be_between_zero_and_ten() {
+    assert_rejected("friction = 0.2", "friction = -0.1", "friction", "0 ≤ μ ≤ 10");
+    assert_rejected("friction = 0.2", "friction = 10.5", "friction", "0 ≤ μ ≤ 10");
 }
 
 #[test]
-fn radius_must_be_positive() {
-    assert_rejected("radius = 0.1", "radius = 0.0", "body1.radius", "R > 0");
-    assert_rejected("radius = 0.1", "radius = -inf", "body1.radius", "R > 0");
+fn radius_must_be_in_its_physical_range() {
+    for bad in ["radius = 0.0", "radius = -inf", "radius = 1e-10", "radius = 2e3"] {
+        assert_rejected("radius = 0.1", bad, "body1.radius", "1e-9 ≤ R ≤ 1e3 in m, or inf");
+    }
 }
 
 #[test]
@@ -107,8 +110,8 @@ fn two_flats_are_rejected() {
 
 #[test]
 fn numbers_must_be_finite() {
-    assert_rejected("young = 70e9", "young = nan", "body1.young", "finite");
-    assert_rejected("friction = 0.2", "friction = inf", "friction", "finite");
+    assert_rejected("young = 70e9", "young = nan", "body1.young", "1e3 ≤ E ≤ 1e13 Pa");
+    assert_rejected("friction = 0.2", "friction = inf", "friction", "0 ≤ μ ≤ 10");
     assert_rejected(
         "delta_n = [0, 10, 10]",
         "delta_n = [0, nan, 10]",

@@ -8,11 +8,12 @@ use toml::Spanned;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawCase {
-    pub name: Option<String>,
+    pub name: Option<Spanned<String>>,
     pub description: Option<String>,
     pub friction: Spanned<f64>,
     pub solvers: Spanned<Vec<Spanned<String>>>,
     pub focus: Option<Spanned<i64>>,
+    pub fields: Option<Spanned<toml::Value>>,
     pub body1: RawBody,
     pub body2: Option<RawBody>,
     pub path: RawPath,
