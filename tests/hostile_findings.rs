@@ -10,6 +10,7 @@ use std::process::{Command, Output};
 
 use spherecontact::case::{Case, MAX_FIELD_POSITIONS};
 use spherecontact::history::History;
+use spherecontact::registry;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
 
@@ -150,7 +151,7 @@ fn surface_fields_are_kept_at_a_bounded_set_of_positions_including_the_focus() {
     let text = many_positions(positions).replacen("friction = 0.2", "friction = 0.2\nfocus = 20", 1);
     let case = parse(&text).unwrap();
     for name in ["mdr", "cattaneo-mindlin", "bem", "fem-axisym"] {
-        let s = solver::by_name(name).unwrap();
+        let s = registry::by_name(name).unwrap();
         let history = match solver::run(s.as_ref(), &case.scene) {
             Ok(h) => h,
             Err(SolveError::NotApplicable(_)) => continue,
@@ -172,7 +173,7 @@ fn surface_fields_are_kept_at_a_bounded_set_of_positions_including_the_focus() {
 fn a_case_may_name_the_positions_with_fields() {
     let text = VALID.replacen("friction = 0.2", "friction = 0.2\nfields = [1]", 1);
     let case = parse(&text).unwrap();
-    let history = solver::run(solver::by_name("mdr").unwrap().as_ref(), &case.scene).unwrap();
+    let history = solver::run(registry::by_name("mdr").unwrap().as_ref(), &case.scene).unwrap();
     let positions: Vec<_> = history.fields.iter().map(|f| f.position).collect();
     // Position 1 as asked, and the focus (the first position of largest δn, also 1).
     assert_eq!(positions, [1]);

@@ -75,8 +75,8 @@ use toml::Spanned;
 use crate::check::{CheckSpec, Reference};
 use crate::number::Short;
 use crate::pair::ContactPair;
+use crate::registry;
 use crate::scene::Scene;
-use crate::solver;
 use raw::RawCase;
 
 /// A validated case.
@@ -243,10 +243,10 @@ impl Validator<'_> {
     }
 
     fn solver_name(&self, name: &Spanned<String>, field: &str) -> Result<String, CaseError> {
-        if solver::by_name(name.get_ref()).is_some() {
+        if registry::by_name(name.get_ref()).is_some() {
             return Ok(name.get_ref().clone());
         }
-        let known: Vec<_> = solver::registry().iter().map(|s| s.name()).collect();
+        let known = registry::names();
         Err(self.error(
             name,
             field,

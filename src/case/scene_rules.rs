@@ -6,7 +6,7 @@ use toml::Spanned;
 use super::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 use super::raw::{RawBody, RawCase, RawPath};
 use super::{CaseError, Validator};
-use crate::analytic::hertz::Hertz;
+use crate::hertz::Hertz;
 use crate::number::Short;
 use crate::pair::{Body, ContactPair, Material};
 use crate::path::{LoadingPath, Position};
