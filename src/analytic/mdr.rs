@@ -285,6 +285,14 @@ impl Solver for Mdr {
                     self.springs,
                     (1.0 + WINDOW_MARGIN) * scene.max_contact_radius()
                 ),
+                // The stick radius is a cell edge: within one spacing of the true one.
+                extra: [(
+                    "spring_spacing_m".to_owned(),
+                    serde_json::json!(
+                        (1.0 + WINDOW_MARGIN) * scene.max_contact_radius() / self.springs as f64
+                    ),
+                )]
+                .into(),
                 ..Metadata::default()
             },
             steps: rows,
