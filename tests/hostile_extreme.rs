@@ -133,7 +133,9 @@ fn run_extreme(name: &str) {
         // The outcome matrix, for `--nocapture`.
         eprintln!(
             "{name:<40} {solver_name:<22} {}",
-            result.as_ref().map_or_else(|e| e.to_string(), |_| "answered".into())
+            result
+                .as_ref()
+                .map_or_else(|e| e.to_string(), |_| "answered".into())
         );
         match (result, expectation) {
             (Ok(history), None) => {

@@ -34,6 +34,41 @@ impl CaseError {
     }
 }
 
+/// The dotted field of TOML `text` at byte `offset` (`body1.young`, `checks[2].tolerance`), for
+/// errors of the parser, which locate a fault but do not name it.
+///
+/// Reads the table headers before the offset (`[path]`, `[[checks]]` counted) and the `key =`
+/// of the offset's own line; a header line names its table. `None` on a comment or blank line
+/// outside any table.
+pub fn field_at(text: &str, offset: usize) -> Option<String> {
+    let offset = offset.min(text.len());
+    let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let mut table = String::new();
+    let mut counts = std::collections::BTreeMap::<&str, usize>::new();
+    for line in text[..line_end].split('\n').map(str::trim_start) {
+        if let Some(name) = line.strip_prefix("[[").and_then(|l| l.split_once("]]")) {
+            let count = counts.entry(name.0.trim()).or_insert(0);
+            table = format!("{}[{count}]", name.0.trim());
+            *count += 1;
+        } else if let Some(name) = line.strip_prefix('[').and_then(|l| l.split_once(']')) {
+            table = name.0.trim().to_owned();
+        }
+    }
+    let line = text[line_start..line_end].trim_start();
+    let bare = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.');
+    let key = line
+        .split_once('=')
+        .map(|(k, _)| k.trim())
+        .filter(|k| !k.is_empty() && k.chars().all(bare) && !line.starts_with('['));
+    match key {
+        Some(key) if table.is_empty() => Some(key.to_owned()),
+        Some(key) => Some(format!("{table}.{key}")),
+        None if table.is_empty() => None,
+        None => Some(table),
+    }
+}
+
 /// The 1-based line and column of byte `offset` in `text`.
 pub fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
@@ -60,6 +95,18 @@ impl std::error::Error for CaseError {}
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fields_are_found_from_tables_and_keys() {
+        let text = "name = \"a\"\n[body1]\nyoung = \"x\"\n[[checks]]\nsolver = 1\n[[checks]]\nat = 2\n";
+        let at = |needle: &str| field_at(text, text.find(needle).unwrap());
+        assert_eq!(at("\"a\"").as_deref(), Some("name"));
+        assert_eq!(at("\"x\"").as_deref(), Some("body1.young"));
+        assert_eq!(at("1\n").as_deref(), Some("checks[0].solver"));
+        assert_eq!(at("2\n").as_deref(), Some("checks[1].at"));
+        assert_eq!(at("[body1]").as_deref(), Some("body1"));
+        assert_eq!(field_at("# comment\n", 0), None);
+    }
 
     #[test]
     fn lines_and_columns_are_one_based() {

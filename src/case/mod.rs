@@ -107,8 +107,15 @@ impl Case {
     /// Validates the text of a case file; `file` names it in errors and anchors reference paths.
     pub fn parse(file: &Path, text: &str) -> Result<Self, CaseError> {
         let raw: RawCase = toml::from_str(text).map_err(|e| {
-            let span = e.span().map(|s| (text, s));
-            CaseError::new(file, span, "", e.message().to_owned())
+            // The parser locates its errors but does not name the field: read it at the span.
+            let field = e.span().and_then(|s| error::field_at(text, s.start));
+            let message = e.message().trim().replace('\n', "; ");
+            CaseError::new(
+                file,
+                e.span().map(|s| (text, s)),
+                field.unwrap_or_default(),
+                message,
+            )
         })?;
         Validator { file, text }.case(raw)
     }
