@@ -2,7 +2,7 @@
 //! target, then rename it over the target. And checking, before any work, that an output
 //! destination can be written at all.
 
-use std::io::Write;
+use std::io::{ErrorKind, Write};
 use std::path::Path;
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed, then
@@ -37,7 +37,7 @@ pub fn check_output_folder(dir: &Path) -> std::io::Result<()> {
         match std::fs::metadata(folder_or_here(existing)) {
             Ok(meta) if meta.is_dir() => return check_writable(folder_or_here(existing)),
             Ok(_) => return Err(invalid(format!("{} is not a folder", existing.display()))),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            Err(e) if matches!(e.kind(), ErrorKind::NotFound | ErrorKind::NotADirectory) => {
                 existing = existing
                     .parent()
                     .ok_or_else(|| invalid(format!("no existing folder above {}", dir.display())))?;
