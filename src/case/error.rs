@@ -69,6 +69,17 @@ pub fn field_at(text: &str, offset: usize) -> Option<String> {
     }
 }
 
+/// The message of a TOML parser error, on one line; never empty (the parser gives an empty one
+/// for some faults, such as a key with no value at the end of the text).
+pub fn parser_message(e: &toml::de::Error) -> String {
+    let message = e.message().trim().replace('\n', "; ");
+    if message.is_empty() {
+        "invalid TOML here (allowed: a key = value, a [table] or a comment)".to_owned()
+    } else {
+        message
+    }
+}
+
 /// The 1-based line and column of byte `offset` in `text`.
 pub fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];

@@ -109,7 +109,7 @@ impl Case {
         let raw: RawCase = toml::from_str(text).map_err(|e| {
             // The parser locates its errors but does not name the field: read it at the span.
             let field = e.span().and_then(|s| error::field_at(text, s.start));
-            let message = e.message().trim().replace('\n', "; ");
+            let message = error::parser_message(&e);
             CaseError::new(
                 file,
                 e.span().map(|s| (text, s)),

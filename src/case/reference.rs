@@ -46,13 +46,13 @@ pub fn load(path: &Path, key: &str) -> Result<StoredValue, LoadError> {
             path,
             e.span().map(|s| (text.as_str(), s)),
             "",
-            e.message().to_owned(),
+            super::error::parser_message(&e),
         ))
     })?;
     let entry = table.remove(key).ok_or(LoadError::NoKey)?;
     let entry: RawReferenceValue = entry
         .try_into()
-        .map_err(|e: toml::de::Error| invalid(e.message().to_owned()))?;
+        .map_err(|e: toml::de::Error| invalid(super::error::parser_message(&e)))?;
     let quantity = Quantity::from_name(&entry.quantity)
         .ok_or_else(|| invalid(format!("unknown quantity `{}`", entry.quantity)))?;
     if !entry.value.is_finite() {
