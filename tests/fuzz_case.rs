@@ -391,6 +391,15 @@ fn cheap_solvers() -> Vec<Box<dyn Solver>> {
     solvers
 }
 
+/// The length of a run of more than 24 digits in `message` that `input` does not hold: a
+/// number printed as a long decimal (`5e-324` as 324 digits) rather than echoed from the input.
+fn long_number_not_in(message: &str, input: &str) -> Option<usize> {
+    message
+        .split(|c: char| !c.is_ascii_digit())
+        .find(|run| run.len() > 24 && !input.contains(run))
+        .map(str::len)
+}
+
 /// How the inputs fared.
 #[derive(Default)]
 struct Tally {
@@ -415,7 +424,7 @@ fn judge(text: &str, solvers: &[Box<dyn Solver>], tally: &mut Tally) -> Option<S
             return match e.location {
                 Some((line, _)) if line > lines => Some(format!("located past the end: {e}")),
                 _ if e.message.is_empty() => Some("an empty message".into()),
-                _ => None,
+                _ => long_number_not_in(&e.message, text).map(|n| format!("{n}-digit number in: {e}")),
             };
         }
         Ok(Ok(case)) => case,

@@ -4,6 +4,7 @@
 use std::path::Path;
 use toml::Spanned;
 
+use super::error::ShortValue;
 use super::raw::RawCheck;
 use super::reference::{self, LoadError};
 use super::{CaseError, Validator};
@@ -95,7 +96,7 @@ impl Validator<'_> {
         };
         let index = |v: &toml::Value| match v {
             toml::Value::Integer(k) if *k >= 0 && (*k as usize) < positions => Ok(*k as usize),
-            other => Err(bad(format!("position {other} is not on the path"))),
+            other => Err(bad(format!("position {} is not on the path", ShortValue(other)))),
         };
         match raw.get_ref() {
             toml::Value::String(s) if s == "every-step" => Ok(Where::EveryStep),
@@ -109,9 +110,9 @@ impl Validator<'_> {
                     }
                     Ok(Where::Positions(a, b))
                 }
-                _ => Err(bad(format!("`{}` is not understood", raw.get_ref()))),
+                _ => Err(bad(format!("`{}` is not understood", ShortValue(raw.get_ref())))),
             },
-            other => Err(bad(format!("`{other}` is not understood"))),
+            other => Err(bad(format!("`{}` is not understood", ShortValue(other)))),
         }
     }
 
@@ -128,7 +129,7 @@ impl Validator<'_> {
                 return Err(self.error(
                     raw,
                     field,
-                    format!("`{other}` is not understood (allowed: {allowed})"),
+                    format!("`{}` is not understood (allowed: {allowed})", ShortValue(other)),
                 ))
             }
         };
@@ -144,7 +145,10 @@ impl Validator<'_> {
             _ => Err(self.error(
                 raw,
                 field,
-                format!("`{}` is not understood (allowed: {allowed})", raw.get_ref()),
+                format!(
+                    "`{}` is not understood (allowed: {allowed})",
+                    ShortValue(raw.get_ref())
+                ),
             )),
         }
     }

@@ -3,6 +3,8 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::number::Short;
+
 /// A case file that cannot be used: it names the file, the field, the line and column where
 /// the parser knows them, and what is allowed.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,15 +71,60 @@ pub fn field_at(text: &str, offset: usize) -> Option<String> {
     }
 }
 
+/// A TOML value as a message shows it: floats short ([`Short`]), never a 300-digit decimal.
+pub struct ShortValue<'a>(pub &'a toml::Value);
+
+impl fmt::Display for ShortValue<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            toml::Value::Float(x) => write!(f, "{}", Short(*x)),
+            toml::Value::Array(items) => {
+                let items: Vec<_> = items.iter().map(|v| ShortValue(v).to_string()).collect();
+                write!(f, "[{}]", items.join(", "))
+            }
+            toml::Value::Table(table) => {
+                let entries: Vec<_> = table
+                    .iter()
+                    .map(|(k, v)| format!("{k} = {}", ShortValue(v)))
+                    .collect();
+                write!(f, "{{ {} }}", entries.join(", "))
+            }
+            other => write!(f, "{other}"),
+        }
+    }
+}
+
 /// The message of a TOML parser error, on one line; never empty (the parser gives an empty one
 /// for some faults, such as a key with no value at the end of the text).
 pub fn parser_message(e: &toml::de::Error) -> String {
-    let message = e.message().trim().replace('\n', "; ");
+    let message = shorten_numbers(&e.message().trim().replace('\n', "; "));
     if message.is_empty() {
         "invalid TOML here (allowed: a key = value, a [table] or a comment)".to_owned()
     } else {
         message
     }
+}
+
+/// `text` with every long decimal number (serde prints `1.7e308` in full, 309 digits) written
+/// short.
+fn shorten_numbers(text: &str) -> String {
+    let numeric = |c: char| c.is_ascii_digit() || c == '.';
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find(numeric) {
+        let end = rest[start..]
+            .find(|c| !numeric(c))
+            .map_or(rest.len(), |n| start + n);
+        let run = &rest[start..end];
+        out.push_str(&rest[..start]);
+        match run.parse::<f64>() {
+            Ok(v) if run.len() > 24 => out.push_str(&Short(v).to_string()),
+            _ => out.push_str(run),
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// The 1-based line and column of byte `offset` in `text`.
@@ -117,6 +164,25 @@ mod tests {
         assert_eq!(at("2\n").as_deref(), Some("checks[1].at"));
         assert_eq!(at("[body1]").as_deref(), Some("body1"));
         assert_eq!(field_at("# comment\n", 0), None);
+    }
+
+    #[test]
+    fn parser_messages_show_short_numbers() {
+        let e = toml::from_str::<std::collections::BTreeMap<String, String>>("a = 1.7e308").unwrap_err();
+        assert_eq!(
+            parser_message(&e),
+            "invalid type: floating point `1.7e308`, expected a string"
+        );
+        assert_eq!(shorten_numbers("line 3.5, 12 and 0.1"), "line 3.5, 12 and 0.1");
+    }
+
+    #[test]
+    fn values_show_short_floats() {
+        let value: toml::Value = toml::from_str::<toml::Table>("v = { a = [1.7e308, 2], b = \"s\" }")
+            .unwrap()
+            .remove("v")
+            .unwrap();
+        assert_eq!(ShortValue(&value).to_string(), "{ a = [1.7e308, 2], b = \"s\" }");
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 use toml::Spanned;
 
+use super::error::ShortValue;
 use super::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 use super::raw::{RawBody, RawCase, RawPath};
 use super::{CaseError, Validator};
@@ -147,7 +148,10 @@ impl Validator<'_> {
             other => Err(self.error(
                 raw,
                 "path.substeps",
-                format!("{other} is not a whole number from 1 to {MAX_INCREMENTS}"),
+                format!(
+                    "{} is not a whole number from 1 to {MAX_INCREMENTS}",
+                    ShortValue(other)
+                ),
             )),
         };
         let counts: Vec<usize> = match raw.get_ref() {
@@ -300,13 +304,13 @@ impl Validator<'_> {
             toml::Value::Array(list) => {
                 let index = |v: &toml::Value| match v {
                     toml::Value::Integer(k) if *k >= 0 && (*k as usize) < positions => Ok(*k as usize),
-                    other => Err(bad(format!("position {other} is not on the path"))),
+                    other => Err(bad(format!("position {} is not on the path", ShortValue(other)))),
                 };
                 let mut listed = list.iter().map(index).collect::<Result<Vec<_>, _>>()?;
                 listed.push(focus);
                 listed
             }
-            other => return Err(bad(format!("`{other}` is not understood"))),
+            other => return Err(bad(format!("`{}` is not understood", ShortValue(other)))),
         };
         let fields = FieldPositions::listed(listed);
         match &fields {
