@@ -6,23 +6,10 @@
 use std::path::Path;
 use std::process::Command;
 
+mod common;
+
 /// A small valid case (two solvers, a few steps).
-const CASE: &str = r#"
-name = "cli-hostile"
-friction = 0.2
-solvers = ["hertz", "mdr"]
-
-[body1]
-radius = 0.1
-young = 70e9
-poisson = 0.3
-
-[path]
-unit = "um"
-delta_n = [0, 10, 10]
-delta_t = [0, 0, 1]
-substeps = 2
-"#;
+const CASE: &str = common::SMALL_CASE;
 
 /// The same with a flat body 1: no sphere to mesh.
 fn flat_case() -> String {

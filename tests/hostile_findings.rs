@@ -15,22 +15,7 @@ use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
 
 /// A valid case; each test changes one thing.
-const VALID: &str = r#"
-name = "finding"
-friction = 0.2
-solvers = ["hertz", "mdr"]
-
-[body1]
-radius = 0.1
-young = 70e9
-poisson = 0.3
-
-[path]
-unit = "um"
-delta_n = [0, 10, 10]
-delta_t = [0, 0, 1]
-substeps = 4
-"#;
+const VALID: &str = common::SMALL_CASE;
 
 fn spherecontact(args: &[&str], cwd: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_spherecontact"))
@@ -219,7 +204,7 @@ fn mesh_works_with_its_default_relative_output_folder() {
 
 #[test]
 fn a_name_that_is_not_a_plain_name_is_rejected_and_nothing_escapes() {
-    let text = VALID.replacen("name = \"finding\"", "name = \"x/../../../escaped\"", 1);
+    let text = VALID.replacen("name = \"cli-test\"", "name = \"x/../../../escaped\"", 1);
     let (dir, output) = with_case(&text, &["compare", "case.toml"]);
     assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
     let message = stderr(&output);
@@ -232,7 +217,7 @@ fn a_name_that_is_not_a_plain_name_is_rejected_and_nothing_escapes() {
 
 #[test]
 fn a_file_stem_that_is_not_a_plain_name_needs_a_name() {
-    let text = VALID.replacen("name = \"finding\"\n", "", 1);
+    let text = VALID.replacen("name = \"cli-test\"\n", "", 1);
     let message = Case::parse(Path::new("my case.toml"), &text)
         .unwrap_err()
         .to_string();
@@ -422,5 +407,5 @@ fn a_symlink_loop_under_the_cases_folder_does_not_recurse_forever() {
     let output = spherecontact(&["list"], dir.path());
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert_eq!(stdout.matches("finding").count(), 1, "{stdout}");
+    assert_eq!(stdout.matches("cli-test").count(), 1, "{stdout}");
 }

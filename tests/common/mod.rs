@@ -9,6 +9,25 @@ use spherecontact::scene::Scene;
 use spherecontact::{registry, solver};
 use std::path::{Path, PathBuf};
 
+/// A small valid case of the paper's spheres (hertz and mdr, three positions, 8 increments): the
+/// tests of the command line and of hostile inputs each break or change one thing of it.
+pub const SMALL_CASE: &str = r#"
+name = "cli-test"
+friction = 0.2
+solvers = ["hertz", "mdr"]
+
+[body1]
+radius = 0.1
+young = 70e9
+poisson = 0.3
+
+[path]
+unit = "um"
+delta_n = [0, 10, 10]
+delta_t = [0, 0, 1]
+substeps = 4
+"#;
+
 /// The crate's folder (where cases/ and reference/ live).
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
