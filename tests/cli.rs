@@ -3,9 +3,7 @@
 
 mod common;
 
-use common::root;
-use std::path::Path;
-use std::process::{Command, Output};
+use common::{root, spherecontact};
 
 /// A valid case: the small case with one check; each bad-input test breaks one rule of it.
 fn valid() -> String {
@@ -22,14 +20,6 @@ tolerance = 1e-3
 reason = "midpoint rule on 4000 springs"
 "#
     )
-}
-
-fn spherecontact(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_spherecontact"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
 }
 
 /// Writes `text` as case.toml in a fresh folder, runs `run` on it into out/, and returns

@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::spherecontact;
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -16,14 +17,6 @@ use spherecontact::solver::{self, SolveError, Solver};
 
 /// A valid case; each test changes one thing.
 const VALID: &str = common::SMALL_CASE;
-
-fn spherecontact(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_spherecontact"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
-}
 
 fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()

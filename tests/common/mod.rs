@@ -28,6 +28,15 @@ delta_t = [0, 0, 1]
 substeps = 4
 "#;
 
+/// Runs the `spherecontact` command with `args` in the folder `cwd`.
+pub fn spherecontact(args: &[&str], cwd: &Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
+}
+
 /// The crate's folder (where cases/ and reference/ live).
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
