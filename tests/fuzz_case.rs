@@ -424,6 +424,9 @@ fn judge(text: &str, solvers: &[Box<dyn Solver>], tally: &mut Tally) -> Option<S
             return match e.location {
                 Some((line, _)) if line > lines => Some(format!("located past the end: {e}")),
                 _ if e.message.is_empty() => Some("an empty message".into()),
+                _ if e.to_string().len() > 2_000 => {
+                    Some(format!("a message of {} bytes", e.to_string().len()))
+                }
                 _ => long_number_not_in(&e.message, text).map(|n| format!("{n}-digit number in: {e}")),
             };
         }

@@ -164,3 +164,27 @@ fn files_that_are_not_case_files_are_bad_input() {
             .collect(),
     );
 }
+
+#[test]
+fn deeply_nested_toml_is_bad_input_with_a_short_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 1_000_000;
+    let inputs = [
+        ("arrays.toml", format!("a = {}{}\n", "[".repeat(n), "]".repeat(n))),
+        (
+            "tables.toml",
+            format!("a = {}1{}\n", "{b=".repeat(100_000), "}".repeat(100_000)),
+        ),
+        ("keys.toml", format!("[{}]\n", vec!["a"; 200_000].join("."))),
+    ];
+    let judgements = inputs.iter().map(|(name, text)| {
+        let file = dir.path().join(name);
+        std::fs::write(&file, text).unwrap();
+        let message = judge_bad_input(&file, &[name, "recursion limit exceeded"])?;
+        match message.len() {
+            0..=2_000 => Ok(message),
+            n => Err(format!("{name}: a message of {n} bytes")),
+        }
+    });
+    assert_all(judgements.collect());
+}

@@ -30,10 +30,30 @@ impl CaseError {
         Self {
             file: file.to_path_buf(),
             location: source.map(|(text, span)| line_and_column(text, span.start)),
-            field: field.into(),
-            message: message.into(),
+            field: shortened(field.into(), MAX_FIELD_CHARS),
+            message: shortened(message.into(), MAX_MESSAGE_CHARS),
         }
     }
+}
+
+/// The longest field name shown [characters]: the validator's are under 40; a longer one comes
+/// from the input (a table name of 200 000 keys).
+const MAX_FIELD_CHARS: usize = 120;
+
+/// The longest message shown [characters]: ours are under 400; a message that echoes a huge input
+/// keeps its head and its tail (the allowed range).
+const MAX_MESSAGE_CHARS: usize = 1000;
+
+/// `text` cut to at most `max` characters around an ellipsis, head and tail kept.
+fn shortened(text: String, max: usize) -> String {
+    let count = text.chars().count();
+    if count <= max {
+        return text;
+    }
+    let half = (max - 3) / 2;
+    let head: String = text.chars().take(half).collect();
+    let tail: String = text.chars().skip(count - half).collect();
+    format!("{head} … {tail}")
 }
 
 /// The dotted field of TOML `text` at byte `offset` (`body1.young`, `checks[2].tolerance`), for
@@ -174,6 +194,18 @@ mod tests {
             "invalid type: floating point `1.7e308`, expected a string"
         );
         assert_eq!(shorten_numbers("line 3.5, 12 and 0.1"), "line 3.5, 12 and 0.1");
+    }
+
+    #[test]
+    fn huge_fields_and_messages_keep_their_head_and_tail() {
+        let e = CaseError::new(
+            Path::new("a"),
+            None,
+            "x".repeat(5000),
+            format!("{}(allowed: 1)", "y".repeat(9000)),
+        );
+        assert_eq!(e.field.chars().count(), MAX_FIELD_CHARS - 1);
+        assert!(e.message.len() <= MAX_MESSAGE_CHARS + 2 && e.message.ends_with("(allowed: 1)"));
     }
 
     #[test]
