@@ -264,7 +264,9 @@ impl Solver for CattaneoMindlin {
                     row.tangential_force = Some(q);
                     row.stick_radius = Some(stick_radius(c, shed, sliding_force));
                 }
-                if let (Some(position), true) = (step.position, c > 0.0) {
+                if let (Some(position), true) =
+                    (step.position.filter(|&p| scene.records_fields_at(p)), c > 0.0)
+                {
                     fields.push(surface_field(
                         scene,
                         position,
