@@ -11,6 +11,7 @@ use std::path::Path;
 use std::process::Command;
 
 use common::{case, root};
+use spherecontact::report::claims::Study;
 use spherecontact::report::{compare, paper};
 use spherecontact::solver::SolveError;
 use spherecontact::verify::{self, CaseRun};
@@ -54,7 +55,7 @@ fn reports_regenerate_identically_apart_from_timings() {
     let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
     for dir in &dirs {
         let run = paper_run();
-        paper::document(&run, &root().join("reference"))
+        paper::document(&run, &Study::none(), &root().join("reference"))
             .unwrap()
             .write(dir.path())
             .unwrap();
@@ -158,7 +159,7 @@ fn the_page_loads_in_headless_chromium_without_console_errors() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    paper::document(&paper_run(), &root().join("reference"))
+    paper::document(&paper_run(), &Study::none(), &root().join("reference"))
         .unwrap()
         .write(dir.path())
         .unwrap();
