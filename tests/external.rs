@@ -114,7 +114,7 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
         let row = history.at_position(1).unwrap();
         let p = row.normal_force.unwrap();
         // Tolerance 0.6 %: the finite hemisphere is +0.35 % stiffer than the half-space at
-        // 17 µm (mesh-independent, toolchain.md), discretisation at c/40 below 0.1 %.
+        // 17 µm (mesh-independent, docs/toolchain.md), discretisation at c/40 below 0.1 %.
         let error = p / hertz.force(dn) - 1.0;
         assert!(error.abs() < 6e-3, "{}: P error {error}", solver.name());
         // Rows between positions are not computed, never interpolated.
@@ -125,7 +125,7 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
             .all(|r| r.normal_force.is_none()));
         assert_eq!(history.at_position(0).unwrap().normal_force, Some(0.0));
         // p(r) read back through meshio: the pole pressure near Hertz's p0 (penalty nodal
-        // values at the pole are up to 4 % high: toolchain.md), zero well outside the contact.
+        // values at the pole are up to 4 % high: docs/toolchain.md), zero well outside the contact.
         let field = history.fields.iter().find(|f| f.position == 1).unwrap();
         let p0 = hertz.peak_pressure(dn);
         assert!(field.points[0][0] == 0.0 && (field.pressure[0] / p0 - 1.0).abs() < 0.05);

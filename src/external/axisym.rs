@@ -22,7 +22,7 @@ use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
-/// Penalty factor: k = KFAC · E / h. Reason (toolchain.md): at 1e3 the penetration at the pole
+/// Penalty factor: k = KFAC · E / h. Reason (docs/toolchain.md): at 1e3 the penetration at the pole
 /// is below 1e-3 h and P moves by less than 0.01 % when kfac doubles.
 pub const KFAC: f64 = 1e3;
 
@@ -277,7 +277,7 @@ impl<D: Deck> AxisymSolver<D> {
                 scene.max_contact_radius() / mesh.resolution
             ),
             warnings: vec![
-                "finite hemisphere, not a half-space: P(δn) ≈ 0.37 % above Hertz on every mesh (toolchain.md)".into(),
+                "finite hemisphere, not a half-space: P(δn) ≈ 0.37 % above Hertz on every mesh (docs/toolchain.md)".into(),
                 "rows between path positions are not computed (empty): the deck solves the distinct δn of the positions".into(),
             ],
             ..Metadata::default()
