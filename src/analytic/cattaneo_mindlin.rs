@@ -26,7 +26,7 @@
 //! The normal load must be constant while the tangential displacement changes; this solver
 //! reports itself not applicable otherwise (MDR covers varying loads).
 
-use crate::analytic::hertz::Hertz;
+use crate::hertz::Hertz;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};

@@ -68,7 +68,7 @@ impl Study {
         let solvers = map_solvers(run)
             .into_iter()
             .map(|name| {
-                let rungs = solver::by_name(&name)
+                let rungs = crate::registry::by_name(&name)
                     .map(|s| s.resolution_ladder(scene))
                     .unwrap_or_default();
                 let finest = rungs.len().saturating_sub(2);
