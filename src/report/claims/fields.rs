@@ -21,8 +21,10 @@ const COARSE_MESH: f64 = 0.1;
 
 /// One solve's measures at the focus position, and how it was resolved.
 struct Measured {
-    /// "h = c/55, 20 increments a segment".
+    /// "at h = c/58" for a study rung, "in this run (h = c/26, 100 increments a segment)".
     label: String,
+    /// "c/58" for a study rung, the label for the run.
+    short: String,
     measures: MapMeasures,
     /// The contact radius [m].
     c: f64,
@@ -52,14 +54,14 @@ impl Evidence {
             .map(|(_, m)| m)
     }
 
-    /// `value` at the best case, with the others in parentheses: "0.52 c at h = c/55 (…)".
+    /// `value` at the best case, the others in parentheses: "0.52 c at h = c/58 (c/29: 0.53 c; …)".
     fn across(&self, value: impl Fn(&Measured) -> Option<String>) -> String {
         let best = self.best();
         let others: Vec<String> = self
             .others()
-            .filter_map(|m| Some(format!("{} at {}", value(m)?, m.label)))
+            .filter_map(|m| Some(format!("{}: {}", m.short, value(m)?)))
             .collect();
-        let mut text = format!("{} at {}", value(best).unwrap_or_else(|| "—".into()), best.label);
+        let mut text = format!("{} {}", value(best).unwrap_or_else(|| "—".into()), best.label);
         if !others.is_empty() {
             text.push_str(&format!(" ({})", others.join("; ")));
         }
@@ -110,9 +112,7 @@ fn references(run: &CaseRun) -> References {
 
 /// The evidence of every map solver of the run.
 fn evidence(run: &CaseRun, study: &Study) -> Vec<Evidence> {
-    let label = |m: &MapMeasures, c: f64, increments: usize| {
-        format!("h = c/{:.0}, {increments} increments a segment", c / m.spacing)
-    };
+    let size = |m: &MapMeasures, c: f64| format!("c/{:.0}", c / m.spacing);
     let case_increments = run.case.scene.path.substeps().first().copied().unwrap_or(0);
     study::map_solvers(run)
         .into_iter()
@@ -124,7 +124,8 @@ fn evidence(run: &CaseRun, study: &Study) -> Vec<Evidence> {
                     s.rungs
                         .iter()
                         .map(|r| Measured {
-                            label: label(&r.measures, r.contact_radius, r.increments),
+                            label: format!("at h = {}", size(&r.measures, r.contact_radius)),
+                            short: size(&r.measures, r.contact_radius),
                             measures: r.measures.clone(),
                             c: r.contact_radius,
                         })
@@ -132,8 +133,13 @@ fn evidence(run: &CaseRun, study: &Study) -> Vec<Evidence> {
                 })
                 .unwrap_or_default();
             let rungs = cases.len();
+            let run_label = format!(
+                "this run (h = {}, {case_increments} increments a segment)",
+                size(&own, c)
+            );
             cases.push(Measured {
-                label: format!("{} (this run)", label(&own, c, case_increments)),
+                label: format!("in {run_label}"),
+                short: run_label,
                 measures: own,
                 c,
             });
@@ -149,7 +155,7 @@ pub fn claims(run: &CaseRun, study: &Study) -> Vec<Claim> {
     let fe_note = if evidence.iter().any(|e| is_finite_element(&e.solver)) {
         String::new()
     } else {
-        " The paper's own FE model: not measured (needs fem-3d).".to_owned()
+        ". The paper's FE model: not measured (needs fem-3d)".to_owned()
     };
     let focus = run.case.focus;
     let rows: [(&str, &str, fn(&Evidence, &References) -> (String, Verdict, String)); 4] = [

@@ -99,22 +99,18 @@ pub fn claims(run: &CaseRun, study: &Study, quoted: &Quoted) -> Vec<Claim> {
 pub fn section(run: &CaseRun, study: &Study, quoted: &Quoted) -> Section {
     let claims = claims(run, study, quoted);
     let table = Table {
-        header: ["claim (paper)", "measured", "verdict", "behind it"]
+        header: ["claim (paper)", "measured", "verdict", "finding", "behind it"]
             .iter()
             .map(|s| s.to_string())
             .collect(),
         rows: claims
             .iter()
             .map(|c| {
-                let verdict = if c.reading.is_empty() {
-                    c.verdict.label().to_owned()
-                } else {
-                    format!("{}: {}", c.verdict.label(), c.reading)
-                };
                 vec![
                     Cell::plain(&c.claim),
                     Cell::plain(&c.measured),
-                    Cell::with_class(verdict, c.verdict.class()),
+                    Cell::with_class(c.verdict.label(), c.verdict.class()),
+                    Cell::plain(&c.reading),
                     Cell::plain(&c.evidence),
                 ]
             })
@@ -156,11 +152,14 @@ fn study_paragraphs(run: &CaseRun, study: &Study) -> Vec<String> {
                 .collect();
             let mut text = format!(
                 "Resolution study of {} for the surface-field claims: the path cut at position {}, {} increments a \
-                 segment, at {}.",
+                 segment (the run itself: {}), at {}. Sizes h are the sample spacing over the contact radius c at \
+                 position {}.",
                 s.solver,
                 run.case.focus,
                 study::STUDY_INCREMENTS,
-                rungs.join("; ")
+                run.case.scene.path.substeps().first().copied().unwrap_or(0),
+                rungs.join("; "),
+                run.case.focus
             );
             if !s.problems.is_empty() {
                 text.push_str(&format!(" Problems: {}.", s.problems.join("; ")));

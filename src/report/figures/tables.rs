@@ -148,7 +148,7 @@ fn details_of(extra: &std::collections::BTreeMap<String, serde_json::Value>) -> 
         match value {
             serde_json::Value::Number(n) => match n.as_f64() {
                 Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => shown.push(format!("{key} = {x}")),
-                Some(x) => shown.push(format!("{key} = {x:.4}")),
+                Some(x) => shown.push(format!("{key} = {}", significant(x))),
                 None => shown.push(format!("{key} = {n}")),
             },
             serde_json::Value::String(text) if text.chars().count() <= 80 => {
@@ -162,6 +162,25 @@ fn details_of(extra: &std::collections::BTreeMap<String, serde_json::Value>) -> 
         shown.push(format!("more in solvers/<name>.json: {}", elsewhere.join(", ")));
     }
     shown
+}
+
+/// A measured number to four significant digits, without float noise: "0.1622", "3.492e-5",
+/// "2.079e6" ("0.0000" would hide a panel size of 35 µm).
+fn significant(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let magnitude = x.abs().log10().floor();
+    if !(-3.0..5.0).contains(&magnitude) {
+        return format!("{x:.3e}");
+    }
+    let decimals = (3.0 - magnitude).max(0.0) as usize;
+    let text = format!("{x:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    }
 }
 
 /// The solver table: what ran, how (model, resolution, version, facts) and how long; what did
@@ -216,5 +235,19 @@ pub fn solver_table(run: &CaseRun) -> Table {
                     .collect(),
             })
             .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn details_keep_four_significant_digits() {
+        assert_eq!(significant(3.4917e-5), "3.492e-5");
+        assert_eq!(significant(0.16218), "0.1622");
+        assert_eq!(significant(1238.347), "1238");
+        assert_eq!(significant(2079452.5), "2.079e6");
+        assert_eq!(significant(0.0), "0");
     }
 }
