@@ -4,7 +4,7 @@
 
 use anyhow::Result;
 
-use super::{figure, histories, missing, NORMAL_REFERENCE, TANGENTIAL_REFERENCE};
+use super::{data_of, histories, missing, NORMAL_REFERENCE, TANGENTIAL_REFERENCE};
 use crate::history::{History, Quantity};
 use crate::report::document::Figure;
 use crate::report::plot::{Axes, LinePlot, Series};
@@ -48,15 +48,17 @@ fn zero_list(zeros: &[(String, Vec<usize>)]) -> String {
 pub fn errors(run: &CaseRun) -> Result<Vec<Figure>> {
     let all = histories(run);
     let mut figures = Vec::new();
-    for (quantity, reference, measure, y_label) in [
+    for (quantity, symbol, reference, measure, y_label) in [
         (
             Quantity::NormalForce,
+            "P",
             NORMAL_REFERENCE,
             "relative",
             format!("|P − P_{NORMAL_REFERENCE}| / P_{NORMAL_REFERENCE}"),
         ),
         (
             Quantity::TangentialForce,
+            "Q",
             TANGENTIAL_REFERENCE,
             "relative to the reference's peak |Q|",
             format!("|Q − Q_{TANGENTIAL_REFERENCE}| / max |Q_{TANGENTIAL_REFERENCE}|"),
@@ -89,8 +91,10 @@ pub fn errors(run: &CaseRun) -> Result<Vec<Figure>> {
         if series.is_empty() {
             continue;
         }
-        let mut caption =
-            format!("Error of {quantity} against {reference} at every path position ({measure}).");
+        let mut caption = format!(
+            "Error of {symbol} against {reference} at every path position ({measure}); the solvers' markers \
+             are set side by side around each position so that equal errors do not hide each other."
+        );
         if !exact.is_empty() {
             caption.push_str(&format!(
                 " Identical to {reference} at every position (zero error, not drawn on the log axis): {}.",
@@ -104,20 +108,26 @@ pub fn errors(run: &CaseRun) -> Result<Vec<Figure>> {
             ));
         }
         caption.push_str(&missing(run));
-        let plot = LinePlot {
-            title: format!("{}: {} error against {reference}", run.case.name(), quantity),
+        // The data keep the positions; the drawing sets the solvers side by side around them.
+        let data = LinePlot {
+            title: format!("{}: {symbol} error against {reference}", run.case.name()),
             x_label: "path position".into(),
             y_label,
             series,
             axes: Axes::LogY,
         };
-        figures.push(figure(
-            &format!("{}-error", quantity.name().replace('_', "-")),
-            plot,
+        let mut plot = data.clone();
+        let count = plot.series.len() as f64;
+        for (k, series) in plot.series.iter_mut().enumerate() {
+            let shift = 0.5 * (k as f64 - (count - 1.0) / 2.0) / count;
+            series.runs.iter_mut().flatten().for_each(|p| p.0 += shift);
+        }
+        figures.push(Figure {
+            id: format!("{}-error", quantity.name().replace('_', "-")),
+            data: data_of(&data, "position", "error"),
+            svg: plot.to_svg()?,
             caption,
-            "position",
-            "error",
-        )?);
+        });
     }
     Ok(figures)
 }

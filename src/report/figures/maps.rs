@@ -37,7 +37,7 @@ impl Component {
             ),
             Component::TractionY => (
                 "traction-y-map",
-                "Transverse frictional traction q_y, which Cattaneo–Mindlin neglects",
+                "Transverse frictional traction q_y (Cattaneo–Mindlin neglects it)",
                 "q_y [MPa]",
             ),
             Component::Status => ("status-map", "Contact status (Figure 12)", "status"),

@@ -15,47 +15,49 @@ use crate::verify::CaseRun;
 /// Samples of the closed-form curves.
 const CURVE_POINTS: usize = 241;
 
-/// A field's component along a half-axis, as (r [µm], value [MPa]) for the samples that have it.
+/// A field's component along a half-axis up to `reach` [m], as (r [µm], value [MPa]) for the
+/// samples that have it.
 fn along(
     view: &FieldView,
     axis: HalfAxis,
+    reach: f64,
     value: &dyn Fn(&FieldView, usize) -> Option<f64>,
 ) -> Vec<(f64, f64)> {
     view.along(axis)
         .iter()
+        .filter(|probe| probe.r <= reach)
         .filter_map(|probe| Some((probe.r * 1e6, view.at(probe, |i| value(view, i))? * 1e-6)))
         .collect()
 }
 
-/// Every solver's profile of `value`: a profile once (axisymmetric), a map along x (line) and
-/// along y (markers); the solver named `reference` dashed.
+/// Every solver's profile of `value` up to `reach` [m]: a profile once (axisymmetric), a map
+/// along x (a line) and along y (markers alone: where the field is axisymmetric they sit on the
+/// line, where it is not they leave it); the solver named `reference` dashed.
 fn solver_series(
     fields: &[(String, FieldView)],
     reference: &str,
+    reach: f64,
     value: &dyn Fn(&FieldView, usize) -> Option<f64>,
 ) -> Vec<Series> {
     let mut series = Vec::new();
     for (name, view) in fields {
+        let x = along(view, HalfAxis::X, reach, value);
+        if x.is_empty() {
+            continue;
+        }
         if view.is_map() {
-            for (axis, label, style) in [
-                (HalfAxis::X, "x", Style::Line),
-                (HalfAxis::Y, "y", Style::Markers),
-            ] {
-                let points = along(view, axis, value);
-                if !points.is_empty() {
-                    series.push(Series::joined(format!("{name} along {label}"), points, style));
-                }
+            series.push(Series::joined(format!("{name} along x"), x, Style::Line));
+            let y = along(view, HalfAxis::Y, reach, value);
+            if !y.is_empty() {
+                series.push(Series::scattered(format!("{name} along y"), y));
             }
         } else {
-            let points = along(view, HalfAxis::X, value);
             let style = if name == reference {
                 Style::Reference
             } else {
                 Style::Line
             };
-            if !points.is_empty() {
-                series.push(Series::joined(name.clone(), points, style));
-            }
+            series.push(Series::joined(name.clone(), x, style));
         }
     }
     series
@@ -90,10 +92,16 @@ pub fn profiles(run: &CaseRun, position: usize) -> Result<Vec<Figure>> {
     let Some(step) = scene.steps().into_iter().find(|s| s.position == Some(position)) else {
         return Ok(Vec::new());
     };
-    let reach = reach(&fields);
+    // Beyond the contact every field is zero: show 30 % of c past its edge, no more.
+    let c = hertz.contact_radius(step.delta_n);
+    let reach = if c > 0.0 {
+        reach(&fields).min(1.3 * c)
+    } else {
+        reach(&fields)
+    };
     let mut figures = Vec::new();
 
-    let mut pressure = solver_series(&fields, NORMAL_REFERENCE, &|v, i| Some(v.pressure(i)));
+    let mut pressure = solver_series(&fields, NORMAL_REFERENCE, reach, &|v, i| Some(v.pressure(i)));
     pressure.push(Series::joined(
         NORMAL_REFERENCE,
         curve(reach, |r| hertz.pressure(step.delta_n, r)),
@@ -107,7 +115,9 @@ pub fn profiles(run: &CaseRun, position: usize) -> Result<Vec<Figure>> {
         format!("dashed: {NORMAL_REFERENCE} at δn = {:.4} µm.", step.delta_n * 1e6),
     )?);
 
-    let mut traction = solver_series(&fields, TANGENTIAL_REFERENCE, &|v, i| Some(v.traction(i)?[0]));
+    let mut traction = solver_series(&fields, TANGENTIAL_REFERENCE, reach, &|v, i| {
+        Some(v.traction(i)?[0])
+    });
     let mdr_force = history(run, TANGENTIAL_REFERENCE)
         .and_then(|h| h.at_position(position))
         .and_then(|row| row.tangential_force);

@@ -156,22 +156,24 @@ impl<'a> FieldView<'a> {
         }
     }
 
-    /// Probes along a half-axis, from the centre out, one per sample spacing: the samples on the
-    /// axis for a grid (the row or column through the centre) and a profile (the same on y as
-    /// on x: axisymmetric), interpolation in the triangles the axis crosses for a mesh.
+    /// Probes along a half-axis, from the centre out: the samples on the axis for a grid (the row
+    /// or column through the centre) and a profile (the same on y as on x: axisymmetric);
+    /// interpolation in the triangles the axis crosses, every half mesh size, for a mesh.
     pub fn along(&self, axis: HalfAxis) -> Vec<Probe> {
         match &self.layout {
             Layout::Profile => self.row(|p| HalfAxis::X.coordinates(p)),
             Layout::Grid { .. } => self.row(|p| axis.coordinates(p)),
             Layout::Triangles(triangles) => {
-                let h = self.spacing();
+                // Probes every half mesh size, and one at the mesh's edge.
+                let step = 0.5 * self.spacing();
                 let reach = (0..self.len())
                     .map(|i| axis.coordinates(self.point(i)).0)
                     .fold(0.0, f64::max);
-                let steps = (reach / h).ceil() as usize;
+                let steps = (reach / step).floor() as usize;
                 (0..=steps)
-                    .filter_map(|k| {
-                        let r = k as f64 * h;
+                    .map(|k| k as f64 * step)
+                    .chain((reach > steps as f64 * step).then_some(reach))
+                    .filter_map(|r| {
                         let weights = self.locate(triangles, axis.point(r))?;
                         Some(Probe { r, weights })
                     })

@@ -13,6 +13,10 @@ use super::{compose, fonts, register_font, text_width, tick_label};
 
 /// One panel's size [px].
 const PANEL: (u32, u32) = (380, 400);
+/// A panel's margin [px] (more on one side where the plotting area is made square).
+const MARGIN: u32 = 10;
+/// Height of a panel's x label area [px].
+const X_AREA: u32 = 50;
 /// Height of the title strip above the panels [px].
 const TITLE_STRIP: u32 = 34;
 /// Width of the colour bar's gradient [px].
@@ -244,11 +248,18 @@ impl MapPlot {
                 .iter()
                 .map(|v| text_width(&tick_label(*v, axis, false), fonts::TICK))
                 .try_fold(0, |m, w| w.map(|w| m.max(w)))?;
+            let y_area = widest + 40 + fonts::AXIS_TITLE as u32;
+            // A square plotting area, so that a circle looks round: the extra width or height
+            // goes to the right or bottom margin.
+            let (right, bottom) = square_margins(&panel.title, y_area)?;
             let mut chart = ChartBuilder::on(&root)
                 .caption(&panel.title, ("sans-serif", fonts::AXIS_TITLE))
-                .margin(10)
-                .x_label_area_size(50)
-                .y_label_area_size(widest + 40 + fonts::AXIS_TITLE as u32)
+                .margin_top(MARGIN)
+                .margin_left(MARGIN)
+                .margin_right(right)
+                .margin_bottom(bottom)
+                .x_label_area_size(X_AREA)
+                .y_label_area_size(y_area)
                 .build_cartesian_2d(-extent..extent, -extent..extent)
                 .map_err(|e| fail(&e))?;
             let format = |v: &f64| tick_label(*v, axis, false);
@@ -391,6 +402,22 @@ impl MapPlot {
         }
         Ok(Some((width, svg)))
     }
+}
+
+/// The right and bottom margins [px] that make a panel's plotting area square, measured on a
+/// throw-away drawing with equal margins.
+fn square_margins(title: &str, y_area: u32) -> Result<(u32, u32)> {
+    let mut scratch = String::new();
+    let root = SVGBackend::with_string(&mut scratch, PANEL).into_drawing_area();
+    let chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", fonts::AXIS_TITLE))
+        .margin(MARGIN)
+        .x_label_area_size(X_AREA)
+        .y_label_area_size(y_area)
+        .build_cartesian_2d(0.0..1.0, 0.0..1.0)
+        .map_err(|e| anyhow!("map panel `{title}`: {e}"))?;
+    let (w, h) = chart.plotting_area().dim_in_pixel();
+    Ok((MARGIN + w.saturating_sub(h), MARGIN + h.saturating_sub(w)))
 }
 
 /// A triangle's value from its corners': the mean level, or the status most corners have;

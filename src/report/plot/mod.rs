@@ -87,7 +87,8 @@ fn span(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
         (false, false) => (0.0, 1.0),
         (false, true) => (1e-3, 1.0),
         (true, true) if hi <= lo => (lo / 2.0, hi * 2.0),
-        (true, true) => (lo / 1.2, hi * 1.2),
+        // A fifth of a decade of margin: markers at the extremes stay clear of the axes.
+        (true, true) => (lo / 1.6, hi * 1.6),
         (true, false) if hi <= lo => (lo - 0.5 * lo.abs().max(1e-30), hi + 0.5 * hi.abs().max(1e-30)),
         (true, false) => {
             let pad = 0.04 * (hi - lo);
@@ -98,7 +99,7 @@ fn span(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
 
 /// A tick value as people write it.
 ///
-/// Linear axes: as many decimals as the axis span needs (two significant digits of the span),
+/// Linear axes: as many decimals as the axis span needs (three significant digits of the span),
 /// trailing zeros dropped, so 0.30000000000000004 prints "0.3" and 1000.0 prints "1000";
 /// beyond 10⁵ or below 10⁻³ in magnitude, scientific ("2.5e6"). Log axes: powers of ten as
 /// "10⁻⁵", other ticks as "2×10⁻⁵" (plotters' own labels print 1e-4 as "9.999999999e-5").
@@ -113,7 +114,7 @@ pub fn tick_label(value: f64, (lo, hi): (f64, f64), log: bool) -> String {
         return format!("{}e{exponent}", trim_zeros(mantissa));
     }
     let span = (hi - lo).abs().max(f64::MIN_POSITIVE);
-    let decimals = (1.0 - span.log10().floor()).clamp(0.0, 12.0) as usize;
+    let decimals = (2.0 - span.log10().floor()).clamp(0.0, 12.0) as usize;
     let text = trim_zeros(&format!("{value:.decimals$}"));
     if text == "-0" {
         "0".into()
