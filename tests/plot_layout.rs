@@ -348,15 +348,7 @@ fn defects(name: &str, svg: &str) -> Vec<String> {
 /// The report's figures from the paper's case, in-crate solvers, 10 increments a segment
 /// (the layout does not depend on the increments; the run takes seconds).
 fn report_figures() -> Vec<Figure> {
-    let mut case = common::case("cases/paper-fig7.toml");
-    let external: Vec<&str> = spherecontact::external::solvers()
-        .iter()
-        .map(|s| s.name())
-        .collect();
-    case.solvers.retain(|s| !external.contains(&s.as_str()));
-    case.checks.retain(|c| {
-        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
-    });
+    let mut case = common::paper_case_in_crate();
     let positions = case.scene.path.positions().to_vec();
     let segments = positions.len() - 1;
     case.scene.path = LoadingPath::try_new(positions, vec![10; segments]).expect("path");

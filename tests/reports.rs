@@ -11,25 +11,15 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use common::{case, root};
+use common::root;
 use spherecontact::report::claims::Study;
 use spherecontact::report::{compare, paper};
 use spherecontact::solver::SolveError;
 use spherecontact::verify::{self, CaseRun};
 
-/// The paper's case with the in-crate solvers only: these tests are about the reports, and the
-/// external decks (tested in tests/external.rs) would make them minutes long.
+/// The paper's case with the in-crate solvers.
 fn paper_run() -> CaseRun {
-    let mut case = case("cases/paper-fig7.toml");
-    let external: Vec<&str> = spherecontact::external::solvers()
-        .iter()
-        .map(|s| s.name())
-        .collect();
-    case.solvers.retain(|s| !external.contains(&s.as_str()));
-    case.checks.retain(|c| {
-        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
-    });
-    verify::run_case(case)
+    verify::run_case(common::paper_case_in_crate())
 }
 
 /// Text with the timing cells masked: HTML cells of class "timing", and the last Markdown cell of

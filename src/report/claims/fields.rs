@@ -148,6 +148,9 @@ fn evidence(run: &CaseRun, study: &Study) -> Vec<Evidence> {
         .collect()
 }
 
+/// A row's measurement from the evidence: (what was measured, verdict, finding).
+type Finding = fn(&Evidence, &References) -> (String, Verdict, String);
+
 /// The claims about the surface fields.
 pub fn claims(run: &CaseRun, study: &Study) -> Vec<Claim> {
     let evidence = evidence(run, study);
@@ -158,7 +161,7 @@ pub fn claims(run: &CaseRun, study: &Study) -> Vec<Claim> {
         ". The paper's FE model: not measured (needs fem-3d)".to_owned()
     };
     let focus = run.case.focus;
-    let rows: [(&str, &str, fn(&Evidence, &References) -> (String, Verdict, String)); 4] = [
+    let rows: [(&str, &str, Finding); 4] = [
         (
             "The contact status (stick zone) is axisymmetric (Figure 12)",
             "status-map",

@@ -149,8 +149,7 @@ pub fn measure(
     friction: f64,
     md: Option<&RadialProfile>,
 ) -> Option<(MapMeasures, f64)> {
-    let field = history.fields.iter().find(|f| f.position == position)?;
-    let measures = MapMeasures::of(&FieldView::of(field), friction, md)?;
+    let measures = MapMeasures::of(&FieldView::at_position(history, position)?, friction, md)?;
     let contact_radius = history.at_position(position)?.contact_radius?;
     Some((measures, contact_radius))
 }

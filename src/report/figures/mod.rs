@@ -68,12 +68,7 @@ fn missing(run: &CaseRun) -> String {
 pub fn fields_at(run: &CaseRun, position: usize) -> Vec<(String, FieldView<'_>)> {
     histories(run)
         .into_iter()
-        .filter_map(|(name, h)| {
-            h.fields
-                .iter()
-                .find(|f| f.position == position)
-                .map(|f| (name, FieldView::of(f)))
-        })
+        .filter_map(|(name, h)| Some((name, FieldView::at_position(h, position)?)))
         .collect()
 }
 

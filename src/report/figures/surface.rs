@@ -6,7 +6,7 @@
 //! Frame (as in `SurfaceField`): origin at the contact centre, x along δt, y across it; the
 //! traction is the one on body 1, signed so that ∫ q_x dA = Q.
 
-use crate::history::SurfaceField;
+use crate::history::{History, SurfaceField};
 
 /// How a field's samples cover the contact plane.
 #[derive(Clone, Debug, PartialEq)]
@@ -89,9 +89,23 @@ impl<'a> FieldView<'a> {
         Self { field, layout }
     }
 
+    /// The views of every field of `history`, in its order.
+    pub fn all(history: &'a History) -> impl Iterator<Item = FieldView<'a>> {
+        history.fields.iter().map(Self::of)
+    }
+
     /// The path position.
     pub fn position(&self) -> usize {
         self.field.position
+    }
+
+    /// The view of `history`'s field at path position `position`, if it has one.
+    pub fn at_position(history: &'a History, position: usize) -> Option<Self> {
+        history
+            .fields
+            .iter()
+            .find(|f| f.position == position)
+            .map(Self::of)
     }
 
     /// True when the field covers the plane (a grid or triangles), not only the x axis.
