@@ -175,16 +175,4 @@ fn percent(value: f64) -> String {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn finite_element_solvers_are_recognised_by_name() {
-        for name in ["fem-axisym", "fem-3d", "freefem-axisym", "fenicsx-3d"] {
-            assert!(is_finite_element(name), "{name}");
-        }
-        for name in ["bem", "mdr", "hertz", "thornton"] {
-            assert!(!is_finite_element(name), "{name}");
-        }
-    }
-}
+mod tests;
