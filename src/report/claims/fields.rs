@@ -102,7 +102,9 @@ fn references(run: &CaseRun) -> References {
     let mdr = history(run, TANGENTIAL_REFERENCE).and_then(|h| h.at_position(focus));
     References {
         mu_p0: scene.friction * hertz.peak_pressure(delta_n),
-        md_stick: mdr.and_then(|row| Some((row.stick_radius?, row.contact_radius?))),
+        md_stick: mdr
+            .and_then(|row| Some((row.stick_radius?, row.contact_radius?)))
+            .filter(|&(_, c)| c > 0.0),
         md: study::md_profile(run),
         cm_stick: mdr
             .and_then(|row| row.tangential_force)
@@ -146,6 +148,15 @@ fn evidence(run: &CaseRun, study: &Study) -> Vec<Evidence> {
             Some(Evidence { solver, cases, rungs })
         })
         .collect()
+}
+
+/// a / b, or 0 where b is not positive (no traction: nothing to compare with), never NaN.
+fn fraction(a: f64, b: f64) -> f64 {
+    if b > 0.0 {
+        a / b
+    } else {
+        0.0
+    }
 }
 
 /// A row's measurement from the evidence: (what was measured, verdict, finding).
@@ -207,7 +218,11 @@ pub fn claims(run: &CaseRun, study: &Study) -> Vec<Claim> {
 
 /// Stick semi-axes along x and y against each other and against MD.
 fn stick_zone(e: &Evidence, r: &References) -> (String, Verdict, String) {
-    let axes = |m: &Measured| m.measures.stick_axes.map(|[x, y]| [x / m.c, y / m.c]);
+    let axes = |m: &Measured| {
+        m.measures
+            .stick_axes
+            .map(|[x, y]| [fraction(x, m.c), fraction(y, m.c)])
+    };
     let mut measured = format!(
         "stick semi-axes a_x, a_y = {}",
         e.across(|m| axes(m).map(|[x, y]| format!("{x:.4} c, {y:.4} c ((a_y − a_x)/c = {:+.1e})", y - x)))
@@ -267,14 +282,14 @@ fn transverse_traction(e: &Evidence, _: &References) -> (String, Verdict, String
         "max |q_y| / max |q_x| = {}; {pattern}; |q| read along x and along y differs by ≤ {:.2} % of its peak, and \
          q_y adds ≤ {:.2} % of the peak to |q|",
         e.across(|m| ratio(m).map(|r| format!("{:.2} %", r * 100.0))),
-        best.axis_difference / peak * 100.0,
-        best.transverse_share / peak * 100.0
+        fraction(best.axis_difference, peak) * 100.0,
+        fraction(best.transverse_share, peak) * 100.0
     );
     let Some(r) = ratio(e.best()).filter(|&r| r > 0.0) else {
         return (measured, Verdict::NotConfirmed, "no transverse traction".into());
     };
     let resolved = e.change(ratio).is_none_or(|change| change < r);
-    let magnitude_round = best.axis_difference <= MAGNITUDE_AXISYMMETRY * peak;
+    let magnitude_round = fraction(best.axis_difference, peak) <= MAGNITUDE_AXISYMMETRY;
     match (resolved, magnitude_round) {
         (true, true) => (
             measured,
@@ -283,7 +298,7 @@ fn transverse_traction(e: &Evidence, _: &References) -> (String, Verdict, String
                 "the traction's direction is not axisymmetric (q_y up to {:.1} % of q_x), its magnitude |q| is, to {:.2} % \
                  of its peak",
                 r * 100.0,
-                best.axis_difference / peak * 100.0
+                fraction(best.axis_difference, peak) * 100.0
             ),
         ),
         (true, false) => (
@@ -301,7 +316,7 @@ fn transverse_traction(e: &Evidence, _: &References) -> (String, Verdict, String
 
 /// The departure from MD's traction, split into its transverse and parallel parts.
 fn mismatch(e: &Evidence, r: &References) -> (String, Verdict, String) {
-    let part = |m: &Measured, k: usize| m.measures.departure.map(|d| d[k] / r.mu_p0);
+    let part = |m: &Measured, k: usize| m.measures.departure.map(|d| fraction(d[k], r.mu_p0));
     let measured = format!(
         "RMS over the contact of the departure from MD's traction (mdr's q(r) along x), relative to μp0: transverse \
          q_y {}; parallel q_x − q_MD {}",
@@ -317,7 +332,7 @@ fn mismatch(e: &Evidence, r: &References) -> (String, Verdict, String) {
         );
     };
     let peak = best.measures.peak.map_or(0.0, |p| p.value);
-    let share = best.measures.transverse_share / peak;
+    let share = fraction(best.measures.transverse_share, peak);
     if transverse > parallel {
         (
             measured,
@@ -350,7 +365,7 @@ fn peak_location(e: &Evidence, r: &References) -> (String, Verdict, String) {
             format!(
                 "{:.2} MPa at r = {:.4} c, θ = {:.0}°",
                 p.value * 1e-6,
-                p.radius() / m.c,
+                fraction(p.radius(), m.c),
                 p.point[1].atan2(p.point[0]).to_degrees()
             )
         })),
@@ -379,7 +394,10 @@ fn peak_location(e: &Evidence, r: &References) -> (String, Verdict, String) {
     let smear = r.cm_stick.map(|cs| {
         let c = best.c;
         let h = COARSE_MESH * c;
-        r.mu_p0 * (cs * h).sqrt() / c / best.measures.peak.map_or(1.0, |p| p.value)
+        fraction(
+            r.mu_p0 * (cs * h).sqrt(),
+            c * best.measures.peak.map_or(0.0, |p| p.value),
+        )
     });
     let why = smear.map_or_else(String::new, |s| {
         format!(

@@ -11,9 +11,14 @@ use crate::solver::Solver;
 /// The paper's spheres and friction along the first five positions of its path (µm), with
 /// `solvers`, 4 increments a segment.
 fn run(solvers: &[&str]) -> CaseRun {
+    run_with(solvers, 0.2)
+}
+
+/// The same with friction coefficient `friction`.
+fn run_with(solvers: &[&str], friction: f64) -> CaseRun {
     let list: Vec<String> = solvers.iter().map(|s| format!("\"{s}\"")).collect();
     let text = format!(
-        "friction = 0.2\nfocus = 5\nsolvers = [{}]\n[body1]\nradius = 0.1\nyoung = 70e9\npoisson = 0.3\n\
+        "friction = {friction}\nfocus = 5\nsolvers = [{}]\n[body1]\nradius = 0.1\nyoung = 70e9\npoisson = 0.3\n\
          [path]\nunit = \"um\"\ndelta_n = [0, 10, 14, 17, 17, 17]\ndelta_t = [0, 0, 1, 1, 2, 3]\nsubsteps = 4\n",
         list.join(", ")
     );
@@ -148,5 +153,17 @@ fn finite_element_solvers_are_recognised_by_name() {
     }
     for name in ["bem", "mdr", "hertz", "thornton"] {
         assert!(!is_finite_element(name), "{name}");
+    }
+}
+
+#[test]
+fn without_friction_nothing_prints_as_nan_or_infinity() {
+    let run = run_with(&["hertz", "mdr", "bem"], 0.0);
+    let ladder: Vec<Box<dyn Solver>> = vec![Box::new(Bem::with_grid(16)), Box::new(Bem::with_grid(24))];
+    let study = Study::of(&run, vec![("bem".into(), ladder)], 2);
+    for c in claims(&run, &study, &quoted()) {
+        let text = format!("{} {} {}", c.measured, c.reading, c.evidence).to_lowercase();
+        let words: Vec<&str> = text.split(|ch: char| !ch.is_alphanumeric()).collect();
+        assert!(!words.contains(&"nan") && !words.contains(&"inf"), "{c:?}");
     }
 }
