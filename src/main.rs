@@ -430,7 +430,11 @@ fn report(case: &Path, out: Option<PathBuf>, kind: Report) -> Result<ExitCode, I
     bar.finish_and_clear();
     let document = match kind {
         Report::Compare => spherecontact::report::compare::document(&run),
-        Report::Paper => spherecontact::report::paper::document(&run, &reference_dir),
+        Report::Paper => {
+            // The surface-field claims at the finest rungs of each map solver's ladder.
+            let study = spherecontact::report::claims::Study::of_ladders(&run);
+            spherecontact::report::paper::document(&run, &study, &reference_dir)
+        }
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;
     history_files::write_all(&out.join("solvers"), &run)

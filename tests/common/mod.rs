@@ -126,3 +126,18 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
         fields: Default::default(),
     }
 }
+
+/// The paper's case with the in-crate solvers only (the external decks, tested in
+/// tests/external.rs, would make report tests minutes long), and the checks that need no deck.
+pub fn paper_case_in_crate() -> Case {
+    let mut case = case("cases/paper-fig7.toml");
+    let external: Vec<&str> = spherecontact::external::solvers()
+        .iter()
+        .map(|s| s.name())
+        .collect();
+    case.solvers.retain(|s| !external.contains(&s.as_str()));
+    case.checks.retain(|c| {
+        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
+    });
+    case
+}
