@@ -36,6 +36,7 @@ pub mod fit;
 pub mod hertz;
 pub mod history;
 pub mod io;
+pub mod number;
 pub mod pair;
 pub mod path;
 pub mod registry;
