@@ -380,7 +380,7 @@ fn broken_promise(case: &Case) -> Option<String> {
 fn cheap_solvers() -> Vec<Box<dyn Solver>> {
     let mut solvers: Vec<Box<dyn Solver>> = registry::registry()
         .into_iter()
-        .filter(|s| !["mdr", "bem", "fem-axisym"].contains(&s.name()))
+        .filter(|s| !["mdr", "bem", "fem-axisym", "fem-3d"].contains(&s.name()))
         .filter(|s| {
             !spherecontact::external::solvers()
                 .iter()

@@ -27,3 +27,4 @@ pub mod quadrature;
 pub mod solid3d;
 
 pub use axisym::FemAxisym;
+pub use solid3d::FemSolid3d;
