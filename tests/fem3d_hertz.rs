@@ -134,16 +134,15 @@ fn refinement_study_against_fem_axisym() {
     }
     // Measured (P, c, p0 in %): c/6 (+0.126, −0.35, −0.57), c/10 (+0.087, −0.12, +0.055),
     // c/14 (+0.072, −0.04, +0.062) at 17 µm; the same trend at 25 µm.
-    for position in 0..2 {
-        let [coarse, default, fine] = [0, 1, 2].map(|k| table[k][position]);
+    for position in 1..=2 {
+        let [coarse, default, fine] = [0, 1, 2].map(|k: usize| table[k][position - 1]);
         // P and c: the error falls at every refinement (P as h^1.2 towards a 0.03–0.05 %
         // remainder of the coarse far field, which pole refinement does not touch).
         for q in 0..2 {
             assert!(
                 // 1e-4: the mesh-to-mesh scatter of the c estimate near its limit.
                 fine[q].abs() < default[q].abs() + 1e-4 && default[q].abs() < coarse[q].abs(),
-                "quantity {q} at position {}: {coarse:?} {default:?} {fine:?}",
-                position + 1
+                "quantity {q} at position {position}: {coarse:?} {default:?} {fine:?}"
             );
         }
         // At c/14 all three within 0.1 % of fem-axisym: p0 carries P^(1/3) of the remainder.

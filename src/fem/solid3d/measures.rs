@@ -5,7 +5,7 @@
 //! profile p0 √(1 − r²/c²) is (2/5) c², so c = √(5 ⟨r²⟩ / 2). An integral, it does not depend on
 //! where the discrete contact edge falls between nodes: at pole size c/8 the outermost loaded node
 //! lies 2 % inside c and nodal p² fits at the edge scatter by 0.1–6 % with the band chosen
-//! (measured against fem-axisym on the paper's spheres), while the moment agrees to 0.1 %. It
+//! (measured against fem-axisym on the paper's spheres), while the moment agrees to 0.12 %. It
 //! assumes Hertz's shape of the profile; the finite body departs from it by much less (its c and
 //! p0 follow its P as P^(1/3), fem-axisym), and the check against fem-axisym's edge fit, which
 //! assumes no shape, bounds what is left. The integrals use the contact rule's weights w_j

@@ -277,7 +277,9 @@ impl Run {
             ),
             (
                 "c_method",
-                json!("c = sqrt(5/2 <r^2>), <r^2> the pressure-weighted mean of r^2 (Hertz profile: 2/5 c^2)"),
+                json!(
+                    "c = sqrt(5/2 <r^2>), <r^2> the pressure-weighted mean of r^2 (Hertz profile: 2/5 c^2)"
+                ),
             ),
         ]
         .into_iter()
