@@ -21,6 +21,6 @@ pub fn by_name(name: &str) -> Option<Box<dyn Solver>> {
 }
 
 /// The names of every solver of this build, in listing order.
-pub fn names() -> Vec<&'static str> {
-    registry().iter().map(|s| s.name()).collect()
+pub fn names() -> Vec<String> {
+    registry().iter().map(|s| s.name().to_owned()).collect()
 }

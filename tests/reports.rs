@@ -19,14 +19,13 @@ use spherecontact::verify::{self, CaseRun};
 /// external decks (tested in tests/external.rs) would make them minutes long.
 fn paper_run() -> CaseRun {
     let mut case = case("cases/paper-fig7.toml");
-    let external: Vec<&str> = spherecontact::external::solvers()
+    let external: Vec<String> = spherecontact::external::solvers()
         .iter()
-        .map(|s| s.name())
+        .map(|s| s.name().to_owned())
         .collect();
-    case.solvers.retain(|s| !external.contains(&s.as_str()));
-    case.checks.retain(|c| {
-        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
-    });
+    case.solvers.retain(|s| !external.contains(s));
+    case.checks
+        .retain(|c| !external.contains(&c.solver) && !external.contains(&c.reference.to_string()));
     verify::run_case(case)
 }
 

@@ -32,13 +32,18 @@
 //! reason = "why this tolerance"         # required unless informational = true
 //! ```
 //!
+//! A case may also define solvers of its own: a program run as a solver (`[[command_solvers]]`)
+//! and results computed elsewhere (`[[stored_results]]`); see [`case_solvers`].
+//!
 //! Every rule broken gives a [`CaseError`] naming the file, the field, its line and column where
 //! known, and the allowed range.
 
+pub mod case_solvers;
 mod error;
 mod raw;
 pub mod reference;
 
+pub use case_solvers::CaseSolver;
 pub use error::CaseError;
 
 use std::collections::BTreeSet;
@@ -51,6 +56,7 @@ use crate::pair::{Body, ContactPair, Material};
 use crate::path::{LoadingPath, Position};
 use crate::registry;
 use crate::scene::Scene;
+use crate::solver::Solver;
 use raw::{RawBody, RawCase, RawCheck, RawPath};
 use reference::LoadError;
 
@@ -73,6 +79,8 @@ pub struct Case {
     pub focus: usize,
     /// Its checks.
     pub checks: Vec<CheckSpec>,
+    /// The solvers the case defines itself (commands, stored results).
+    pub own_solvers: Vec<CaseSolver>,
 }
 
 impl Case {
@@ -89,12 +97,26 @@ impl Case {
             let span = e.span().map(|s| (text, s));
             CaseError::new(file, span, "", e.message().to_owned())
         })?;
-        Validator { file, text }.case(raw)
+        Validator {
+            file,
+            text,
+            own: Vec::new(),
+        }
+        .case(raw)
     }
 
     /// The case's name (its scene's).
     pub fn name(&self) -> &str {
         &self.scene.name
+    }
+
+    /// The solver called `name`: one the case defines, else one of this build.
+    pub fn solver(&self, name: &str) -> Option<Box<dyn Solver>> {
+        self.own_solvers
+            .iter()
+            .find(|s| s.name() == name)
+            .map(CaseSolver::solver)
+            .or_else(|| registry::by_name(name))
     }
 
     /// Every solver the case needs: its own list, then those its checks refer to.
@@ -118,6 +140,8 @@ impl Case {
 struct Validator<'a> {
     file: &'a Path,
     text: &'a str,
+    /// The names of the solvers the case defines itself.
+    own: Vec<String>,
 }
 
 impl Validator<'_> {
@@ -146,7 +170,7 @@ impl Validator<'_> {
         }
     }
 
-    fn case(&self, raw: RawCase) -> Result<Case, CaseError> {
+    fn case(mut self, raw: RawCase) -> Result<Case, CaseError> {
         let friction = self.number(
             &raw.friction,
             "friction",
@@ -167,6 +191,8 @@ impl Validator<'_> {
             ));
         }
         let path = self.path(&raw.path)?;
+        let own_solvers = self.case_solvers(&raw.command_solvers, &raw.stored_results, &path)?;
+        self.own = own_solvers.iter().map(|s| s.name().to_owned()).collect();
         let solvers = self.solvers(&raw.solvers)?;
         let name = raw.name.unwrap_or_else(|| {
             self.file
@@ -192,6 +218,7 @@ impl Validator<'_> {
             },
             solvers,
             checks,
+            own_solvers,
         })
     }
 
@@ -352,10 +379,11 @@ impl Validator<'_> {
     }
 
     fn solver_name(&self, name: &Spanned<String>, field: &str) -> Result<String, CaseError> {
-        if registry::by_name(name.get_ref()).is_some() {
+        if self.own.contains(name.get_ref()) || registry::by_name(name.get_ref()).is_some() {
             return Ok(name.get_ref().clone());
         }
-        let known = registry::names();
+        let mut known = registry::names();
+        known.extend(self.own.iter().cloned());
         Err(self.error(
             name,
             field,
