@@ -19,8 +19,10 @@ use spherecontact::verify::{self, CaseRun};
 /// external decks (tested in tests/external.rs) would make them minutes long.
 fn paper_run() -> CaseRun {
     let mut case = case("cases/paper-fig7.toml");
+    // The decks and the DEM codes (tested in tests/external.rs and tests/dem_codes.rs).
     let external: Vec<String> = spherecontact::external::solvers()
         .iter()
+        .chain(&spherecontact::dem::solvers())
         .map(|s| s.name().to_owned())
         .collect();
     case.solvers.retain(|s| !external.contains(s));
