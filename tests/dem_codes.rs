@@ -164,7 +164,11 @@ fn yade_mindlin_deresiewitz_gives_no_tangential_force() {
         let (p, reference) = (row.normal_force.unwrap(), hertz.force(row.delta_n));
         // Reason: as for the closed forms above, the overlap's rounding 1.5 · 4ε(R1 + R2)/δ.
         let rounding = 1.5 * 4.0 * f64::EPSILON * 0.2 / row.delta_n.max(1e-6) + 1e-14;
-        assert!((p - reference).abs() <= rounding * reference, "step {}: P {p} against {reference}", row.step);
+        assert!(
+            (p - reference).abs() <= rounding * reference,
+            "step {}: P {p} against {reference}",
+            row.step
+        );
     }
 }
 
@@ -184,4 +188,51 @@ fn missing_codes_are_not_available_and_a_flat_is_not_applicable() {
     flat.pair.body2.radius = f64::INFINITY;
     let e = Lammps::new(TangentialModel::Mindlin).solve(&flat).unwrap_err();
     assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
+}
+
+#[test]
+fn the_scoreboard_measures_what_the_informational_checks_measure() {
+    use spherecontact::check::Reference;
+    use spherecontact::report::dem_scoreboard;
+    let mut case = common::case("cases/paper-fig7.toml");
+    // MDR, the built-in laws and the codes (not available where not installed); no FEM or BEM.
+    let wanted = |name: &str| {
+        name == "mdr"
+            || [
+                "hertz-mindlin-spring",
+                "thornton",
+                "md-incremental",
+                "walton-braun",
+            ]
+            .contains(&name)
+            || name.starts_with("lammps-")
+            || name.starts_with("yade-")
+    };
+    case.solvers.retain(|s| wanted(s));
+    case.checks
+        .retain(|c| wanted(&c.solver) && matches!(&c.reference, Reference::Solver(r) if r == "mdr"));
+    let run = spherecontact::verify::run_case(case);
+    let scores = dem_scoreboard::scores(&run);
+    assert_eq!(scores.len(), 9, "four built-in laws and five code solvers");
+    for outcome in &run.outcomes {
+        let score = scores.iter().find(|s| s.solver == outcome.spec.solver).unwrap();
+        match (&score.distances, outcome.error) {
+            (Ok((worst, at_positions)), Some(error)) => {
+                assert_eq!(*worst, error, "{}", score.solver);
+                assert_eq!(at_positions.len(), 12);
+                assert!(at_positions.iter().all(|d| d <= worst));
+            }
+            (Err(why), None) => assert_eq!(why, "not available", "{}", score.solver),
+            other => panic!("{}: {other:?}", score.solver),
+        }
+    }
+    let section = dem_scoreboard::section(&run);
+    assert_eq!(section.title, dem_scoreboard::TITLE);
+    assert_eq!(section.tables[0].rows.len(), 9);
+    // The spring law is far from MDR (no micro-slip): the board must show it, not hide it.
+    let spring = scores
+        .iter()
+        .find(|s| s.solver == "hertz-mindlin-spring")
+        .unwrap();
+    assert!(spring.distances.as_ref().unwrap().0 > 0.1);
 }

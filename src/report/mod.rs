@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod compare;
+pub mod dem_scoreboard;
 pub mod document;
 pub mod figures;
 pub mod history_files;

@@ -190,6 +190,7 @@ pub fn document(run: &CaseRun, reference_dir: &Path) -> Result<Document> {
         ),
         paper_numbers(run, reference_dir)?,
         figure_section("Errors against the references", figures::errors(run)?),
+        super::dem_scoreboard::section(run),
         checks_section(run),
     ];
     Ok(Document {
