@@ -332,7 +332,7 @@ mod tests {
         let good = text(&steps, 1.0);
         let lines: Vec<&str> = good.lines().collect();
         let cases = [
-            (lines[..5].join("\n"), "5 rows for a path of 9 steps"),
+            (lines[..5].join("\n"), "4 rows for a path of 9 steps"),
             (good.replace("normal_force", "force"), "unknown column `force`"),
             (good.replacen(",1e1\n", ",1e1,3\n", 1), "6 cells in a row"),
             (good.replacen(",1e1\n", ",NaN\n", 1), "`NaN` is not finite"),
