@@ -29,6 +29,7 @@ pub mod bem;
 pub mod bench;
 pub mod case;
 pub mod check;
+pub mod contact;
 pub mod dem;
 pub mod exchange;
 pub mod external;
