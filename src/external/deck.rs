@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use super::geo::MeshFiles;
-use super::process::{self, Ending, Job};
+use super::process::{Ending, Job};
 use super::toolchain::{Tool, Toolchain};
 
 /// The numbers a deck template is filled with: mm, N, MPa (the decks' units).
@@ -88,24 +88,7 @@ pub trait Deck: Send + Sync + Clone {
 
 /// The reason a finished run failed, in words, or `None` if it succeeded.
 pub fn failure(deck: &impl Deck, ending: &Ending, timeout: Duration) -> Option<String> {
-    match ending {
-        Ending::Exited(0) => None,
-        Ending::Exited(code) => Some(format!(
-            "{} exited with code {code}: {}",
-            deck.tool().name(),
-            deck.exit_code_meaning(*code)
-        )),
-        Ending::Signalled(signal) => Some(format!(
-            "{} crashed with {}",
-            deck.tool().name(),
-            process::signal_name(*signal)
-        )),
-        Ending::TimedOut => Some(format!(
-            "{} did not finish within {} s: killed with its children",
-            deck.tool().name(),
-            timeout.as_secs()
-        )),
-    }
+    ending.failure(deck.tool().name(), timeout, |code| deck.exit_code_meaning(code))
 }
 
 /// A run directory whose files are removed on success and kept on failure.

@@ -13,12 +13,15 @@
 //! [`Unavailable`](crate::solver::SolveError::Unavailable), never a pass.
 
 pub mod axisym;
+pub mod command;
 pub mod deck;
 pub mod fenicsx;
 pub mod freefem;
 pub mod geo;
 pub mod process;
+pub mod program;
 pub mod readback;
+pub mod stored;
 pub mod toolchain;
 
 use crate::solver::Solver;

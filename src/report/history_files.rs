@@ -9,9 +9,7 @@ use crate::io::write_atomically;
 
 /// The CSV header: the path columns, then every quantity.
 pub fn csv_header() -> Vec<&'static str> {
-    let mut header = vec!["step", "position", "delta_n", "delta_t"];
-    header.extend(Quantity::ALL.iter().map(|q| q.name()));
-    header
+    crate::exchange::results_csv::columns()
 }
 
 /// The CSV text of a history.
