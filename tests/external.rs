@@ -113,32 +113,133 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
         let history = solver::run(solver.as_ref(), &scene).unwrap();
         let row = history.at_position(1).unwrap();
         let p = row.normal_force.unwrap();
-        // Tolerance 0.6 %: the finite hemisphere is +0.35 % stiffer than the half-space at
-        // 17 µm (mesh-independent, toolchain.md), discretisation at c/40 below 0.1 %.
+        // Tolerance 0.6 %: the finite hemisphere (axial grip) is +0.37 % stiffer than the
+        // half-space at 17 µm on every mesh (docs/external-decks.md), discretisation at c/40
+        // below 0.1 %.
         let error = p / hertz.force(dn) - 1.0;
         assert!(error.abs() < 6e-3, "{}: P error {error}", solver.name());
-        // Rows between positions are not computed, never interpolated.
-        assert!(history
-            .steps
-            .iter()
-            .filter(|r| r.position.is_none())
-            .all(|r| r.normal_force.is_none()));
+        // Every step is computed: P rises with δn; a normal-only path has no Q.
+        let normal: Vec<f64> = history.steps.iter().map(|r| r.normal_force.unwrap()).collect();
+        assert!(normal.windows(2).all(|w| w[1] > w[0]), "{normal:?}");
+        assert!(history.steps.iter().all(|r| r.tangential_force.is_none()));
         assert_eq!(history.at_position(0).unwrap().normal_force, Some(0.0));
-        // p(r) read back through meshio: the pole pressure near Hertz's p0 (penalty nodal
-        // values at the pole are up to 4 % high: toolchain.md), zero well outside the contact.
-        let field = history.fields.iter().find(|f| f.position == 1).unwrap();
+        // p0 and c from the nodal ring forces as in fem-axisym: the finite body adds +0.12 %
+        // (p0, c ~ P^(1/3)); the fits are within 0.2 % (p0) and 0.3 % (c) at c/40.
         let p0 = hertz.peak_pressure(dn);
-        assert!(field.points[0][0] == 0.0 && (field.pressure[0] / p0 - 1.0).abs() < 0.05);
         let c = hertz.contact_radius(dn);
+        assert!((row.peak_pressure.unwrap() / p0 - 1.0).abs() < 3e-3, "{row:?}");
+        assert!((row.contact_radius.unwrap() / c - 1.0).abs() < 5e-3, "{row:?}");
+        // The field at position 1: the pole carries the fitted p0, zero well outside.
+        let field = history.fields.iter().find(|f| f.position == 1).unwrap();
+        assert!(field.points[0][0] == 0.0 && field.pressure[0] == row.peak_pressure.unwrap());
         assert!(field
             .points
             .iter()
             .zip(&field.pressure)
             .all(|(x, &p)| x[0] < 1.1 * c || p == 0.0));
+        assert!(field.traction.is_none() && field.stick.is_none());
         forces.push(p);
     }
-    // Same mesh, same discretisation class (P2, penalty): within 0.2 %.
-    assert!((forces[0] / forces[1] - 1.0).abs() < 2e-3, "{forces:?}");
+    // Same mesh, same model, penalty and nodal quadrature: measured 2e-6 apart.
+    assert!((forces[0] / forces[1] - 1.0).abs() < 1e-4, "{forces:?}");
+}
+
+/// The paper's spheres pressed to δn = 17 µm (4 increments), sheared to δt = 3 µm (6) and back to
+/// −3 µm (12): partial slip, reversal, and gross sliding is not reached (δs = 4.13 µm).
+fn frictional_scene() -> Scene {
+    let mut scene = scene_17um();
+    let um = |delta_n: f64, delta_t: f64| Position {
+        delta_n: delta_n * 1e-6,
+        delta_t: delta_t * 1e-6,
+    };
+    scene.path = LoadingPath::try_new(
+        vec![um(0.0, 0.0), um(17.0, 0.0), um(17.0, 3.0), um(17.0, -3.0)],
+        vec![4, 6, 12],
+    )
+    .unwrap();
+    scene
+}
+
+/// Both decks walk a frictional path with history: Q against MDR within the finite body's
+/// measured offset, against each other within what their geometry (curved against straight
+/// edges) explains, Coulomb's bound on the fields, the stick zone shrinking under load and
+/// reset by the reversal. At pole size c/20 (a third of the default's cost).
+#[test]
+fn the_decks_walk_a_frictional_path_with_history() {
+    if !tools_present("the_decks_walk_a_frictional_path_with_history") {
+        return;
+    }
+    let scene = frictional_scene();
+    let h = scene.max_contact_radius() / 20.0;
+    let mdr = solver::run(solver::by_name("mdr").unwrap().as_ref(), &scene).unwrap();
+    let peak = mdr.peak(Quantity::TangentialForce);
+    let mut histories = Vec::new();
+    for deck in [at_resolution(FreeFem, h), at_resolution(Fenicsx, h)] {
+        let history = solver::run(deck.as_ref(), &scene).unwrap();
+        assert_eq!(history.metadata.extra["fourier_modes"], serde_json::json!([0, 1]));
+        assert_eq!(history.metadata.extra["grip"], "rigid");
+        assert_eq!(history.metadata.extra["capped_steps"], serde_json::json!([]));
+        let q: Vec<f64> = history
+            .steps
+            .iter()
+            .map(|r| r.tangential_force.unwrap())
+            .collect();
+        // Loading: Q rises; after the reversal at step 10 it falls.
+        assert!(q[4..=10].windows(2).all(|w| w[1] > w[0]), "{q:?}");
+        assert!(q[10..].windows(2).all(|w| w[1] < w[0]), "{q:?}");
+        // Against exact MD on the half-space: the gripped hemisphere is ≈ 4 % softer in shear,
+        // which puts Q 2.4 % below MD in partial slip and up to 3 % of the peak after a
+        // reversal (measured on the paper path, docs/external-decks.md); 4 % of the peak.
+        for (row, reference) in history.steps.iter().zip(&mdr.steps) {
+            let error = (row.tangential_force.unwrap() - reference.tangential_force.unwrap()).abs() / peak;
+            assert!(error < 4e-2, "{}: step {} Q error {error}", deck.name(), row.step);
+        }
+        // The stick zone: the whole contact before the shift, shrinking while Q rises.
+        let stick: Vec<f64> = history
+            .steps
+            .iter()
+            .map(|r| r.stick_radius.unwrap_or(0.0))
+            .collect();
+        assert_eq!(stick[4], history.steps[4].contact_radius.unwrap());
+        assert!(
+            stick[5..=10].windows(2).all(|w| w[1] <= w[0]) && stick[10] < 0.8 * stick[4],
+            "{stick:?}"
+        );
+        assert!(
+            stick[11] > stick[10],
+            "the reversal sticks the contact again: {stick:?}"
+        );
+        // Fields at positions: |q_x| <= μ p everywhere, = μ p on slipping nodes in contact.
+        let field = history.fields.iter().find(|f| f.position == 2).unwrap();
+        let traction = field.traction.as_ref().unwrap();
+        let sticking = field.stick.as_ref().unwrap();
+        for ((q, p), &stuck) in traction.iter().zip(&field.pressure).zip(sticking) {
+            let bound = scene.friction * p;
+            assert!(
+                q[0].abs() <= bound * (1.0 + 1e-9) + 1.0,
+                "q {} > μp {bound}",
+                q[0]
+            );
+            if *p > 0.0 && !stuck {
+                assert!(
+                    (q[0].abs() - bound).abs() <= 1e-9 * bound + 1.0,
+                    "slip: q {} μp {bound}",
+                    q[0]
+                );
+            }
+        }
+        histories.push(history);
+    }
+    // Same model, mesh and increments; straight (FreeFEM) against curved (dolfinx) edges:
+    // measured 4e-5 of the peak on the paper path at c/40; 5e-4 of the peak.
+    for (a, b) in histories[0].steps.iter().zip(&histories[1].steps) {
+        let error = (a.tangential_force.unwrap() - b.tangential_force.unwrap()).abs() / peak;
+        assert!(
+            error < 5e-4,
+            "step {}: decks differ by {error} of the peak",
+            a.step
+        );
+    }
 }
 
 /// RMS of `field`'s pressure against `reference`'s (linearly interpolated between its points)
@@ -260,39 +361,93 @@ fn a_hanging_deck_is_killed_at_the_timeout_with_its_children() {
     assert!(start.elapsed() < Duration::from_secs(60));
 }
 
+/// A stand-in deck (Python, run as the FEniCSx deck) that writes well-formed output for every
+/// step of `path.txt`: steps.csv, surface.csv (three open nodes) and VTU field files at positions
+/// through meshio; `fault` is Python run last, to spoil one of them.
+fn stand_in_deck(fault: &str) -> String {
+    format!(
+        r#"import numpy as np, meshio
+R = 100.0
+rows = [l.split() for l in open("path.txt").read().splitlines()[1:]]
+radii = [0.0, 0.1, 0.2]
+with open("steps.csv", "w") as f, open("surface.csv", "w") as g:
+    f.write("step,d_mm,t_mm,P_contact_N,P_top_N,Q_N,iterations_normal,iterations_tangential,outcome,field_file\n")
+    g.write("step,r_mm,weight_mm2,gap_mm,p_MPa,qx_MPa,stick,slip_mm\n")
+    for step, d, t, position in rows:
+        field = "field_%s.vtu" % position if int(position) >= 0 else "-"
+        f.write("%s,%s,%s,0.0,,0.0,1,1,1,%s\n" % (step, d, t, field))
+        for r in radii:
+            g.write("%s,%r,%r,0.001,0.0,0.0,0,0.0\n" % (step, r, 0.05 * r))
+        if field != "-":
+            points = np.array([[r, R - np.sqrt(R * R - r * r), 0.0] for r in radii])
+            meshio.write_points_cells(field, points, [("vertex", np.array([[0], [1], [2]]))],
+                                      point_data={{"pressure": np.zeros(3), "u": np.zeros((3, 3))}})
+{fault}
+"#
+    )
+}
+
 #[test]
-fn missing_truncated_or_nan_output_fails_clearly() {
-    if !tools_present("missing_truncated_or_nan_output_fails_clearly") {
+fn missing_truncated_nan_or_garbage_output_fails_clearly() {
+    if !tools_present("missing_truncated_nan_or_garbage_output_fails_clearly") {
         return;
     }
     let scene = scene_17um();
+    // The stand-in itself is read back without complaint: the faults below are the only errors.
+    let history = solver::run(&with_deck_text(Fenicsx, &stand_in_deck(""), 60), &scene).unwrap();
+    assert_eq!(history.steps.len(), 18);
     let message = failure_of(
         &with_deck_text(FreeFem, "cout << \"no output\" << endl;\n", 60),
         &scene,
     );
     assert!(message.contains("output missing"), "{message}");
-    let header =
-        "index,d_mm,P_contact_N,P_top_N,p0_MPa,p0_method,contact_radius_mm,iterations,converged,field_file";
-    let truncated = format!("open('steps.csv', 'w').write('{header}\\n0,0.0085,806.5')\n");
-    let message = failure_of(&with_deck_text(Fenicsx, &truncated, 60), &scene);
+    let faults = [
+        (
+            "text = open('steps.csv').read()\nopen('steps.csv', 'w').write(text[:len(text) // 2])",
+            "truncated",
+        ),
+        (
+            "text = open('surface.csv').read()\nopen('surface.csv', 'w').write(text[:len(text) - 30])",
+            "surface.csv",
+        ),
+        (
+            "text = open('steps.csv').read().splitlines()\ntext[3] = text[3].replace(',0.0,,', ',nan,,')\nopen('steps.csv', 'w').write('\\n'.join(text) + '\\n')",
+            "P_contact_N = `nan` is not a finite number",
+        ),
+        ("import os\nos.remove('field_1.vtu')", "field_1.vtu"),
+        (
+            "points = np.array([[r, R - np.sqrt(R * R - r * r), 0.0] for r in radii])\nmeshio.write_points_cells('field_1.vtu', points, [('vertex', np.array([[0], [1], [2]]))], point_data={'pressure': np.full(3, 5.0), 'u': np.zeros((3, 3))})",
+            "in surface.csv",
+        ),
+    ];
+    for (fault, expected) in faults {
+        let message = failure_of(&with_deck_text(Fenicsx, &stand_in_deck(fault), 60), &scene);
+        assert!(message.contains(expected), "{expected}: {message}");
+    }
+}
+
+/// A step whose contact iteration hits the cap is flagged in the metadata, not hidden and not a
+/// failure: with a cap of one iteration, every step that needs a second is flagged.
+#[test]
+fn capped_iterations_are_flagged() {
+    if !tools_present("capped_iterations_are_flagged") {
+        return;
+    }
+    let scene = frictional_scene();
+    let mut deck = AxisymSolver::new(FreeFem);
+    deck.options.resolution = Some(scene.max_contact_radius() / 10.0);
+    deck.options.max_iterations = Some(1);
+    let history = solver::run(&deck, &scene).unwrap();
+    let capped = history.metadata.extra["capped_steps"].as_array().unwrap();
+    assert!(!capped.is_empty(), "{:?}", history.metadata.extra);
     assert!(
-        message.contains("row 1") && message.contains("truncated"),
-        "{message}"
-    );
-    let nan =
-        format!("open('steps.csv', 'w').write('{header}\\n0,0.0085,nan,806.7,451.7,x,0.92,2,1,f.xdmf\\n')\n");
-    let message = failure_of(&with_deck_text(Fenicsx, &nan, 60), &scene);
-    assert!(
-        message.contains("P_contact_N = `nan` is not a finite number"),
-        "{message}"
-    );
-    let no_field = format!(
-        "open('steps.csv', 'w').write('{header}\\n0,0.0085,806.5,806.7,451.7,x,0.92,2,1,f.xdmf\\n')\n"
-    );
-    let message = failure_of(&with_deck_text(Fenicsx, &no_field, 60), &scene);
-    assert!(
-        message.contains("meshio") && message.contains("f.xdmf"),
-        "{message}"
+        history
+            .metadata
+            .warnings
+            .iter()
+            .any(|w| w.contains("hit its cap")),
+        "{:?}",
+        history.metadata.warnings
     );
 }
 

@@ -127,11 +127,13 @@ cand = surface[XS[surface, 0] <= r_cand]
 cand = cand[np.argsort(XS[cand, 0])]
 m = len(cand)
 assert m > 2 and XS[cand[0], 0] < 1e-9 * R, "the pole must be a candidate contact node"
-rc = XS[cand, 0]
+rc = XS[cand, 0].copy()
+rc[0] = 0.0  # the pole, exactly (the mm scaling leaves round-off of 1e-18 there)
 zs = R - np.sqrt(R * R - rc * rc)  # the sphere's height at each candidate (exact geometry)
 v_s = ufl.TestFunction(S)
 omega_all = fem.petsc.assemble_vector(fem.form(r * v_s * dsc(CONTACT)))
 om = omega_all.array[cand].copy()  # om_i = int N_i r ds (nodal rule): contact force per radian f = om p
+om[0] = 0.0  # r = 0 at the pole
 
 
 def collapse_map(space, component):
