@@ -9,7 +9,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use spherecontact::case::Case;
-use spherecontact::solver;
+use spherecontact::registry;
 
 /// Solves per solver; the median of an odd count is one measured solve.
 const RUNS: usize = 21;
@@ -29,7 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let increments = scene.steps().len() - 1;
     println!("paper-fig7: {increments} increments; median of {RUNS} solves (release build expected)");
     for name in SOLVERS {
-        let solver = solver::by_name(name).ok_or_else(|| format!("{name} is not registered"))?;
+        let solver = registry::by_name(name).ok_or_else(|| format!("{name} is not registered"))?;
         let mut times: Vec<f64> = (0..RUNS)
             .map(|_| {
                 let start = Instant::now();

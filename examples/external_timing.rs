@@ -14,6 +14,7 @@ use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
 use spherecontact::history::History;
 use spherecontact::path::{LoadingPath, Position};
+use spherecontact::registry;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, Solver};
 
@@ -103,7 +104,7 @@ fn main() {
         }
     }
     // The in-crate FEM through its own ladder (c/5 … c/80), side by side in the same run.
-    for fem in solver::by_name("fem-axisym").map_or_else(Vec::new, |s| s.resolution_ladder(&scene)) {
+    for fem in registry::by_name("fem-axisym").map_or_else(Vec::new, |s| s.resolution_ladder(&scene)) {
         let runs: Result<Vec<History>, _> = (0..repeats).map(|_| solver::run(fem.as_ref(), &scene)).collect();
         match runs {
             Ok(runs) => row("fem-axisym", &runs[0].metadata.resolution, &runs, &scene),

@@ -3,7 +3,7 @@
 # Idempotent: packages already installed are left as they are, the FreeFEM pref line is added once.
 #   gmsh 4.8.4 (+ python3-gmsh), FreeFem++ 4.11 (+ libfreefem++ plugins: gmsh, iovtk),
 #   dolfinx 0.5.2 for /usr/bin/python3, meshio 5 and h5py.
-# Measured: ~245 packages, ~200 MB download, 2-3 minutes on a fresh machine (shared/notes/toolchain.md).
+# Measured: ~245 packages, ~200 MB download, 2-3 minutes on a fresh machine (docs/toolchain.md).
 # Afterwards prints the versions found (the same facts as `spherecontact doctor`).
 set -euo pipefail
 

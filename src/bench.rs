@@ -14,6 +14,7 @@ use std::time::Instant;
 use crate::analytic::hertz::HertzSolver;
 use crate::analytic::mdr::Mdr;
 use crate::history::{History, Quantity};
+use crate::registry;
 use crate::scene::Scene;
 use crate::solver::{self, SolveError, Solver};
 
@@ -170,7 +171,7 @@ pub fn sweep(
         .flat_map(|s| {
             let ladder = s.resolution_ladder(scene);
             if ladder.is_empty() {
-                solver::by_name(s.name()).into_iter().collect()
+                registry::by_name(s.name()).into_iter().collect()
             } else {
                 ladder
             }

@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 use spherecontact::case::Case;
 use spherecontact::external::{geo, toolchain::Toolchain};
 use spherecontact::report::{history_files, junit, summary, table};
-use spherecontact::{io, solver, verify};
+use spherecontact::{io, registry, solver, verify};
 
 #[derive(Parser)]
 #[command(
@@ -175,7 +175,7 @@ fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::
     names
         .iter()
         .map(|name| {
-            solver::by_name(name).ok_or_else(|| {
+            registry::by_name(name).ok_or_else(|| {
                 InputError(format!(
                     "--solver: unknown solver `{name}` (see `spherecontact list`)"
                 ))
@@ -413,7 +413,7 @@ fn report(case: &Path, out: Option<PathBuf>, kind: Report) -> Result<ExitCode, I
 
 fn list() -> Result<ExitCode, InputError> {
     println!("solvers:");
-    for solver in solver::registry() {
+    for solver in registry::registry() {
         println!("  {:<22} {}", solver.name(), solver.description());
     }
     println!("cases:");

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::analytic::hertz::Hertz;
+use crate::hertz::Hertz;
 use crate::pair::ContactPair;
 use crate::path::{LoadingPath, Step};
 

@@ -1,13 +1,14 @@
-//! One trait for every way of solving a scene, and the registry of solvers by name.
+//! One trait for every way of solving a scene (the registry of solvers by name is
+//! [`crate::registry`]).
 //!
 //! Every solver — closed form, incremental law, boundary elements, finite elements, or an
 //! external program — takes a [`Scene`] and returns a [`History`] with one row per path step.
 
 use std::time::Instant;
 
-use crate::analytic;
 use crate::history::{History, Quantity};
 use crate::scene::Scene;
+use crate::vtu;
 
 /// Why a solver gave no history.
 #[derive(Debug, thiserror::Error)]
@@ -88,16 +89,37 @@ fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
     Ok(())
 }
 
-/// Every solver this build knows, in listing order.
-pub fn registry() -> Vec<Box<dyn Solver>> {
-    let mut solvers = analytic::solvers();
-    solvers.push(Box::new(crate::bem::Bem::default()));
-    solvers.push(Box::new(crate::fem::FemAxisym::default()));
-    solvers.extend(crate::external::solvers());
-    solvers
+/// A solver whose surface fields on a grid are also written as VTU files, one per path position
+/// (`<dir>/<case>-<solver>-<position>.vtu`).
+pub struct SurfaceVtu {
+    /// The solver.
+    pub inner: Box<dyn Solver>,
+    /// Where the files go.
+    pub dir: std::path::PathBuf,
 }
 
-/// The solver called `name`, if this build has it.
-pub fn by_name(name: &str) -> Option<Box<dyn Solver>> {
-    registry().into_iter().find(|s| s.name() == name)
+impl Solver for SurfaceVtu {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+
+    fn description(&self) -> &'static str {
+        self.inner.description()
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        let history = self.inner.solve(scene)?;
+        for field in &history.fields {
+            let Some(grid) = vtu::Grid::of_surface_field(field) else {
+                continue;
+            };
+            let path = self
+                .dir
+                .join(format!("{}-{}-{}.vtu", scene.name, self.name(), field.position));
+            std::fs::create_dir_all(&self.dir)
+                .and_then(|()| grid.write(&path).map_err(std::io::Error::other))
+                .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
+        }
+        Ok(history)
+    }
 }

@@ -4,11 +4,7 @@
 //! Format: VTK File Formats, "XML File Formats: UnstructuredGrid" (Kitware, VTK User's Guide,
 //! 11th ed., ch. 19). Written atomically through [`crate::io::write_atomically`].
 
-use std::path::PathBuf;
-
-use crate::history::{History, SurfaceField};
-use crate::scene::Scene;
-use crate::solver::{SolveError, Solver};
+use crate::history::SurfaceField;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -258,41 +254,6 @@ impl Grid {
             cells,
             point_data,
         })
-    }
-}
-
-/// A solver whose surface fields on a grid are also written as VTU files, one per path position
-/// (`<dir>/<case>-<solver>-<position>.vtu`).
-pub struct SurfaceVtu {
-    /// The solver.
-    pub inner: Box<dyn Solver>,
-    /// Where the files go.
-    pub dir: PathBuf,
-}
-
-impl Solver for SurfaceVtu {
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-
-    fn description(&self) -> &'static str {
-        self.inner.description()
-    }
-
-    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
-        let history = self.inner.solve(scene)?;
-        for field in &history.fields {
-            let Some(grid) = Grid::of_surface_field(field) else {
-                continue;
-            };
-            let path = self
-                .dir
-                .join(format!("{}-{}-{}.vtu", scene.name, self.name(), field.position));
-            std::fs::create_dir_all(&self.dir)
-                .and_then(|()| grid.write(&path).map_err(std::io::Error::other))
-                .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
-        }
-        Ok(history)
     }
 }
 

@@ -9,7 +9,7 @@ use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
-use spherecontact::solver;
+use spherecontact::{registry, solver};
 
 /// Every incremental law in the registry.
 const LAWS: [&str; 4] = [
@@ -51,7 +51,7 @@ fn scene(poisson: f64, friction: f64, positions: &[(f64, f64)], substeps: Vec<us
 }
 
 fn solve(name: &str, scene: &Scene) -> History {
-    let solver = solver::by_name(name).unwrap_or_else(|| panic!("{name} is registered"));
+    let solver = registry::by_name(name).unwrap_or_else(|| panic!("{name} is registered"));
     solver::run(solver.as_ref(), scene).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 

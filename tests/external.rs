@@ -171,7 +171,7 @@ fn the_decks_walk_a_frictional_path_with_history() {
     }
     let scene = frictional_scene();
     let h = scene.max_contact_radius() / 20.0;
-    let mdr = solver::run(solver::by_name("mdr").unwrap().as_ref(), &scene).unwrap();
+    let mdr = solver::run(spherecontact::registry::by_name("mdr").unwrap().as_ref(), &scene).unwrap();
     let peak = mdr.peak(Quantity::TangentialForce);
     let mut histories = Vec::new();
     for deck in [at_resolution(FreeFem, h), at_resolution(Fenicsx, h)] {
@@ -282,7 +282,7 @@ fn the_decks_pressure_profiles_match_fem_axisym() {
         scene.hertz().contact_radius(17e-6),
         scene.hertz().peak_pressure(17e-6),
     );
-    let fem = solver::by_name("fem-axisym").unwrap();
+    let fem = spherecontact::registry::by_name("fem-axisym").unwrap();
     let reference = solver::run(fem.as_ref(), &scene).unwrap();
     let reference = reference.fields.iter().find(|f| f.position == 1).unwrap();
     for deck in [

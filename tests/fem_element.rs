@@ -3,9 +3,9 @@
 
 use faer::Mat;
 use spherecontact::fem::assembly::{assemble_with, Dofs};
-use spherecontact::fem::element::{self, Integration, Lame};
+use spherecontact::fem::element::tri6::{self, Integration, Lame};
 use spherecontact::fem::factor::{Factor, Ordering};
-use spherecontact::fem::mesh::Mesh;
+use spherecontact::fem::mesh::meridian::Mesh;
 use spherecontact::fem::quadrature;
 use std::f64::consts::PI;
 
@@ -91,10 +91,10 @@ fn solve(
     let mut rhs = Mat::<f64>::zeros(dofs.count(), 1);
     for t in &mesh.triangles {
         let x = t.map(|k| mesh.nodes[k]);
-        let k = element::stiffness(&x, lame, Integration::Full).unwrap();
+        let k = tri6::stiffness(&x, lame, Integration::Full).unwrap();
         let ue: Vec<f64> = t.iter().flat_map(|&k| lifted[k]).collect();
         for p in quadrature::triangle_degree4() {
-            let m = element::map(&x, p.at).unwrap();
+            let m = tri6::map(&x, p.at).unwrap();
             let point = [0, 1].map(|a| (0..6).map(|i| m.n[i] * x[i][a]).sum::<f64>());
             let f = force(point);
             for (&node, &n) in t.iter().zip(&m.n) {
@@ -132,13 +132,13 @@ fn errors(
         let x = t.map(|k| mesh.nodes[k]);
         let ue = t.map(|k| u[k]);
         for p in quadrature::triangle_degree4() {
-            let m = element::map(&x, p.at).unwrap();
+            let m = tri6::map(&x, p.at).unwrap();
             let point = [0, 1].map(|a| (0..6).map(|i| m.n[i] * x[i][a]).sum::<f64>());
             let uh = [0, 1].map(|a| (0..6).map(|i| m.n[i] * ue[i][a]).sum::<f64>());
             let ex = exact(point);
             let w = 2.0 * PI * m.r * m.det * p.weight;
             l2 += w * ((uh[0] - ex[0]).powi(2) + (uh[1] - ex[1]).powi(2));
-            let eh = element::strain(&x, &ue, p.at).unwrap();
+            let eh = tri6::strain(&x, &ue, p.at).unwrap();
             let e = strain(point);
             let de: [f64; 4] = std::array::from_fn(|k| eh[k] - e[k]);
             let ds = lame.stress(de);

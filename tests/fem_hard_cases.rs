@@ -5,7 +5,7 @@
 mod common;
 
 use common::{identical_spheres, normal_scene};
-use spherecontact::fem::element::Integration;
+use spherecontact::fem::element::tri6::Integration;
 use spherecontact::fem::FemAxisym;
 use spherecontact::history::History;
 use spherecontact::scene::Scene;

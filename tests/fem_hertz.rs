@@ -6,9 +6,9 @@
 mod common;
 
 use common::{identical_spheres, normal_scene};
-use spherecontact::analytic::hertz::Hertz;
-use spherecontact::fem::model::{Model, Settings};
+use spherecontact::fem::axisym::model::{Model, Settings};
 use spherecontact::fem::FemAxisym;
+use spherecontact::hertz::Hertz;
 use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
 use spherecontact::scene::Scene;

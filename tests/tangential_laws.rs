@@ -11,13 +11,14 @@ mod common;
 use common::{all_case_files, paper_scene_with_path, paper_scene_with_substeps, root};
 use spherecontact::case::Case;
 use spherecontact::history::History;
+use spherecontact::registry;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
 
 /// Runs every registered solver that gives a tangential force on `scene`; skips those that do
 /// not apply to it (Cattaneo–Mindlin under a varying load) or are not installed.
 fn tangential_histories(scene: &Scene) -> Vec<(String, History)> {
-    solver::registry()
+    registry::registry()
         .iter()
         .filter_map(|s| match solver::run(s.as_ref(), scene) {
             Ok(h) if h.steps.iter().any(|r| r.tangential_force.is_some()) => Some((s.name().to_owned(), h)),
@@ -114,7 +115,7 @@ fn every_solver_runs_every_shipped_case_without_failure() {
     for file in all_case_files() {
         let case = Case::load(&file).unwrap_or_else(|e| panic!("{e}"));
         for name in &case.solvers {
-            let solver: Box<dyn Solver> = solver::by_name(name).unwrap();
+            let solver: Box<dyn Solver> = registry::by_name(name).unwrap();
             match solver::run(solver.as_ref(), &case.scene) {
                 Ok(_) | Err(SolveError::Unavailable(_)) => {}
                 Err(e) => panic!(

@@ -291,7 +291,7 @@ impl Solver for CattaneoMindlin {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analytic::hertz::Hertz;
+    use crate::hertz::Hertz;
     use crate::pair::fixtures::paper_pair;
     use crate::pair::ContactPair;
     use approx::assert_relative_eq;

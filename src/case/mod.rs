@@ -49,8 +49,8 @@ use crate::check::{CheckSpec, ErrorMeasure, Reference, Where};
 use crate::history::Quantity;
 use crate::pair::{Body, ContactPair, Material};
 use crate::path::{LoadingPath, Position};
+use crate::registry;
 use crate::scene::Scene;
-use crate::solver;
 use raw::{RawBody, RawCase, RawCheck, RawPath};
 use reference::LoadError;
 
@@ -352,10 +352,10 @@ impl Validator<'_> {
     }
 
     fn solver_name(&self, name: &Spanned<String>, field: &str) -> Result<String, CaseError> {
-        if solver::by_name(name.get_ref()).is_some() {
+        if registry::by_name(name.get_ref()).is_some() {
             return Ok(name.get_ref().clone());
         }
-        let known: Vec<_> = solver::registry().iter().map(|s| s.name()).collect();
+        let known = registry::names();
         Err(self.error(
             name,
             field,

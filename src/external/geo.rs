@@ -1,7 +1,7 @@
 //! The gmsh geometry of a scene and its meshes: the meridian of one sphere for an axisymmetric
 //! model, graded from the contact pole by the path's largest contact radius.
 //!
-//! Model (shared/notes/toolchain.md, measured): the lower hemisphere of body 1, radius R, seen in
+//! Model (docs/toolchain.md, measured): the lower hemisphere of body 1, radius R, seen in
 //! its meridian plane (x = r ≥ 0, y = z), touching the plane y = 0 at the pole (0, 0); loaded
 //! through its flat equatorial face y = R. Physical tags: 1 the spherical surface (contact
 //! candidate), 2 the flat face (prescribed approach), 3 the symmetry axis, 10 the body. Against
@@ -25,7 +25,7 @@ use crate::scene::Scene;
 use crate::solver::SolveError;
 
 /// Default pole element size: this fraction of the largest contact radius (c_max / 40 ≈ 23 µm
-/// for the paper's spheres at δn = 17 µm, where toolchain.md measured P within 0.4 % of Hertz).
+/// for the paper's spheres at δn = 17 µm, where docs/toolchain.md records P within 0.4 % of Hertz).
 pub const DEFAULT_ELEMENTS_PER_RADIUS: f64 = 40.0;
 
 /// The time gmsh may take for one mesh (a 2D mesh graded to 20 µm takes under 1 s).

@@ -4,7 +4,7 @@
 //!
 //! The decks apply contact by nodal quadrature, so each candidate node carries a ring force
 //! 2π ω_i p_i with ω_i = ∫ N_i r ds its weight. The measures are those of `fem-axisym`, from the
-//! same ring forces (one recovery for every axisymmetric model, [`crate::fem::pressure`]): the
+//! same ring forces (one recovery for every axisymmetric model, [`crate::fem::axisym::pressure`]): the
 //! contact radius from a quadratic fit of p² at the edge, p0 from an even fit of the nodal
 //! pressures on 0 < r ≤ c/2 (the axis node has ω = 0: its force says nothing about the pressure
 //! there, and its penalty value is 1–3 % off). The stick radius lies between the last sticking
@@ -12,7 +12,7 @@
 //!
 //! Units: the file is in mm, MPa; [`Node`] is SI.
 
-use crate::fem::pressure;
+use crate::fem::axisym::pressure;
 use crate::history::SurfaceField;
 
 /// The columns of `surface.csv`, in order.

@@ -1,6 +1,6 @@
 //! Finding the external tools, their versions and how to install them (`spherecontact doctor`).
 //!
-//! Debian 12's packages are the dependable set (shared/notes/toolchain.md): gmsh 4.8.4,
+//! Debian 12's packages are the dependable set (docs/toolchain.md): gmsh 4.8.4,
 //! FreeFem++ 4.11 with its plugins in `/usr/lib/freefem++`, and dolfinx 0.5.2, meshio and h5py
 //! for Debian's own `/usr/bin/python3` (not whichever `python3` is first on PATH).
 //! `scripts/setup.sh` installs them all.

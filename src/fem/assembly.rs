@@ -9,8 +9,8 @@
 
 use faer::sparse::{SparseColMat, Triplet};
 
-use super::element::{self, Integration, Lame};
-use super::mesh::{Mesh, MeshError};
+use super::element::tri6::{self, Integration, Lame};
+use super::mesh::meridian::{Mesh, MeshError};
 
 /// The numbering of free DOFs (node n: u_r = 2n, u_z = 2n + 1 in the full numbering).
 #[derive(Clone, Debug)]
@@ -90,7 +90,7 @@ pub fn assemble_with(
     let mut reaction = vec![0.0; dofs.count()];
     for (e, t) in mesh.triangles.iter().enumerate() {
         let x = t.map(|n| mesh.nodes[n]);
-        let k = element::stiffness(&x, lame, integration).ok_or(MeshError::Inverted(e))?;
+        let k = tri6::stiffness(&x, lame, integration).ok_or(MeshError::Inverted(e))?;
         let global = |a: usize| 2 * t[a / 2] + a % 2;
         for (a, k_a) in k.iter().enumerate() {
             for (b, &k_ab) in k_a.iter().enumerate() {

@@ -1,7 +1,7 @@
 //! Gauss rules on the reference triangle {ξ ≥ 0, η ≥ 0, ξ + η ≤ 1} (area ½) and on [0, 1].
 //!
 //! The points are interior, so no quadrature point ever lies on the symmetry axis r = 0, where the
-//! hoop strain u_r / r of the axisymmetric element is 0/0 (the feasibility notes' pitfall 5).
+//! hoop strain u_r / r of the axisymmetric element is 0/0 (docs/toolchain.md, pitfall 5).
 
 /// A quadrature point: reference coordinates and weight.
 #[derive(Clone, Copy, Debug, PartialEq)]

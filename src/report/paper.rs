@@ -13,8 +13,8 @@ use anyhow::{anyhow, Result};
 use super::compare::{case_section, checks_section, figure_section};
 use super::document::{Cell, Document, Section, Table};
 use super::figures;
-use crate::analytic::hertz::Hertz;
 use crate::case::reference;
+use crate::hertz::Hertz;
 use crate::verify::CaseRun;
 
 /// The approach [m] at which the paper quotes its peak pressures.

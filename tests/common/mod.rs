@@ -6,7 +6,7 @@ use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
-use spherecontact::solver;
+use spherecontact::{registry, solver};
 use std::path::{Path, PathBuf};
 
 /// The crate's folder (where cases/ and reference/ live).
@@ -63,7 +63,7 @@ pub fn paper_scene_with_substeps(substeps: usize) -> Scene {
 
 /// Runs the named solver on a scene.
 pub fn solve(name: &str, scene: &Scene) -> History {
-    let solver = solver::by_name(name).unwrap_or_else(|| panic!("no solver {name}"));
+    let solver = registry::by_name(name).unwrap_or_else(|| panic!("no solver {name}"));
     solver::run(solver.as_ref(), scene).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 

@@ -11,12 +11,12 @@ use std::time::Instant;
 use serde_json::json;
 
 use super::contact::State;
-use super::element::{Integration, Lame};
-use super::factor::Ordering;
 use super::model::{Model, Reduction, Settings};
-use super::msh;
 use super::output;
 use super::pressure::{self, Profile};
+use crate::fem::element::tri6::{Integration, Lame};
+use crate::fem::factor::Ordering;
+use crate::fem::mesh::msh;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -47,7 +47,7 @@ pub struct FemAxisym {
     /// Element integration (`None`: full, selective reduced above ν = 0.45).
     pub integration: Option<Integration>,
     /// A gmsh MSH 4.1 mesh of the sphere to use instead of the generated one (symmetric
-    /// reduction only; see [`super::msh`] for its conventions).
+    /// reduction only; see [`crate::fem::mesh::msh`] for its conventions).
     pub mesh_file: Option<PathBuf>,
 }
 

@@ -5,9 +5,9 @@ use std::path::Path;
 use faer::Mat;
 
 use super::contact::State;
-use super::element::{self, Lame, NODES};
-use super::mesh::Mesh;
 use super::model::{BodyModel, Model};
+use crate::fem::element::tri6::{self, Lame, NODES};
+use crate::fem::mesh::meridian::Mesh;
 use crate::vtu::{CellType, Grid, PointData, VtuError};
 
 /// Nodal displacements (u_r, u_z) of `body` under contact ring forces `forces` at its candidates,
@@ -37,7 +37,7 @@ pub fn nodal_stress(mesh: &Mesh, lame: Lame, u: &[[f64; 2]]) -> Vec<[f64; 4]> {
         let x = t.map(|n| mesh.nodes[n]);
         let ue = t.map(|n| u[n]);
         for (k, at) in NODES.iter().enumerate() {
-            if let Some(strain) = element::strain(&x, &ue, *at) {
+            if let Some(strain) = tri6::strain(&x, &ue, *at) {
                 let s = lame.stress(strain);
                 (0..4).for_each(|c| sum[t[k]][c] += s[c]);
                 count[t[k]] += 1;

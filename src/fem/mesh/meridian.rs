@@ -360,10 +360,10 @@ impl Builder {
 pub fn validate(mesh: &Mesh) -> Result<(), MeshError> {
     for (e, t) in mesh.triangles.iter().enumerate() {
         let x = t.map(|n| mesh.nodes[n]);
-        let ok = super::quadrature::triangle_degree4()
+        let ok = crate::fem::quadrature::triangle_degree4()
             .iter()
-            .chain(&super::quadrature::triangle_degree2())
-            .all(|p| super::element::map(&x, p.at).is_some());
+            .chain(&crate::fem::quadrature::triangle_degree2())
+            .all(|p| crate::fem::element::tri6::map(&x, p.at).is_some());
         if !ok {
             return Err(MeshError::Inverted(e));
         }
@@ -383,7 +383,7 @@ mod tests {
                 let x = t.map(|n| mesh.nodes[n]);
                 crate::fem::quadrature::triangle_degree4()
                     .into_iter()
-                    .map(move |p| crate::fem::element::map(&x, p.at).unwrap().det * p.weight)
+                    .map(move |p| crate::fem::element::tri6::map(&x, p.at).unwrap().det * p.weight)
             })
             .sum()
     }

@@ -25,8 +25,8 @@
 
 use faer::Mat;
 
-use super::assembly::System;
-use super::factor::Factor;
+use crate::fem::assembly::System;
+use crate::fem::factor::Factor;
 
 /// The condensed response of one body at its candidate contact nodes.
 #[derive(Clone, Debug)]

@@ -1,7 +1,7 @@
 //! Reading a body's meridian mesh from a gmsh MSH 4.1 file (ASCII or binary, via `mshio`), so
 //! that the same mesh feeds this solver and the external decks.
 //!
-//! Conventions (those of `examples/feasibility/axisym_quarter.geo`): x = r, y = z, the body
+//! Conventions (those of the `.geo` that `spherecontact mesh` writes, `src/external/geo.rs`): x = r, y = z, the body
 //! touching the plane z = 0 at its pole; 6-node triangles (gmsh type 9, `Mesh.ElementOrder = 2`);
 //! 3-node lines (type 8) in physical curves [`CONTACT`], [`FAR`] (displaced rigidly along z)
 //! and [`AXIS`] (r = 0).
@@ -11,7 +11,7 @@ use std::path::Path;
 
 use mshio::mshfile::ElementType;
 
-use super::mesh::{self, Mesh, MeshError};
+use super::meridian::{self, Mesh, MeshError};
 
 /// Physical curve tag of the contact surface.
 pub const CONTACT: i32 = 1;
@@ -100,7 +100,7 @@ pub fn parse(bytes: &[u8]) -> Result<Mesh, MeshError> {
             "needs 6-node triangles and 3-node lines in physical curves {CONTACT} (contact), {FAR} (far), {AXIS} (axis)"
         )));
     }
-    mesh::validate(&mesh)?;
+    meridian::validate(&mesh)?;
     Ok(mesh)
 }
 

@@ -15,7 +15,7 @@
 //! is too strong); [`Integration::SelectiveReduced`] integrates it with the 3-point rule only
 //! (Hughes 1987, §4.5; Malkus & Hughes 1978), which relieves the constraint.
 
-use super::quadrature::{self, Point};
+use crate::fem::quadrature::{self, Point};
 use crate::pair::Material;
 use std::f64::consts::PI;
 

@@ -9,11 +9,11 @@
 
 use std::time::Instant;
 
-use super::assembly::{self, System};
 use super::contact::{self, Condensed, Problem};
-use super::element::{edge_weights, Integration, Lame};
-use super::factor::{Factor, Ordering};
-use super::mesh::{self, Domain, Grading, Mesh};
+use crate::fem::assembly::{self, System};
+use crate::fem::element::tri6::{edge_weights, Integration, Lame};
+use crate::fem::factor::{Factor, Ordering};
+use crate::fem::mesh::meridian::{self, Domain, Grading, Mesh};
 use crate::pair::Body;
 use crate::scene::Scene;
 
@@ -198,7 +198,7 @@ impl Model {
         }
         let meshes = bodies
             .iter()
-            .map(|b| mesh::graded(&grading(b, settings, c)).map_err(|e| e.to_string()))
+            .map(|b| meridian::graded(&grading(b, settings, c)).map_err(|e| e.to_string()))
             .collect::<Result<Vec<_>, _>>()?;
         let lames = bodies.iter().map(|b| Lame::of(&b.material)).collect();
         Self::from_meshes(reduction, meshes, lames, settings)
