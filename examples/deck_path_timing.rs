@@ -35,14 +35,14 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let case = args.next().unwrap_or_else(|| "cases/paper-fig7.toml".into());
     let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(3);
-    let scene = Case::load(Path::new(&case)).expect("a valid case, run from the crate root").scene;
+    let scene = Case::load(Path::new(&case))
+        .expect("a valid case, run from the crate root")
+        .scene;
     let solvers: Vec<Box<dyn Solver>> = ["freefem-axisym", "fenicsx-axisym", "fem-axisym"]
         .iter()
         .filter_map(|name| registry::by_name(name))
         .collect();
-    let reference = |name: &str| {
-        registry::by_name(name).and_then(|s| solver::run(s.as_ref(), &scene).ok())
-    };
+    let reference = |name: &str| registry::by_name(name).and_then(|s| solver::run(s.as_ref(), &scene).ok());
     let (hertz, mdr) = (reference("hertz"), reference("mdr"));
     println!(
         "{case}: {} steps, c_max = {:.4} mm; medians of {repeats} runs after a warm-up, interleaved; errors in %",

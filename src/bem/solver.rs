@@ -195,6 +195,7 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
                 .collect(),
         ),
         stick: Some(s.stick.clone()),
+        slip: None,
     }
 }
 

@@ -113,7 +113,7 @@ impl Surface {
     }
 
     /// The surface field at path position `position`: p (recovered, see [`Surface::measures`])
-    /// and, when the tangential mode was solved, q_x and the stick/slip status.
+    /// and, when the tangential mode was solved, q_x, the stick/slip status and the slip.
     pub fn field(&self, position: usize, pressure: Vec<f64>, tangential: bool) -> SurfaceField {
         SurfaceField {
             position,
@@ -121,6 +121,7 @@ impl Surface {
             pressure,
             traction: tangential.then(|| self.nodes.iter().map(|n| [n.traction_x, 0.0]).collect()),
             stick: tangential.then(|| self.nodes.iter().map(|n| n.stick).collect()),
+            slip: tangential.then(|| self.nodes.iter().map(|n| [n.slip, 0.0]).collect()),
         }
     }
 }
