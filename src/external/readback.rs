@@ -72,22 +72,10 @@ pub struct DeckRow {
 /// Fails on a wrong header, fewer or more rows than expected (a truncated run), a step or
 /// displacement that is not the one asked for, or a value that is not a finite number.
 pub fn parse_steps(text: &str, expected: &[ComputedStep]) -> Result<Vec<DeckRow>, String> {
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .from_reader(text.as_bytes());
-    let header = reader.headers().map_err(|e| format!("steps.csv: {e}"))?;
-    if header.iter().ne(STEP_COLUMNS) {
-        return Err(format!(
-            "steps.csv: header is `{}`, expected `{}`",
-            header.iter().collect::<Vec<_>>().join(","),
-            STEP_COLUMNS.join(",")
-        ));
-    }
+    let records = records(text, "steps.csv", &STEP_COLUMNS)?;
     let mut rows = Vec::new();
-    for (k, record) in reader.records().enumerate() {
-        let record = record.map_err(|e| format!("steps.csv row {}: {e}", k + 1))?;
-        let row = parse_row(&record).map_err(|e| format!("steps.csv row {}: {e}", k + 1))?;
+    for (k, record) in records.iter().enumerate() {
+        let row = parse_row(record).map_err(|e| format!("steps.csv row {}: {e}", k + 1))?;
         let Some(asked) = expected.get(k) else {
             return Err(format!(
                 "steps.csv row {}: more rows than the {} steps asked for",
@@ -120,21 +108,52 @@ pub fn parse_steps(text: &str, expected: &[ComputedStep]) -> Result<Vec<DeckRow>
     Ok(rows)
 }
 
-fn parse_row(record: &csv::StringRecord) -> Result<DeckRow, String> {
-    if record.len() != STEP_COLUMNS.len() {
+/// The records of a deck's CSV `file` (text `text`), whose header must be `columns`: every
+/// record well-formed and with one field per column, else an error naming the row.
+pub fn records(text: &str, file: &str, columns: &[&str]) -> Result<Vec<csv::StringRecord>, String> {
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .from_reader(text.as_bytes());
+    let header = reader.headers().map_err(|e| format!("{file}: {e}"))?;
+    if header.iter().ne(columns.iter().copied()) {
         return Err(format!(
-            "{} fields, expected {} (truncated line?)",
-            record.len(),
-            STEP_COLUMNS.len()
+            "{file}: header is `{}`, expected `{}`",
+            header.iter().collect::<Vec<_>>().join(","),
+            columns.join(",")
         ));
     }
-    let number = |i: usize, scale: f64| -> Result<f64, String> {
-        let text = &record[i];
-        match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v * scale),
-            _ => Err(format!("{} = `{text}` is not a finite number", STEP_COLUMNS[i])),
-        }
-    };
+    reader
+        .records()
+        .enumerate()
+        .map(|(k, record)| {
+            let record = record.map_err(|e| format!("{file} row {}: {e}", k + 1))?;
+            if record.len() != columns.len() {
+                return Err(format!(
+                    "{file} row {}: {} fields, expected {} (truncated line?)",
+                    k + 1,
+                    record.len(),
+                    columns.len()
+                ));
+            }
+            Ok(record)
+        })
+        .collect()
+}
+
+/// Field `i` of `record` (columns `columns`) as a finite number, times `scale`.
+pub fn finite(record: &csv::StringRecord, columns: &[&str], i: usize, scale: f64) -> Result<f64, String> {
+    match record[i].parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v * scale),
+        _ => Err(format!(
+            "{} = `{}` is not a finite number",
+            columns[i], &record[i]
+        )),
+    }
+}
+
+fn parse_row(record: &csv::StringRecord) -> Result<DeckRow, String> {
+    let number = |i: usize, scale: f64| finite(record, &STEP_COLUMNS, i, scale);
     let count = |i: usize| -> Result<u32, String> {
         record[i]
             .parse()

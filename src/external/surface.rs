@@ -12,6 +12,7 @@
 //!
 //! Units: the file is in mm, MPa; [`Node`] is SI.
 
+use super::readback;
 use crate::fem::axisym::pressure;
 use crate::history::SurfaceField;
 
@@ -133,23 +134,13 @@ impl Surface {
 /// step that is not the one expected, blocks of different sizes, or missing blocks (a truncated
 /// run).
 pub fn parse_surface(text: &str, steps: &[usize]) -> Result<Vec<Surface>, String> {
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .from_reader(text.as_bytes());
-    let header = reader.headers().map_err(|e| format!("surface.csv: {e}"))?;
-    if header.iter().ne(SURFACE_COLUMNS) {
-        return Err(format!(
-            "surface.csv: header is `{}`, expected `{}`",
-            header.iter().collect::<Vec<_>>().join(","),
-            SURFACE_COLUMNS.join(",")
-        ));
-    }
     let mut surfaces: Vec<Surface> = Vec::with_capacity(steps.len());
-    for (k, record) in reader.records().enumerate() {
+    for (k, record) in readback::records(text, "surface.csv", &SURFACE_COLUMNS)?
+        .iter()
+        .enumerate()
+    {
         let row = k + 1;
-        let record = record.map_err(|e| format!("surface.csv row {row}: {e}"))?;
-        let (step, node) = parse_node(&record).map_err(|e| format!("surface.csv row {row}: {e}"))?;
+        let (step, node) = parse_node(record).map_err(|e| format!("surface.csv row {row}: {e}"))?;
         if surfaces.last().is_none_or(|s| s.step != step) {
             let expected = steps.get(surfaces.len()).copied();
             if expected != Some(step) {
@@ -187,22 +178,7 @@ pub fn parse_surface(text: &str, steps: &[usize]) -> Result<Vec<Surface>, String
 }
 
 fn parse_node(record: &csv::StringRecord) -> Result<(usize, Node), String> {
-    if record.len() != SURFACE_COLUMNS.len() {
-        return Err(format!(
-            "{} fields, expected {} (truncated line?)",
-            record.len(),
-            SURFACE_COLUMNS.len()
-        ));
-    }
-    let number = |i: usize, scale: f64| -> Result<f64, String> {
-        match record[i].parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v * scale),
-            _ => Err(format!(
-                "{} = `{}` is not a finite number",
-                SURFACE_COLUMNS[i], &record[i]
-            )),
-        }
-    };
+    let number = |i: usize, scale: f64| readback::finite(record, &SURFACE_COLUMNS, i, scale);
     let step = record[0]
         .parse()
         .map_err(|_| format!("step = `{}` is not a step index", &record[0]))?;
