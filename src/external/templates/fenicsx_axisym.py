@@ -167,6 +167,9 @@ bcs0 = [fem.dirichletbc(PETSc.ScalarType(0.0), dofs(V0.sub(1), TOP), V0.sub(1)),
 if grip_radial:
     bcs0.append(fem.dirichletbc(PETSc.ScalarType(0.0), dofs(V0.sub(0), TOP), V0.sub(0)))
 K0, ksp0 = factored(ufl.inner(sig0(u0), eps0(t0)) * r * dx, bcs0)
+u_react = fem.Function(V0)
+react_form = fem.form(ufl.inner(sig0(u_react), eps0(t0)) * r * dx)
+top_z = dofs(V0.sub(1), TOP)
 z_of = collapse_map(V0, 1)
 zdofs = z_of[cand]
 C0 = green(ksp0, K0, zdofs)
@@ -346,8 +349,11 @@ with open("steps.csv", "w", newline="") as fs, open("surface.csv", "w", newline=
             field = f"field_{position}.xdmf"
             un = full_field(ksp0, K0, V0, zdofs, f, lambda u: u.x.array.__setitem__(z_of, u.x.array[z_of] - d))
             un.name = "u"
-            P_top = -2 * np.pi * comm.allreduce(
-                fem.assemble_scalar(fem.form(sig0(un)[1, 1] * r * ds(TOP))), op=MPI.SUM)
+            # the reaction on the far face: the internal forces K u at its u_z DOFs (the
+            # variational reaction; integrating sigma_zz there misses the clamped corner)
+            u_react.x.array[:] = un.x.array
+            internal = fem.petsc.assemble_vector(react_form)
+            P_top = -2 * np.pi * comm.allreduce(internal.array[top_z].sum(), op=MPI.SUM)
             with dolfinx.io.XDMFFile(comm, field, "w") as xf:
                 xf.write_mesh(msh)
                 xf.write_function(un)
