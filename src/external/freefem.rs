@@ -1,5 +1,5 @@
 //! The FreeFEM deck `freefem-axisym`: the axisymmetric Fourier modes n = 0 (normal) and n = 1
-//! (tangential, Coulomb with history), P2 displacements on the P1 mesh (UMFPACK), penalty contact
+//! (tangential, Coulomb with history), P2 displacements on the P1 mesh (MUMPS_seq), penalty contact
 //! with Simpson nodal quadrature condensed onto the contact line (template
 //! `templates/freefem_axisym.edp`; the model: [`super::axisym`]).
 
@@ -65,7 +65,7 @@ impl Deck for FreeFem {
         match code {
             1 => "compile error in the deck, or an input file (mesh) that cannot be opened",
             2 => {
-                "a plugin (gmsh, iovtk) failed to load: install libfreefem++, FF_LOADPATH=/usr/lib/freefem++"
+                "a plugin (gmsh, iovtk, lapack, MUMPS_seq) failed to load: install libfreefem++, FF_LOADPATH=/usr/lib/freefem++"
             }
             8 => "execution error (failed assertion, index out of range, solver error)",
             _ => "unexpected exit code",
