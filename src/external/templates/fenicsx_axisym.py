@@ -19,10 +19,11 @@ C and its inverse S. Each path step then solves the small contact problems
   n = 0:  S0 (w + d) = f(w),            f_i = k om_i <-(zs_i + w_i)>_+      (semi-smooth Newton)
   n = 1:  S1 (v - v_t) = F(v),          F = return mapping of the trial -k om1 (v - s)
 by semi-smooth Newton: an all-stick (elastic) predictor first at every increment, then Newton with
-a backtracking line search on |R|, capped at maxit iterations (a capped increment is flagged).
-History s (per contact node) follows free nodes, and is updated by the return mapping at slip.
-Writes steps.csv (one row per computed step), surface.csv (candidate nodes at every computed step)
-and field_<position>.xdmf (u0, u1 and the surface fields) at path positions.
+a backtracking line search on |R|, a cycle guard, and a cap of maxit iterations (a capped increment
+is flagged). History s (per contact node) follows free nodes, and is updated by the return mapping
+at slip. Writes steps.csv (one row per computed step), surface.csv (candidate nodes at every
+computed step), field_<position>.xdmf (u, u1 and the surface fields) at path positions, and
+timing.csv (CPU seconds of the set-up and of the path).
 """
 import csv
 import time
@@ -72,7 +73,6 @@ r = x[0]
 lam = E * nu / ((1 + nu) * (1 - 2 * nu))
 G = E / (2 * (1 + nu))
 dx = ufl.Measure("dx", domain=msh, metadata={"quadrature_degree": 6})
-ds = ufl.Measure("ds", domain=msh, subdomain_data=ftags, metadata={"quadrature_degree": 6})
 # nodal contact quadrature: 3-point Gauss-Lobatto (Simpson) on the P2 contact edges
 dsc = ufl.Measure("ds", domain=msh, subdomain_data=ftags,
                   metadata={"quadrature_rule": "GLL", "quadrature_degree": 3})
