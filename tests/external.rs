@@ -5,62 +5,19 @@
 //! Tests that need gmsh, FreeFEM, dolfinx and meshio print why they skip where those are absent
 //! (install them with `scripts/setup.sh`). Run: `cargo test --test external`.
 
-use std::path::Path;
 use std::process::Command;
 use std::time::Duration;
 
-use spherecontact::case::Case;
 use spherecontact::check::{CheckSpec, ErrorMeasure, Histories, Reference, Verdict, Where};
 use spherecontact::external::axisym::AxisymSolver;
-use spherecontact::external::deck::Deck;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
-use spherecontact::external::toolchain::Toolchain;
 use spherecontact::history::{Quantity, SurfaceField};
-use spherecontact::path::{LoadingPath, Position};
+
+mod common;
+use common::decks::{at_resolution, scene_17um, tools_present, with_deck_text};
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
-
-/// True when every external tool works; otherwise prints why the calling test skips.
-fn tools_present(test: &str) -> bool {
-    let missing: Vec<String> = Toolchain::default()
-        .doctor()
-        .into_iter()
-        .filter(|p| !p.available())
-        .map(|p| p.line())
-        .collect();
-    if !missing.is_empty() {
-        eprintln!(
-            "{test}: skipped, external tools missing (run scripts/setup.sh):\n{}",
-            missing.join("\n")
-        );
-    }
-    missing.is_empty()
-}
-
-/// The hertz-normal case's scene with its path cut to δn 0 → 17 µm (one solve per deck).
-fn scene_17um() -> Scene {
-    let mut scene = Case::load(Path::new("cases/hertz-normal.toml")).unwrap().scene;
-    let position = |delta_n: f64| Position {
-        delta_n,
-        delta_t: 0.0,
-    };
-    scene.path = LoadingPath::try_new(vec![position(0.0), position(17e-6)], vec![17]).unwrap();
-    scene
-}
-
-fn with_deck_text<D: Deck>(deck: D, text: &str, timeout_s: u64) -> AxisymSolver<D> {
-    let mut solver = AxisymSolver::new(deck);
-    solver.options.deck_text = Some(text.to_owned());
-    solver.options.timeout = Some(Duration::from_secs(timeout_s));
-    solver
-}
-
-fn at_resolution<D: Deck + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
-    let mut solver = AxisymSolver::new(deck);
-    solver.options.resolution = Some(h);
-    Box::new(solver)
-}
 
 /// The failure message of a solve that must fail, and that a check on it is NOOK.
 fn failure_of(solver: &dyn Solver, scene: &Scene) -> String {
@@ -142,104 +99,6 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
     }
     // Same mesh, same model, penalty and nodal quadrature: measured 2e-6 apart.
     assert!((forces[0] / forces[1] - 1.0).abs() < 1e-4, "{forces:?}");
-}
-
-/// The paper's spheres pressed to δn = 17 µm (4 increments), sheared to δt = 3 µm (6) and back to
-/// −3 µm (12): partial slip, reversal, and gross sliding is not reached (δs = 4.13 µm).
-fn frictional_scene() -> Scene {
-    let mut scene = scene_17um();
-    let um = |delta_n: f64, delta_t: f64| Position {
-        delta_n: delta_n * 1e-6,
-        delta_t: delta_t * 1e-6,
-    };
-    scene.path = LoadingPath::try_new(
-        vec![um(0.0, 0.0), um(17.0, 0.0), um(17.0, 3.0), um(17.0, -3.0)],
-        vec![4, 6, 12],
-    )
-    .unwrap();
-    scene
-}
-
-/// Both decks walk a frictional path with history: Q against MDR within the finite body's
-/// measured offset, against each other within what their geometry (curved against straight
-/// edges) explains, Coulomb's bound on the fields, the stick zone shrinking under load and
-/// reset by the reversal. At pole size c/20 (a third of the default's cost).
-#[test]
-fn the_decks_walk_a_frictional_path_with_history() {
-    if !tools_present("the_decks_walk_a_frictional_path_with_history") {
-        return;
-    }
-    let scene = frictional_scene();
-    let h = scene.max_contact_radius() / 20.0;
-    let mdr = solver::run(spherecontact::registry::by_name("mdr").unwrap().as_ref(), &scene).unwrap();
-    let peak = mdr.peak(Quantity::TangentialForce);
-    let mut histories = Vec::new();
-    for deck in [at_resolution(FreeFem, h), at_resolution(Fenicsx, h)] {
-        let history = solver::run(deck.as_ref(), &scene).unwrap();
-        assert_eq!(history.metadata.extra["fourier_modes"], serde_json::json!([0, 1]));
-        assert_eq!(history.metadata.extra["grip"], "rigid");
-        assert_eq!(history.metadata.extra["capped_steps"], serde_json::json!([]));
-        let q: Vec<f64> = history
-            .steps
-            .iter()
-            .map(|r| r.tangential_force.unwrap())
-            .collect();
-        // Loading: Q rises; after the reversal at step 10 it falls.
-        assert!(q[4..=10].windows(2).all(|w| w[1] > w[0]), "{q:?}");
-        assert!(q[10..].windows(2).all(|w| w[1] < w[0]), "{q:?}");
-        // Against exact MD on the half-space: the gripped hemisphere is ≈ 4 % softer in shear,
-        // which puts Q 2.4 % below MD in partial slip and up to 3 % of the peak after a
-        // reversal (measured on the paper path, docs/external-decks.md); 4 % of the peak.
-        for (row, reference) in history.steps.iter().zip(&mdr.steps) {
-            let error = (row.tangential_force.unwrap() - reference.tangential_force.unwrap()).abs() / peak;
-            assert!(error < 4e-2, "{}: step {} Q error {error}", deck.name(), row.step);
-        }
-        // The stick zone: the whole contact before the shift, shrinking while Q rises.
-        let stick: Vec<f64> = history
-            .steps
-            .iter()
-            .map(|r| r.stick_radius.unwrap_or(0.0))
-            .collect();
-        assert_eq!(stick[4], history.steps[4].contact_radius.unwrap());
-        assert!(
-            stick[5..=10].windows(2).all(|w| w[1] <= w[0]) && stick[10] < 0.8 * stick[4],
-            "{stick:?}"
-        );
-        assert!(
-            stick[11] > stick[10],
-            "the reversal sticks the contact again: {stick:?}"
-        );
-        // Fields at positions: |q_x| <= μ p everywhere, = μ p on slipping nodes in contact.
-        let field = history.fields.iter().find(|f| f.position == 2).unwrap();
-        let traction = field.traction.as_ref().unwrap();
-        let sticking = field.stick.as_ref().unwrap();
-        for ((q, p), &stuck) in traction.iter().zip(&field.pressure).zip(sticking) {
-            let bound = scene.friction * p;
-            assert!(
-                q[0].abs() <= bound * (1.0 + 1e-9) + 1.0,
-                "q {} > μp {bound}",
-                q[0]
-            );
-            if *p > 0.0 && !stuck {
-                assert!(
-                    (q[0].abs() - bound).abs() <= 1e-9 * bound + 1.0,
-                    "slip: q {} μp {bound}",
-                    q[0]
-                );
-            }
-        }
-        histories.push(history);
-    }
-    // Same model, mesh and increments; straight (FreeFEM) against curved (dolfinx) edges:
-    // measured 4e-5 of the peak on the paper path at c/40; 5e-4 of the peak.
-    for (a, b) in histories[0].steps.iter().zip(&histories[1].steps) {
-        let error = (a.tangential_force.unwrap() - b.tangential_force.unwrap()).abs() / peak;
-        assert!(
-            error < 5e-4,
-            "step {}: decks differ by {error} of the peak",
-            a.step
-        );
-    }
 }
 
 /// RMS of `field`'s pressure against `reference`'s (linearly interpolated between its points)
@@ -424,31 +283,6 @@ fn missing_truncated_nan_or_garbage_output_fails_clearly() {
         let message = failure_of(&with_deck_text(Fenicsx, &stand_in_deck(fault), 60), &scene);
         assert!(message.contains(expected), "{expected}: {message}");
     }
-}
-
-/// A step whose contact iteration hits the cap is flagged in the metadata, not hidden and not a
-/// failure: with a cap of one iteration, every step that needs a second is flagged.
-#[test]
-fn capped_iterations_are_flagged() {
-    if !tools_present("capped_iterations_are_flagged") {
-        return;
-    }
-    let scene = frictional_scene();
-    let mut deck = AxisymSolver::new(FreeFem);
-    deck.options.resolution = Some(scene.max_contact_radius() / 10.0);
-    deck.options.max_iterations = Some(1);
-    let history = solver::run(&deck, &scene).unwrap();
-    let capped = history.metadata.extra["capped_steps"].as_array().unwrap();
-    assert!(!capped.is_empty(), "{:?}", history.metadata.extra);
-    assert!(
-        history
-            .metadata
-            .warnings
-            .iter()
-            .any(|w| w.contains("hit its cap")),
-        "{:?}",
-        history.metadata.warnings
-    );
 }
 
 /// Runs with a PATH that holds neither gmsh nor FreeFem++: their solvers are N/A, and
