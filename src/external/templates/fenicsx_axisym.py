@@ -177,9 +177,23 @@ C0 = 0.5 * (C0 + C0.T)
 S0 = scipy.linalg.inv(C0)
 
 
-def spd_solve(J, b):
-    """J x = b for the symmetric positive definite J (a condensed stiffness plus penalties)."""
-    return scipy.linalg.cho_solve(scipy.linalg.cho_factor(J), b)
+FACTORS = {}  # Cholesky factors of S + diag(D) by (S, D): the two least recently used per S
+
+
+def spd_solve(S, D, b):
+    """(S + diag(D)) x = b, S a condensed stiffness, D >= 0 the penalties of the contact set.
+
+    The predictor's and the iteration's contact sets recur from step to step: their factors are
+    kept (the last two per S), each new one an O(n^3) Cholesky factorisation."""
+    key = (id(S), D.tobytes())
+    if key in FACTORS:
+        FACTORS[key] = FACTORS.pop(key)  # the most recently used last
+    else:
+        mine = [kk for kk in FACTORS if kk[0] == id(S)]
+        if len(mine) >= 2:
+            del FACTORS[mine[0]]
+        FACTORS[key] = scipy.linalg.cho_factor(S + np.diag(D))
+    return scipy.linalg.cho_solve(FACTORS[key], b)
 
 
 def solve_normal(d, w):
@@ -188,7 +202,7 @@ def solve_normal(d, w):
         act = zs + w < 0
         # Newton on S0 (w + d) = k om <-(zs + w)>_+ with the active set of the start: exact once
         # the set of the solution is the set it was computed with
-        w = spd_solve(S0 + np.diag(k * om * act), -S0 @ np.full(m, d) - k * om * act * zs)
+        w = spd_solve(S0, k * om * act, -S0 @ np.full(m, d) - k * om * act * zs)
         if np.array_equal(act, zs + w < 0):
             return w, k * om * np.maximum(-(zs + w), 0.0), it, True
     return w, k * om * np.maximum(-(zs + w), 0.0), maxit, False
@@ -274,7 +288,7 @@ if tangential:
             if it == maxit:
                 break
             seen.append((key, rn, v, stick))
-            delta = spd_solve(S1 + np.diag(diag), res)
+            delta = spd_solve(S1, diag, res)
             if it == 0:
                 v = v - delta  # the elastic predictor: a linear solve, no line search
                 continue
