@@ -196,6 +196,7 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
                 .collect(),
         ),
         stick: Some(s.stick.clone()),
+        slip: None,
     }
 }
 

@@ -6,8 +6,9 @@
 //! - [`process`]: one run in its own directory and process group, with a timeout;
 //! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
-//! - [`axisym`]: the shared run (mesh → deck → read back → History);
-//! - [`readback`]: the decks' per-step CSV and the field files through meshio.
+//! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
+//! - [`readback`]: the decks' per-step CSV and the field files through meshio;
+//! - [`surface`]: the contact line's nodal state at every step, and what is measured from it.
 //!
 //! Install the tools with `scripts/setup.sh`. A missing tool makes the solver
 //! [`Unavailable`](crate::solver::SolveError::Unavailable), never a pass.
@@ -21,7 +22,9 @@ pub mod geo;
 pub mod process;
 pub mod program;
 pub mod readback;
+pub mod record;
 pub mod stored;
+pub mod surface;
 pub mod toolchain;
 
 use crate::solver::Solver;

@@ -220,7 +220,8 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         Tool::FreeFem => {
             // The plugins the decks load must be there too: a FreeFEM without libfreefem++
             // fails on `load "gmsh"` with exit code 2.
-            let script = "load \"gmsh\"\nload \"iovtk\"\ncout << \"ffversion \" << version << endl;\n";
+            let script = "load \"gmsh\"\nload \"iovtk\"\nload \"lapack\"\nload \"MUMPS_seq\"\n\
+                          cout << \"ffversion \" << version << endl;\n";
             std::fs::write(dir.path().join("version.edp"), script).map_err(|e| e.to_string())?;
             (
                 vec![

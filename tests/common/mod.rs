@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod decks;
+
 use spherecontact::case::Case;
 use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
