@@ -23,6 +23,7 @@ pub mod convolution;
 pub mod grid;
 pub mod influence;
 pub mod normal;
+pub mod operator;
 pub mod solver;
 pub mod state;
 pub mod tangential;
