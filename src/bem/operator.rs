@@ -24,6 +24,8 @@ pub struct FftCompliance {
     /// The kernels in the circulant layout (row-major blocks: xx, xy, yx, yy, or zz alone).
     kernels: Vec<Vec<f64>>,
     spectra: Vec<Spectrum>,
+    /// Work spectra of the load's components and of a displacement component.
+    work: [Spectrum; 3],
     weights: Vec<f64>,
     largest: f64,
 }
@@ -58,8 +60,10 @@ impl FftCompliance {
                 })
                 .fold(0.0, f64::max)
         };
+        let work = [convolver.spectrum(), convolver.spectrum(), convolver.spectrum()];
         Self {
             grid: *grid,
+            work,
             convolver,
             kernels,
             spectra,
@@ -93,18 +97,20 @@ impl Compliance for FftCompliance {
 
     fn apply(&mut self, load: &[f64], out: &mut [f64]) {
         let len = self.grid.len();
+        let [qx, qy, u] = &mut self.work;
         if self.kernels.len() == 1 {
-            let spectrum = self.convolver.field_spectrum(load).times(&self.spectra[0]);
-            out.copy_from_slice(&self.convolver.field(spectrum));
+            self.convolver.field_spectrum_into(load, qx);
+            qx.times(&self.spectra[0]);
+            self.convolver.field_into(qx, out);
             return;
         }
-        let qx = self.convolver.field_spectrum(&load[..len]);
-        let qy = self.convolver.field_spectrum(&load[len..]);
+        self.convolver.field_spectrum_into(&load[..len], qx);
+        self.convolver.field_spectrum_into(&load[len..], qy);
         let s = &self.spectra;
-        let ux = Spectrum::combination(&[(&s[0], &qx), (&s[1], &qy)]);
-        let uy = Spectrum::combination(&[(&s[2], &qx), (&s[3], &qy)]);
-        out[..len].copy_from_slice(&self.convolver.field(ux));
-        out[len..].copy_from_slice(&self.convolver.field(uy));
+        u.set_combination(&[(&s[0], qx), (&s[1], qy)]);
+        self.convolver.field_into(u, &mut out[..len]);
+        u.set_combination(&[(&s[2], qx), (&s[3], qy)]);
+        self.convolver.field_into(u, &mut out[len..]);
     }
 
     fn largest_eigenvalue(&self) -> f64 {
