@@ -19,6 +19,9 @@ pub enum CellType {
     QuadraticTriangle,
     /// 8-node quadrilateral (VTK_QUADRATIC_QUAD = 23).
     QuadraticQuad,
+    /// 10-node tetrahedron (VTK_QUADRATIC_TETRA = 24): corners, then midsides 0–1, 1–2, 2–0,
+    /// 0–3, 1–3, 2–3.
+    QuadraticTetra,
 }
 
 impl CellType {
@@ -29,6 +32,7 @@ impl CellType {
             Self::Quad => 9,
             Self::QuadraticTriangle => 22,
             Self::QuadraticQuad => 23,
+            Self::QuadraticTetra => 24,
         }
     }
 
@@ -39,6 +43,7 @@ impl CellType {
             Self::Quad => 4,
             Self::QuadraticTriangle => 6,
             Self::QuadraticQuad => 8,
+            Self::QuadraticTetra => 10,
         }
     }
 }
