@@ -4,8 +4,8 @@
 
 mod solid_common;
 
+use spherecontact::contact::{Contact, DenseCompliance, Method, Settings};
 use spherecontact::fem::assembly::Dofs;
-use spherecontact::fem::axisym::contact::Problem;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::factor::Factor;
 use spherecontact::fem::mesh::solid::SolidMesh;
@@ -56,14 +56,18 @@ fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
         let (_, surface, condensed) = bar(distort);
         let c = &condensed[0];
         let m = surface.len();
-        let problem = Problem {
-            compliance: (0..m * m).map(|k| c.normal[(k / m, k % m)]).collect(),
-            heights: surface.heights(),
+        let settings = Settings {
+            method: Method::Direct,
+            ..Settings::default()
         };
-        let state = problem.solve(delta, &mut vec![false; m]).unwrap();
+        let operator = DenseCompliance::scalar(c.normal.clone()).unwrap();
+        let mut contact: Contact<DenseCompliance, DenseCompliance> =
+            Contact::new(operator, surface.heights(), settings).unwrap();
+        contact.advance(delta, &[]).unwrap();
+        let forces = contact.pressure();
         let p = YOUNG * delta;
         for j in 0..m {
-            let pj = state.forces[j] / surface.weights[j];
+            let pj = forces[j] / surface.weights[j];
             // Round-off of the factorisation and the dense contact solve.
             assert!(
                 (pj - p).abs() < 1e-9 * p,
@@ -72,8 +76,8 @@ fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
             );
         }
         // Equilibrium: the top carries Σλ, and Σλ = p × the face area (1).
-        let total: f64 = state.forces.iter().sum();
-        let reaction: f64 = c.reaction[1].iter().zip(&state.forces).map(|(r, l)| r * l).sum();
+        let total: f64 = forces.iter().sum();
+        let reaction: f64 = c.reaction[1].iter().zip(forces).map(|(r, l)| r * l).sum();
         assert!((total - p).abs() < 1e-9 * p && (reaction - total).abs() < 1e-9 * total);
     }
 }
