@@ -30,6 +30,8 @@ pub mod bench;
 pub mod case;
 pub mod check;
 pub mod contact;
+pub mod dem;
+pub mod exchange;
 pub mod external;
 pub mod fem;
 pub mod fit;

@@ -274,6 +274,7 @@ mod tests {
             pressure: vec![1.0; 5],
             traction: None,
             stick: None,
+            slip: None,
         };
         assert!(Grid::of_surface_field(&profile).is_none());
         let points: Vec<[f64; 2]> = (0..12).map(|k| [(k % 4) as f64, (k / 4) as f64]).collect();
@@ -285,6 +286,7 @@ mod tests {
                 .collect(),
             traction: Some(points.iter().map(|p| [p[1], 0.0]).collect()),
             stick: Some(points.iter().map(|p| p[1] > 0.0).collect()),
+            slip: None,
             points,
         };
         let grid = Grid::of_surface_field(&field).unwrap();

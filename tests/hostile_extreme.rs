@@ -21,11 +21,12 @@ fn folder() -> PathBuf {
     common::root().join("tests/hostile/extreme")
 }
 
-/// Every solver of this build that runs in-crate (not an external program).
-fn in_crate_solvers() -> Vec<&'static str> {
-    let external: Vec<_> = spherecontact::external::solvers()
+/// Every solver of this build that runs in-crate (not an external program: a deck or a DEM code).
+fn in_crate_solvers() -> Vec<String> {
+    let external: Vec<String> = spherecontact::external::solvers()
         .iter()
-        .map(|s| s.name())
+        .chain(&spherecontact::dem::solvers())
+        .map(|s| s.name().to_owned())
         .collect();
     registry::names()
         .into_iter()
@@ -126,7 +127,7 @@ fn run_extreme(name: &str) {
     let case = Case::load(&file).unwrap_or_else(|e| panic!("{e}"));
     let expected = expected_diagnostics(&text);
     let mut problems = Vec::new();
-    for solver_name in in_crate_solvers() {
+    for solver_name in &in_crate_solvers() {
         let s = registry::by_name(solver_name).unwrap();
         let expectation = expected.iter().find(|(s, _)| s == solver_name);
         let result = solver::run(s.as_ref(), &case.scene);

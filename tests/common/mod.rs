@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod decks;
+
 use spherecontact::case::Case;
 use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
@@ -131,13 +133,14 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
 /// tests/external.rs, would make report tests minutes long), and the checks that need no deck.
 pub fn paper_case_in_crate() -> Case {
     let mut case = case("cases/paper-fig7.toml");
-    let external: Vec<&str> = spherecontact::external::solvers()
+    // The decks and the DEM codes (tested in tests/external*.rs and tests/dem_codes.rs).
+    let external: Vec<String> = spherecontact::external::solvers()
         .iter()
-        .map(|s| s.name())
+        .chain(&spherecontact::dem::solvers())
+        .map(|s| s.name().to_owned())
         .collect();
-    case.solvers.retain(|s| !external.contains(&s.as_str()));
-    case.checks.retain(|c| {
-        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
-    });
+    case.solvers.retain(|s| !external.contains(s));
+    case.checks
+        .retain(|c| !external.contains(&c.solver) && !external.contains(&c.reference.to_string()));
     case
 }

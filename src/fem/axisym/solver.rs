@@ -219,6 +219,7 @@ impl Run {
                 pressure: profile.pressure.clone(),
                 traction: None,
                 stick: None,
+                slip: None,
             });
             if let Some(dir) = vtu_dir {
                 let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));
