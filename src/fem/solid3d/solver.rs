@@ -343,6 +343,7 @@ fn mirrored_field(model: &Model, position: usize, pressure: &[f64]) -> SurfaceFi
         pressure,
         traction: None,
         stick: None,
+        slip: None,
     }
 }
 
