@@ -6,15 +6,31 @@
 use crate::solver::Solver;
 use crate::{analytic, bem, dem, external, fem};
 
-/// Every solver this build knows, in listing order.
+/// Every solver this build knows, in listing order: the in-crate ones, then the external decks,
+/// then the DEM codes.
 pub fn registry() -> Vec<Box<dyn Solver>> {
-    let mut solvers = analytic::solvers();
-    solvers.push(Box::new(bem::Bem::default()));
-    solvers.push(Box::new(fem::FemAxisym::default()));
+    let mut solvers = in_crate();
+    // fem-3d computes in this process but meshes with gmsh, and its set-up takes seconds: it
+    // runs where a case lists it (cases/fem-3d-normal.toml) and in tests/fem3d_hertz.rs.
     solvers.push(Box::new(fem::FemSolid3d::default()));
     solvers.extend(external::solvers());
     solvers.extend(dem::solvers());
     solvers
+}
+
+/// The solvers that run inside this process (no external program): the analytic models and
+/// laws, the BEM and the axisymmetric FEM (not fem-3d, which meshes with gmsh). Tests that must
+/// stay fast and self-contained run these.
+pub fn in_crate() -> Vec<Box<dyn Solver>> {
+    let mut solvers = analytic::solvers();
+    solvers.push(Box::new(bem::Bem::default()));
+    solvers.push(Box::new(fem::FemAxisym::default()));
+    solvers
+}
+
+/// True when `name` is an in-crate solver of this build (see [`in_crate`]).
+pub fn is_in_crate(name: &str) -> bool {
+    in_crate().iter().any(|s| s.name() == name)
 }
 
 /// The solver called `name`, if this build has it.
