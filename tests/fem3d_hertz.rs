@@ -1,6 +1,7 @@
 //! `fem-3d` normal contact on the paper's spheres (R 0.1 m, E 70 GPa, ν 0.3): against fem-axisym
 //! on the same finite body (which removes the finite body's offset from Hertz), against Hertz
-//! with that offset computed, and its convergence under refinement.
+//! with that offset computed, its convergence under refinement, and the warning of a pole element
+//! coarser than the contact.
 //!
 //! Each fem-3d run meshes with gmsh and factors a 3D body: the default-mesh test takes about
 //! 20 s (optimised test profile); the refinement study is heavy (c/14 takes minutes and 3 GB) and
@@ -148,4 +149,20 @@ fn refinement_study_against_fem_axisym() {
         // At c/14 all three within 0.1 % of fem-axisym: p0 carries P^(1/3) of the remainder.
         assert!(fine.iter().all(|e| e.abs() < 1e-3), "{fine:?}");
     }
+}
+
+#[test]
+fn a_pole_element_coarser_than_the_contact_is_warned_about() {
+    if gmsh_missing() {
+        eprintln!("gmsh is not installed: fem-3d is not available, nothing to run");
+        return;
+    }
+    let scene = normal_scene(identical_spheres(0.1, 70e9, 0.3), &[0.0, 17.0]);
+    // Pole size 0.7 c_max: the contact spans less than two elements.
+    let history = fem3d(&scene, 1.0 / 0.7, Grip::Rigid);
+    let warnings = history.metadata.warnings.join("\n");
+    assert!(
+        warnings.contains("not smaller than half the contact radius"),
+        "no warning: {warnings:?}"
+    );
 }
