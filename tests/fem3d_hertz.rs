@@ -1,7 +1,7 @@
 //! `fem-3d` normal contact on the paper's spheres (R 0.1 m, E 70 GPa, ν 0.3): against fem-axisym
-//! on the same finite body (which removes the finite body's offset from Hertz), against Hertz
-//! with that offset computed, its convergence under refinement, and the warning of a pole element
-//! coarser than the contact.
+//! on the same finite body (which removes the finite body's offset from Hertz; the raw offset
+//! against Hertz is checked in cases/fem-3d-normal.toml), its convergence under refinement, and
+//! the warning of a pole element coarser than the contact.
 //!
 //! Each fem-3d run meshes with gmsh and factors a 3D body: the default-mesh test takes about
 //! 20 s (optimised test profile); the refinement study is heavy (c/14 takes minutes and 3 GB) and
