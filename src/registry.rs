@@ -4,7 +4,7 @@
 //! asks here; the solver families themselves know nothing of each other or of this list.
 
 use crate::solver::Solver;
-use crate::{analytic, bem, external, fem};
+use crate::{analytic, bem, dem, external, fem};
 
 /// Every solver this build knows, in listing order.
 pub fn registry() -> Vec<Box<dyn Solver>> {
@@ -12,6 +12,7 @@ pub fn registry() -> Vec<Box<dyn Solver>> {
     solvers.push(Box::new(bem::Bem::default()));
     solvers.push(Box::new(fem::FemAxisym::default()));
     solvers.extend(external::solvers());
+    solvers.extend(dem::solvers());
     solvers
 }
 
@@ -21,6 +22,6 @@ pub fn by_name(name: &str) -> Option<Box<dyn Solver>> {
 }
 
 /// The names of every solver of this build, in listing order.
-pub fn names() -> Vec<&'static str> {
-    registry().iter().map(|s| s.name()).collect()
+pub fn names() -> Vec<String> {
+    registry().iter().map(|s| s.name().to_owned()).collect()
 }

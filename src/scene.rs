@@ -30,12 +30,47 @@ pub struct Scene {
     pub friction: f64,
     /// The loading path.
     pub path: LoadingPath,
+    /// The path positions at which solvers keep surface fields.
+    pub fields: FieldPositions,
+}
+
+/// The path positions at which solvers keep surface fields (pressure, traction, stick/slip) and
+/// write field files: each kept position costs memory and output (a BEM grid's fields are
+/// megabytes), so a case names them and validation bounds their number
+/// (`case::limits::MAX_FIELD_POSITIONS`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FieldPositions {
+    /// Every path position (what a scene built in code gets; a case file gets it only for a
+    /// path of few positions).
+    #[default]
+    Every,
+    /// These positions, sorted, without repeats.
+    Listed(Vec<usize>),
+}
+
+impl FieldPositions {
+    /// The positions listed in `positions` (sorted and deduplicated here).
+    pub fn listed(mut positions: Vec<usize>) -> Self {
+        positions.sort_unstable();
+        positions.dedup();
+        Self::Listed(positions)
+    }
 }
 
 impl Scene {
     /// The Hertz solution of this pair.
     pub fn hertz(&self) -> Hertz {
         Hertz::of(&self.pair)
+    }
+
+    /// Whether solvers keep surface fields at path position `position`: the one rule every
+    /// solver consults before it records a field.
+    pub fn records_fields_at(&self, position: usize) -> bool {
+        match &self.fields {
+            FieldPositions::Every => true,
+            FieldPositions::Listed(positions) => positions.binary_search(&position).is_ok(),
+        }
     }
 
     /// Every step of the path.

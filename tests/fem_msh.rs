@@ -69,6 +69,7 @@ fn the_gmsh_mesh_of_the_decks_feeds_the_solver_and_agrees_with_the_generated_mes
         },
         friction: 0.2,
         path: LoadingPath::try_new(positions, vec![1]).unwrap(),
+        fields: Default::default(),
     };
     let mesh = msh::read(Path::new(GMSH_SPHERE)).unwrap();
     assert!(

@@ -115,7 +115,7 @@ fn every_solver_runs_every_shipped_case_without_failure() {
     for file in all_case_files() {
         let case = Case::load(&file).unwrap_or_else(|e| panic!("{e}"));
         for name in &case.solvers {
-            let solver: Box<dyn Solver> = registry::by_name(name).unwrap();
+            let solver: Box<dyn Solver> = case.solver(name).unwrap();
             match solver::run(solver.as_ref(), &case.scene) {
                 Ok(_) | Err(SolveError::Unavailable(_)) => {}
                 Err(e) => panic!(

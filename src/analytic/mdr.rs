@@ -33,6 +33,7 @@
 //! problem is even in x, so one half is modelled and doubled). P then has a relative error of
 //! order (Δx/c)², from the one cell cut by the contact edge.
 
+use crate::case::limits::MAX_MDR_SPRINGS;
 use crate::driver::{self, PathIncrement, PathModel};
 use crate::hertz::Hertz;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
@@ -163,17 +164,18 @@ impl SpringBed {
 }
 
 /// The bed as the path walker drives it, keeping the surface fields of the path positions.
-struct Walker {
+struct Walker<'a> {
+    scene: &'a Scene,
     bed: SpringBed,
     hertz: Hertz,
     fields: Vec<SurfaceField>,
 }
 
-impl PathModel for Walker {
+impl PathModel for Walker<'_> {
     fn advance(&mut self, increment: &PathIncrement) -> Result<StepResult, SolveError> {
         let step = increment.step;
         let state = self.bed.advance(step.delta_n, increment.shift());
-        if let Some(position) = step.position {
+        if let Some(position) = step.position.filter(|&p| self.scene.records_fields_at(p)) {
             self.fields
                 .push(self.bed.surface_field(position, step.delta_n, state.stick_radius));
         }
@@ -257,6 +259,7 @@ impl SpringBed {
             pressure,
             traction: Some(traction.into_iter().map(|q| [q, 0.0]).collect()),
             stick: Some(radii.iter().map(|&r| r < stick_radius).collect()),
+            slip: None,
         }
     }
 }
@@ -278,6 +281,10 @@ impl Solver for Mdr {
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        if !(1..=MAX_MDR_SPRINGS).contains(&self.springs) {
+            let message = format!("mdr needs 1 to {MAX_MDR_SPRINGS} springs (got {})", self.springs);
+            return Err(SolveError::Failed(message));
+        }
         let mut warnings = Vec::new();
         let (rows, fields) = match driver::never_closed(scene, false) {
             Some(rows) => {
@@ -287,7 +294,8 @@ impl Solver for Mdr {
             }
             None => {
                 let mut walker = Walker {
-                    bed: SpringBed::new(scene, self.springs.max(1)),
+                    scene,
+                    bed: SpringBed::new(scene, self.springs),
                     hertz: scene.hertz(),
                     fields: Vec::new(),
                 };
@@ -303,6 +311,14 @@ impl Solver for Mdr {
                     (1.0 + WINDOW_MARGIN) * scene.max_contact_radius()
                 ),
                 warnings,
+                // The stick radius is a cell edge: within one spacing of the true one.
+                extra: [(
+                    "spring_spacing_m".to_owned(),
+                    serde_json::json!(
+                        (1.0 + WINDOW_MARGIN) * scene.max_contact_radius() / self.springs as f64
+                    ),
+                )]
+                .into(),
                 ..Metadata::default()
             },
             steps: rows,

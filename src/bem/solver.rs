@@ -3,6 +3,7 @@
 
 use serde_json::json;
 
+use crate::case::limits::MAX_BEM_GRID;
 use crate::driver::{self, PathIncrement, PathModel};
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::path::Step;
@@ -64,9 +65,9 @@ impl Bem {
     /// Solves `scene`, returning the history and the full grid fields at every path position
     /// (pressure, traction, stick and accumulated slip: what a VTU writer needs).
     pub fn solve_with_fields(&self, scene: &Scene) -> Result<(History, Vec<PositionFields>), SolveError> {
-        if self.grid < 4 || !self.grid.is_multiple_of(2) {
+        if self.grid < 4 || !self.grid.is_multiple_of(2) || self.grid > MAX_BEM_GRID {
             return Err(SolveError::Failed(format!(
-                "bem needs an even grid of at least 4 panels a side (got {})",
+                "bem needs an even grid of 4 to {MAX_BEM_GRID} panels a side (got {})",
                 self.grid
             )));
         }
@@ -84,6 +85,7 @@ impl Bem {
         }
         let grid = Grid::covering(self.grid, self.window * c_max);
         let mut walker = Walker {
+            scene,
             state: ContactState::new(scene, grid, self.tolerances),
             fields: Vec::new(),
             total: IncrementCost::default(),
@@ -144,15 +146,17 @@ impl Bem {
 }
 
 /// The BEM contact as the path walker drives it, keeping the fields of every path position.
-struct Walker {
+struct Walker<'a> {
+    scene: &'a Scene,
     state: ContactState,
     fields: Vec<PositionFields>,
     total: IncrementCost,
 }
 
-impl Walker {
+impl Walker<'_> {
+    /// Keeps the fields at `step` if it is a position the scene records.
     fn keep(&mut self, step: &Step) {
-        if let Some(position) = step.position {
+        if let Some(position) = step.position.filter(|&p| self.scene.records_fields_at(p)) {
             self.fields.push(PositionFields {
                 position,
                 snapshot: self.state.snapshot().clone(),
@@ -161,7 +165,7 @@ impl Walker {
     }
 }
 
-impl PathModel for Walker {
+impl PathModel for Walker<'_> {
     fn advance(&mut self, increment: &PathIncrement) -> Result<StepResult, SolveError> {
         let step = increment.step;
         let cost = self
@@ -209,6 +213,7 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
                 .collect(),
         ),
         stick: Some(s.stick.clone()),
+        slip: None,
     }
 }
 

@@ -35,7 +35,10 @@ pub fn case_section(run: &CaseRun) -> Section {
             run.case.file.display()
         ),
     ];
-    paragraphs.extend(run.warnings.iter().map(|w| format!("Warning: {w}")));
+    paragraphs.extend(figures::warnings(run).iter().map(|w| match w.solvers.len() {
+        0 => format!("Warning: {}", w.text),
+        _ => format!("Warning ({}): {}", w.solvers.join(", "), w.text),
+    }));
     Section {
         title: "Case and solvers".into(),
         paragraphs,
@@ -86,6 +89,7 @@ pub fn document(run: &CaseRun) -> Result<Document> {
         ),
         figure_section(&format!("Surface fields at position {focus}"), fields),
         figure_section("Errors against the references", figures::errors(run)?),
+        super::dem_scoreboard::section(run),
     ];
     Ok(Document {
         title: format!("spherecontact: {}", run.case.name()),

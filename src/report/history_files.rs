@@ -3,14 +3,13 @@
 
 use std::path::Path;
 
+use super::figures::surface::FieldView;
 use crate::history::{History, Quantity};
 use crate::io::write_atomically;
 
 /// The CSV header: the path columns, then every quantity.
 pub fn csv_header() -> Vec<&'static str> {
-    let mut header = vec!["step", "position", "delta_n", "delta_t"];
-    header.extend(Quantity::ALL.iter().map(|q| q.name()));
-    header
+    crate::exchange::results_csv::columns()
 }
 
 /// The CSV text of a history.
@@ -32,7 +31,8 @@ pub fn to_csv(history: &History) -> anyhow::Result<String> {
 }
 
 /// The CSV text of a history's surface fields: one row per sample point, empty cells for what
-/// the solver does not resolve (`stick` is 1, 0, or empty outside the contact).
+/// the solver does not resolve (`stick` is 1, 0, or empty outside the contact; `slip_x`,
+/// `slip_y` the relative tangential displacement of the surfaces).
 pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
@@ -43,24 +43,28 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
         "traction_x",
         "traction_y",
         "stick",
+        "slip_x",
+        "slip_y",
     ])?;
-    for field in &history.fields {
-        for (i, [x, y]) in field.points.iter().enumerate() {
-            let traction = field.traction.as_ref().map(|t| t[i]);
-            let in_contact = field.pressure[i] > 0.0;
+    for field in FieldView::all(history) {
+        for i in 0..field.len() {
+            let [x, y] = field.point(i);
+            let traction = field.traction(i);
+            let slip = field.slip(i);
             let stick = field
-                .stick
-                .as_ref()
-                .filter(|_| in_contact)
-                .map(|s| u8::from(s[i]).to_string());
+                .stick(i)
+                .filter(|_| field.in_contact(i))
+                .map(|s| u8::from(s).to_string());
             writer.write_record([
-                field.position.to_string(),
+                field.position().to_string(),
                 format!("{x:.10e}"),
                 format!("{y:.10e}"),
-                format!("{:.10e}", field.pressure[i]),
+                format!("{:.10e}", field.pressure(i)),
                 traction.map_or_else(String::new, |t| format!("{:.10e}", t[0])),
                 traction.map_or_else(String::new, |t| format!("{:.10e}", t[1])),
                 stick.unwrap_or_default(),
+                slip.map_or_else(String::new, |s| format!("{:.10e}", s[0])),
+                slip.map_or_else(String::new, |s| format!("{:.10e}", s[1])),
             ])?;
         }
     }

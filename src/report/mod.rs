@@ -2,7 +2,9 @@
 //! files, and JUnit XML for CI.
 
 pub mod bench;
+pub mod claims;
 pub mod compare;
+pub mod dem_scoreboard;
 pub mod document;
 pub mod figures;
 pub mod history_files;

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod decks;
+
 use spherecontact::case::Case;
 use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
@@ -8,6 +10,34 @@ use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::{registry, solver};
 use std::path::{Path, PathBuf};
+
+/// A small valid case of the paper's spheres (hertz and mdr, three positions, 8 increments): the
+/// tests of the command line and of hostile inputs each break or change one thing of it.
+pub const SMALL_CASE: &str = r#"
+name = "cli-test"
+friction = 0.2
+solvers = ["hertz", "mdr"]
+
+[body1]
+radius = 0.1
+young = 70e9
+poisson = 0.3
+
+[path]
+unit = "um"
+delta_n = [0, 10, 10]
+delta_t = [0, 0, 1]
+substeps = 4
+"#;
+
+/// Runs the `spherecontact` command with `args` in the folder `cwd`.
+pub fn spherecontact(args: &[&str], cwd: &Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
+}
 
 /// The crate's folder (where cases/ and reference/ live).
 pub fn root() -> PathBuf {
@@ -95,5 +125,22 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
         pair,
         friction: 0.2,
         path,
+        fields: Default::default(),
     }
+}
+
+/// The paper's case with the in-crate solvers only (the external decks, tested in
+/// tests/external.rs, would make report tests minutes long), and the checks that need no deck.
+pub fn paper_case_in_crate() -> Case {
+    let mut case = case("cases/paper-fig7.toml");
+    // The decks and the DEM codes (tested in tests/external*.rs and tests/dem_codes.rs).
+    let external: Vec<String> = spherecontact::external::solvers()
+        .iter()
+        .chain(&spherecontact::dem::solvers())
+        .map(|s| s.name().to_owned())
+        .collect();
+    case.solvers.retain(|s| !external.contains(s));
+    case.checks
+        .retain(|c| !external.contains(&c.solver) && !external.contains(&c.reference.to_string()));
+    case
 }

@@ -226,13 +226,14 @@ impl Run {
         self.check_balance(model, &forces, force);
         let profile = pressure::recover(&model.radii, &model.weights, &forces);
         self.judge_resolution(&profile, force, step.delta_n, scene);
-        if let Some(position) = step.position {
+        if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
             self.fields.push(SurfaceField {
                 position,
                 points: model.radii.iter().map(|&r| [r, 0.0]).collect(),
                 pressure: profile.pressure.clone(),
                 traction: None,
                 stick: None,
+                slip: None,
             });
             if let Some(dir) = vtu_dir {
                 let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));
