@@ -151,6 +151,11 @@ pub struct SurfaceField {
     /// Relative tangential displacement of the surfaces (body 1 − body 2) [m] at each point,
     /// accumulated along the path; `None` for solvers that do not resolve it.
     pub slip: Option<Vec<[f64; 2]>>,
+    /// The samples' triangulation (indices into `points`) for fields on a surface mesh: the
+    /// layout reports draw them on; `None` for grids and profiles, whose layout the samples
+    /// themselves show.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub triangles: Option<Vec<[usize; 3]>>,
 }
 
 /// A solver's result along a whole path.

@@ -275,6 +275,7 @@ mod tests {
             traction: None,
             stick: None,
             slip: None,
+            triangles: None,
         };
         assert!(Grid::of_surface_field(&profile).is_none());
         let points: Vec<[f64; 2]> = (0..12).map(|k| [(k % 4) as f64, (k / 4) as f64]).collect();
@@ -288,6 +289,7 @@ mod tests {
             stick: Some(points.iter().map(|p| p[1] > 0.0).collect()),
             slip: None,
             points,
+            triangles: None,
         };
         let grid = Grid::of_surface_field(&field).unwrap();
         assert_eq!(grid.cells.len(), 3 * 2, "4 × 3 samples make 3 × 2 quads");

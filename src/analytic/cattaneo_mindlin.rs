@@ -221,6 +221,7 @@ fn surface_field(
         traction: Some(radii.iter().map(|&r| [traction(r), 0.0]).collect()),
         stick: Some(radii.iter().map(|&r| r < stick_radius.unwrap_or(c)).collect()),
         slip: None,
+        triangles: None,
     }
 }
 

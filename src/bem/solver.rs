@@ -214,6 +214,7 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
         ),
         stick: Some(s.stick.clone()),
         slip: None,
+        triangles: None,
     }
 }
 

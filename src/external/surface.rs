@@ -123,6 +123,7 @@ impl Surface {
             traction: tangential.then(|| self.nodes.iter().map(|n| [n.traction_x, 0.0]).collect()),
             stick: tangential.then(|| self.nodes.iter().map(|n| n.stick).collect()),
             slip: tangential.then(|| self.nodes.iter().map(|n| [n.slip, 0.0]).collect()),
+            triangles: None,
         }
     }
 }

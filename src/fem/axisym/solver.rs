@@ -234,6 +234,7 @@ impl Run {
                 traction: None,
                 stick: None,
                 slip: None,
+                triangles: None,
             });
             if let Some(dir) = vtu_dir {
                 let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));

@@ -21,6 +21,7 @@ use super::measures;
 use super::meshing::{self, Zones};
 use super::model::{Model, Settings};
 use super::output::{self, Loads, SurfaceValues};
+use super::surface::Surface;
 use super::system::Grip;
 use crate::contact::Settings as ContactSettings;
 use crate::external::toolchain::Toolchain;
@@ -344,7 +345,28 @@ fn mirrored_field(model: &Model, position: usize, pressure: &[f64]) -> SurfaceFi
         traction: None,
         stick: None,
         slip: None,
+        triangles: Some(mirrored_triangles(surface)),
     }
+}
+
+/// The half's sub-triangles and their mirror images, as indices into [`mirrored_field`]'s
+/// points: a node on the symmetry plane is its own image, the others' images follow the half's
+/// nodes in order (each image triangle's orientation reversed, so all face the same way).
+fn mirrored_triangles(surface: &Surface) -> Vec<[usize; 3]> {
+    let mut image: Vec<usize> = (0..surface.len()).collect();
+    let mut next = surface.len();
+    for (j, on_plane) in surface.on_symmetry.iter().enumerate() {
+        if !on_plane {
+            image[j] = next;
+            next += 1;
+        }
+    }
+    let half = surface.triangles.iter().copied();
+    let mirrored = surface
+        .triangles
+        .iter()
+        .map(|&[a, b, c]| [image[a], image[c], image[b]]);
+    half.chain(mirrored).collect()
 }
 
 /// Writes the volume and the contact surface of position `position` as VTU into `dir`.

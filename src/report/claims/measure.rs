@@ -266,6 +266,7 @@ mod tests {
             traction: Some(traction),
             stick: Some(stick),
             slip: None,
+            triangles: None,
         };
         (field, a, h)
     }

@@ -76,10 +76,12 @@ pub struct FieldView<'a> {
 }
 
 impl<'a> FieldView<'a> {
-    /// The view of `field`. Today's `SurfaceField` carries no layout: samples all on y = 0 are
-    /// a profile, anything else is a grid of square panels (the BEM's, the only map so far).
+    /// The view of `field`: its own triangles when it has them (a surface mesh), else samples
+    /// all on y = 0 are a profile and anything else a grid of square panels (the BEM's).
     pub fn of(field: &'a SurfaceField) -> Self {
-        let layout = if field.points.iter().all(|p| p[1] == 0.0) {
+        let layout = if let Some(triangles) = &field.triangles {
+            Layout::Triangles(triangles.clone())
+        } else if field.points.iter().all(|p| p[1] == 0.0) {
             Layout::Profile
         } else {
             Layout::Grid {
@@ -315,6 +317,7 @@ mod tests {
             stick: None,
             slip: None,
             points,
+            triangles: None,
         }
     }
 
@@ -342,11 +345,28 @@ mod tests {
             traction: None,
             stick: None,
             slip: None,
+            triangles: None,
         };
         let view = FieldView::of(&field);
         assert_eq!(view.layout, Layout::Profile);
         assert_eq!(view.along(HalfAxis::X), view.along(HalfAxis::Y));
         assert_eq!(view.spacing(), 1.0);
+    }
+
+    #[test]
+    fn a_field_with_its_own_triangles_is_read_on_them() {
+        // Four samples off the x axis that would otherwise be read as grid panels.
+        let field = SurfaceField {
+            position: 0,
+            points: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]],
+            pressure: vec![1.0, 2.0, 3.0, 4.0],
+            triangles: Some(vec![[0, 1, 2], [1, 3, 2]]),
+            ..SurfaceField::default()
+        };
+        assert_eq!(
+            FieldView::of(&field).layout,
+            Layout::Triangles(vec![[0, 1, 2], [1, 3, 2]])
+        );
     }
 
     #[test]
@@ -359,6 +379,7 @@ mod tests {
             traction: None,
             stick: None,
             slip: None,
+            triangles: None,
         };
         let view = FieldView {
             field: &field,
