@@ -29,6 +29,7 @@ pub mod bem;
 pub mod bench;
 pub mod case;
 pub mod check;
+pub mod domain;
 pub mod external;
 pub mod fem;
 pub mod fit;

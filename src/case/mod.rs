@@ -21,6 +21,12 @@
 //! delta_t = [0, 0, 2]                   # relative tangential displacement
 //! substeps = 20                         # per segment: one count, or one per segment
 //!
+//! [domain]                              # optional: the finite body FEM solvers and decks mesh
+//! kind = "hemisphere"                   # "hemisphere" (default) or "cap"
+//! height = 0.02                         # cap only: cut this far from the pole [m],
+//!                                       # 10 c_max ≤ height ≤ the smallest finite radius
+//! grip = "rigid"                        # "rigid" (default) or "axial" (frictionless scenes only)
+//!
 //! [[checks]]
 //! solver = "mdr"
 //! quantity = "normal_force"             # normal_force, tangential_force, contact_radius,
@@ -35,6 +41,7 @@
 //! Every rule broken gives a [`CaseError`] naming the file, the field, its line and column where
 //! known, and the allowed range.
 
+mod domain;
 mod error;
 mod raw;
 pub mod reference;
@@ -46,6 +53,7 @@ use std::path::{Path, PathBuf};
 use toml::Spanned;
 
 use crate::check::{CheckSpec, ErrorMeasure, Reference, Where};
+use crate::domain::Domain;
 use crate::history::Quantity;
 use crate::pair::{Body, ContactPair, Material};
 use crate::path::{LoadingPath, Position};
@@ -180,16 +188,21 @@ impl Validator<'_> {
             .map(|(i, c)| self.check(c, &format!("checks[{i}]"), path.positions().len()))
             .collect::<Result<_, _>>()?;
         let focus = self.focus(raw.focus.as_ref(), &path)?;
+        let mut scene = Scene {
+            name,
+            pair: ContactPair { body1, body2 },
+            friction,
+            path,
+            domain: Domain::default(),
+        };
+        if let Some(domain) = &raw.domain {
+            scene.domain = self.domain(domain, &scene)?;
+        }
         Ok(Case {
             file: self.file.to_path_buf(),
             focus,
             description: raw.description.unwrap_or_default(),
-            scene: Scene {
-                name,
-                pair: ContactPair { body1, body2 },
-                friction,
-                path,
-            },
+            scene,
             solvers,
             checks,
         })

@@ -16,8 +16,18 @@ pub struct RawCase {
     pub body1: RawBody,
     pub body2: Option<RawBody>,
     pub path: RawPath,
+    pub domain: Option<RawDomain>,
     #[serde(default)]
     pub checks: Vec<RawCheck>,
+}
+
+/// The `[domain]` table as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDomain {
+    pub kind: Option<Spanned<String>>,
+    pub height: Option<Spanned<f64>>,
+    pub grip: Option<Spanned<String>>,
 }
 
 /// A body as written.

@@ -268,16 +268,18 @@ impl<D: Deck> AxisymSolver<D> {
         let triangles = mesh.triangles;
         let mut metadata = Metadata {
             version: format!("{} {version}", self.deck.tool().name()),
-            model: "axisymmetric, one sphere (hemisphere loaded through its equatorial face) pressed by δn/2 \
-                    against its rigid frictionless symmetry plane; P from the contact traction"
-                .into(),
+            model: format!(
+                "axisymmetric, one sphere ({}) pressed by δn/2 against its rigid frictionless symmetry plane; \
+                 P from the contact traction",
+                scene.domain.describe()
+            ),
             resolution: format!(
                 "pole element {:.3} µm (c_max/{:.0}), {triangles} triangles",
                 mesh.resolution * 1e6,
                 scene.max_contact_radius() / mesh.resolution
             ),
             warnings: vec![
-                "finite hemisphere, not a half-space: P(δn) ≈ 0.37 % above Hertz on every mesh (docs/toolchain.md)".into(),
+                "a finite body, not a half-space: its offset from Hertz is the domain's (reference: mdr-domain)".into(),
                 "rows between path positions are not computed (empty): the deck solves the distinct δn of the positions".into(),
             ],
             ..Metadata::default()
@@ -288,6 +290,7 @@ impl<D: Deck> AxisymSolver<D> {
                 .push("normal contact only: tangential force and stick radius are not computed".into());
         }
         let extra = &mut metadata.extra;
+        extra.insert("domain".into(), json!(scene.domain));
         extra.insert("p0_method".into(), json!(self.deck.p0_method()));
         extra.insert("normal_force_from_reaction_by_position".into(), json!(reaction));
         extra.insert("iterations_by_position".into(), json!(iterations));

@@ -3,8 +3,8 @@
 Axisymmetric normal contact with DOLFINx (Debian's 0.5.2, run by /usr/bin/python3): one elastic
 sphere (radius R) pressed by d = delta_n/2 against a rigid frictionless plane z = 0 (the symmetry
 plane of two identical spheres). The mesh (gmsh MSH 4.1, quadratic, metres) is scaled to mm;
-units mm, N, MPa. x[0] = r, x[1] = z. Tags: 1 spherical surface (contact candidate), 2 flat face
-z = R (u_z = -d), 3 axis (u_r = 0). Contact: penalty t_z = k <-(z + u_z)>_+, k = kfac E / h,
+units mm, N, MPa. x[0] = r, x[1] = z. Tags: 1 spherical surface (contact candidate), cut face
+z = H tagged 2 (axial grip: u_z = -d) or 4 (rigid grip: u_z = -d, u_r = 0), 3 axis (u_r = 0). Contact: penalty t_z = k <-(z + u_z)>_+, k = kfac E / h,
 solved by Newton (semi-smooth: the derivative of max_value is a conditional).
 Writes steps.csv (one row per d) and field_<k>.xdmf (u, pressure at the P2 nodes).
 """
@@ -65,8 +65,10 @@ F = ufl.inner(sigma(u), eps(v)) * r * dx - press * v[1] * r * ds(1)
 
 fdim = msh.topology.dim - 1
 top_value = fem.Constant(msh, PETSc.ScalarType(0.0))
-bcs = [fem.dirichletbc(top_value, fem.locate_dofs_topological(V.sub(1), fdim, ftags.find(2)), V.sub(1)),
-       fem.dirichletbc(PETSc.ScalarType(0.0), fem.locate_dofs_topological(V.sub(0), fdim, ftags.find(3)), V.sub(0))]
+top = np.concatenate([ftags.find(2), ftags.find(4)])
+fixed_r = np.concatenate([ftags.find(3), ftags.find(4)])
+bcs = [fem.dirichletbc(top_value, fem.locate_dofs_topological(V.sub(1), fdim, top), V.sub(1)),
+       fem.dirichletbc(PETSc.ScalarType(0.0), fem.locate_dofs_topological(V.sub(0), fdim, fixed_r), V.sub(0))]
 problem = fem.petsc.NonlinearProblem(F, u, bcs=bcs)
 solver = dolfinx.nls.petsc.NewtonSolver(comm, problem)
 solver.rtol, solver.atol, solver.max_it = 1e-10, 1e-8, maxit
@@ -104,7 +106,7 @@ with open("steps.csv", "w", newline="") as f:
         gap = X1[:, 1] + uz
         pressure.x.array[:] = kpen * np.maximum(-gap, 0.0)
         P_contact = 2 * np.pi * integrate(press * r * ds(1))
-        P_top = -2 * np.pi * integrate(sigma(u)[1, 1] * r * ds(2))
+        P_top = -2 * np.pi * integrate(sigma(u)[1, 1] * r * (ds(2) + ds(4)))
         pole = order[0]
         p0 = float(pressure.x.array[pole]) if X1[pole, 0] < 1e-12 else float("nan")
         # contact radius: outermost zero crossing of the gap between consecutive surface nodes

@@ -10,10 +10,11 @@
 use std::time::Instant;
 
 use super::contact::{self, Condensed, Problem};
+use crate::domain::Domain;
 use crate::fem::assembly::{self, System};
 use crate::fem::element::tri6::{edge_weights, Integration, Lame};
 use crate::fem::factor::{Factor, Ordering};
-use crate::fem::mesh::meridian::{self, Domain, Grading, Mesh};
+use crate::fem::mesh::meridian::{self, Grading, Mesh};
 use crate::pair::Body;
 use crate::scene::Scene;
 
@@ -66,6 +67,8 @@ pub struct Settings {
     pub ordering: Ordering,
     /// Element integration.
     pub integration: Integration,
+    /// The modelled finite body (cap height, grip).
+    pub domain: Domain,
 }
 
 /// Uniformly fine zone: 5 % beyond the candidate zone, so the contact edge sits in it.
@@ -98,7 +101,8 @@ impl BodyModel {
     /// Builds the model of one body from its mesh.
     pub fn new(mesh: Mesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
         let t0 = Instant::now();
-        let system = assembly::assemble(&mesh, lame, settings.integration).map_err(|e| e.to_string())?;
+        let system = assembly::assemble(&mesh, lame, settings.integration, settings.domain.grip)
+            .map_err(|e| e.to_string())?;
         let t1 = Instant::now();
         let factor = Factor::new(&system.stiffness, settings.ordering)?;
         let t2 = Instant::now();
@@ -171,12 +175,13 @@ pub struct Model {
     pub weights: Vec<f64>,
 }
 
-/// The generator's grading for `body` under `settings`.
+/// The generator's grading for `body` under `settings`: a sphere's cap (the hemisphere, or the
+/// case's cap), a flat's lens of [`FLAT_DOMAIN`] contact radii.
 pub fn grading(body: &Body, settings: &Settings, contact_radius: f64) -> Grading {
     let domain = if body.radius.is_finite() {
-        Domain::Hemisphere
+        meridian::Domain::Cap(settings.domain.height(body.radius))
     } else {
-        Domain::Lens(FLAT_DOMAIN * contact_radius.max(settings.candidate_radius))
+        meridian::Domain::Lens(FLAT_DOMAIN * contact_radius.max(settings.candidate_radius))
     };
     Grading {
         radius: body.radius,

@@ -14,8 +14,10 @@ use super::contact::State;
 use super::model::{Model, Reduction, Settings};
 use super::output;
 use super::pressure::{self, Profile};
+use crate::domain::Grip;
 use crate::fem::element::tri6::{Integration, Lame};
 use crate::fem::factor::Ordering;
+use crate::fem::mesh::meridian::Mesh;
 use crate::fem::mesh::msh;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
@@ -86,6 +88,7 @@ impl FemAxisym {
             candidate_radius: (CANDIDATE_ZONE * c).max(3.0 * pole_size),
             ordering: self.ordering.unwrap_or(Ordering::Amd),
             integration,
+            domain: scene.domain,
         })
     }
 }
@@ -102,9 +105,33 @@ impl FemAxisym {
             return Err("a mesh file is supported for identical spheres (one body) only".into());
         }
         let mesh = msh::read(file).map_err(|e| e.to_string())?;
+        matches_domain(&mesh, scene, file)?;
         let lame = Lame::of(&scene.pair.body1.material);
         Model::from_meshes(Reduction::Symmetric, vec![mesh], vec![lame], settings)
     }
+}
+
+/// Refuses a mesh file made for another grip or another cut than the scene's domain.
+fn matches_domain(mesh: &Mesh, scene: &Scene, file: &std::path::Path) -> Result<(), String> {
+    let grip = scene.domain.grip;
+    if mesh.grip != Some(grip) {
+        let declared = mesh.grip.map_or("none", Grip::name);
+        return Err(format!(
+            "{}: the mesh is made for the {declared} grip (far-face tag) but the case asks for the {} grip",
+            file.display(),
+            grip.name()
+        ));
+    }
+    let height = scene.domain.height(scene.pair.body1.radius);
+    let far_height = mesh.far.iter().map(|&n| mesh.nodes[n][1]).fold(0.0, f64::max);
+    // The cut face is flat at z = H: its nodes lie there to the file's rounding.
+    if (far_height - height).abs() > 1e-6 * height {
+        return Err(format!(
+            "{}: the far face lies {far_height:e} m from the pole but the case's domain is cut at {height:e} m",
+            file.display()
+        ));
+    }
+    Ok(())
 }
 
 impl Solver for FemAxisym {
@@ -296,6 +323,7 @@ impl Run {
         let dofs: usize = model.bodies.iter().map(|b| b.dofs()).sum();
         let extra = [
             ("reduction", json!(format!("{:?}", model.reduction))),
+            ("domain", json!(settings.domain)),
             ("dofs", json!(dofs)),
             (
                 "nodes",
@@ -348,10 +376,10 @@ impl Run {
         History {
             metadata: Metadata {
                 model: format!(
-                    "axisymmetric linear elasticity, frictionless, small strain; {}; far part of each body \
-                     displaced rigidly along the axis, free radially (a sphere: its hemisphere, loaded on the \
-                     equatorial face; a flat: the region within {} c_max of the pole, loaded on that arc)",
+                    "axisymmetric linear elasticity, frictionless, small strain; {}; each sphere modelled as a {} \
+                     (a flat: the region within {} c_max of the pole, held on that arc with the same grip)",
                     model.reduction.describe(),
+                    settings.domain.describe(),
                     super::model::FLAT_DOMAIN
                 ),
                 resolution: format!(
