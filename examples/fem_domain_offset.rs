@@ -34,6 +34,7 @@ fn main() {
             friction: 0.2,
             path: LoadingPath::try_new(positions, vec![1]).unwrap(),
             domain: Default::default(),
+            fields: Default::default(),
         };
         let c = scene.max_contact_radius();
         let p: Vec<f64> = [20.0, 40.0, 80.0]

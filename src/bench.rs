@@ -81,7 +81,7 @@ pub fn time_solvers(
         for (solver, result) in solvers.iter().zip(results.iter_mut()) {
             if let Ok(timing) = result {
                 let (start, cpu_start) = (Instant::now(), cpu_time());
-                let outcome = solver.solve(scene);
+                let outcome = solver::solve_catching_panics(solver.as_ref(), scene);
                 timing.cpu_seconds.push(cpu_time() - cpu_start);
                 timing.seconds.push(start.elapsed().as_secs_f64());
                 std::hint::black_box(outcome.ok());
@@ -248,6 +248,7 @@ mod tests {
             )
             .unwrap(),
             domain: Default::default(),
+            fields: Default::default(),
         };
         let rungs = sweep(&[Box::new(Mdr::default())], &scene, 1).unwrap();
         let rungs: Vec<Rung> = rungs.into_iter().map(|r| r.unwrap()).collect();

@@ -8,8 +8,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use spherecontact::case::Case;
+use spherecontact::case::{limits, Case};
 use spherecontact::external::{geo, toolchain::Toolchain};
+use spherecontact::number::Short;
 use spherecontact::report::{history_files, junit, summary, table};
 use spherecontact::{io, registry, solver, verify};
 
@@ -103,6 +104,11 @@ enum Command {
 /// A bad-input error: printed, exit code 2, nothing written.
 struct InputError(String);
 
+/// Checks the output folder of a command before any work (nothing is written).
+fn output_folder(option: &str, dir: &Path) -> Result<(), InputError> {
+    io::check_output_folder(dir).map_err(|e| InputError(format!("{option} {}: {e}", dir.display())))
+}
+
 impl<E: std::fmt::Display> From<E> for InputError {
     fn from(e: E) -> Self {
         InputError(e.to_string())
@@ -148,14 +154,16 @@ fn main() -> ExitCode {
     }
 }
 
-/// Every `.toml` file under `dir`, recursively, in sorted order.
+/// Every `.toml` file under `dir`, recursively, in sorted order. Symbolic links to folders are
+/// not followed (a link to an ancestor would make the walk endless).
 fn case_files(dir: &Path) -> Result<Vec<PathBuf>, InputError> {
     let mut files = Vec::new();
     let entries = std::fs::read_dir(dir)
         .map_err(|e| InputError(format!("{}: cannot list cases: {e}", dir.display())))?;
     for entry in entries {
-        let path = entry?.path();
-        if path.is_dir() {
+        let entry = entry?;
+        let path = entry.path();
+        if entry.file_type()?.is_dir() {
             files.extend(case_files(&path)?);
         } else if path.extension().is_some_and(|e| e == "toml") {
             files.push(path);
@@ -165,13 +173,22 @@ fn case_files(dir: &Path) -> Result<Vec<PathBuf>, InputError> {
     Ok(files)
 }
 
-/// The solvers named on the command line, or the case's own list.
+/// The solvers named on the command line (each once), or the case's own list.
 fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::Solver>>, InputError> {
     let names = if names.is_empty() {
         &case.solvers[..]
     } else {
         names
     };
+    if let Some(twice) = names
+        .iter()
+        .enumerate()
+        .find_map(|(i, n)| names[..i].contains(n).then_some(n))
+    {
+        return Err(InputError(format!(
+            "--solver: `{twice}` is named twice (allowed: each solver once)"
+        )));
+    }
     names
         .iter()
         .map(|name| {
@@ -188,6 +205,7 @@ fn run(case: &Path, solvers: &[String], out: &Path, vtu: bool) -> Result<ExitCod
     // Plan: the case and every solver named must be valid before anything is written.
     let case = Case::load(case)?;
     let mut plan = planned_solvers(&case, solvers)?;
+    output_folder("--out", out)?;
     if vtu {
         plan = plan
             .into_iter()
@@ -250,6 +268,9 @@ fn verify_cases(
         .iter()
         .map(|f| Case::load(f))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(file) = junit_file {
+        io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+    }
     let runs: Vec<_> = cases.into_iter().map(verify::run_case).collect();
     for run in &runs {
         print!("{}", table::case_block(run));
@@ -281,7 +302,18 @@ fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, I
         Some(text) => geo::parse_length(text).map_err(|e| InputError(format!("--resolution: {e}")))?,
         None => geo::default_resolution(&case.scene),
     };
+    let finest = limits::min_mesh_size(&case.scene);
+    if resolution < finest {
+        return Err(InputError(format!(
+            "--resolution: {} m is finer than this case may mesh (allowed: at least {} m, c_max/{}: \
+             under a million triangles)",
+            Short(resolution),
+            Short(finest),
+            limits::MAX_ELEMENTS_PER_CONTACT_RADIUS
+        )));
+    }
     geo::geo_for_scene(&case.scene, resolution)?;
+    output_folder("--out", out)?;
     std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     match geo::mesh(&case.scene, resolution, out, &Toolchain::default()) {
         Ok(files) => {
@@ -326,6 +358,7 @@ fn bench(
     let case = Case::load(case)?;
     let plan = planned_solvers(&case, solvers)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("bench-{}", case.name())));
+    output_folder("--out", &out)?;
     if cfg!(debug_assertions) {
         eprintln!("warning: built without optimisation; run `cargo run --release -- bench …` for representative timings");
     }
@@ -381,6 +414,7 @@ enum Report {
 fn report(case: &Path, out: Option<PathBuf>, kind: Report) -> Result<ExitCode, InputError> {
     let case = Case::load(case)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
+    output_folder("--out", &out)?;
     let reference_dir = case.file.parent().unwrap_or(Path::new(".")).join("../reference");
     let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
     bar.set_style(
@@ -396,7 +430,11 @@ fn report(case: &Path, out: Option<PathBuf>, kind: Report) -> Result<ExitCode, I
     bar.finish_and_clear();
     let document = match kind {
         Report::Compare => spherecontact::report::compare::document(&run),
-        Report::Paper => spherecontact::report::paper::document(&run, &reference_dir),
+        Report::Paper => {
+            // The surface-field claims at the finest rungs of each map solver's ladder.
+            let study = spherecontact::report::claims::Study::of_ladders(&run);
+            spherecontact::report::paper::document(&run, &study, &reference_dir)
+        }
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;
     history_files::write_all(&out.join("solvers"), &run)

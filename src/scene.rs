@@ -33,6 +33,32 @@ pub struct Scene {
     pub path: LoadingPath,
     /// The finite body that finite element models mesh (`[domain]`).
     pub domain: Domain,
+    /// The path positions at which solvers keep surface fields.
+    pub fields: FieldPositions,
+}
+
+/// The path positions at which solvers keep surface fields (pressure, traction, stick/slip) and
+/// write field files: each kept position costs memory and output (a BEM grid's fields are
+/// megabytes), so a case names them and validation bounds their number
+/// (`case::limits::MAX_FIELD_POSITIONS`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FieldPositions {
+    /// Every path position (what a scene built in code gets; a case file gets it only for a
+    /// path of few positions).
+    #[default]
+    Every,
+    /// These positions, sorted, without repeats.
+    Listed(Vec<usize>),
+}
+
+impl FieldPositions {
+    /// The positions listed in `positions` (sorted and deduplicated here).
+    pub fn listed(mut positions: Vec<usize>) -> Self {
+        positions.sort_unstable();
+        positions.dedup();
+        Self::Listed(positions)
+    }
 }
 
 impl Scene {
@@ -44,6 +70,15 @@ impl Scene {
     /// True when the tangential problem is void: μ = 0 or a path without tangential motion.
     pub fn is_frictionless(&self) -> bool {
         self.friction == 0.0 || self.path.is_normal_only()
+    }
+
+    /// Whether solvers keep surface fields at path position `position`: the one rule every
+    /// solver consults before it records a field.
+    pub fn records_fields_at(&self, position: usize) -> bool {
+        match &self.fields {
+            FieldPositions::Every => true,
+            FieldPositions::Listed(positions) => positions.binary_search(&position).is_ok(),
+        }
     }
 
     /// Every step of the path.

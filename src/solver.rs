@@ -54,10 +54,11 @@ pub trait Solver: Send + Sync {
 /// Runs `solver` on `scene`, timing it and completing the history's metadata.
 ///
 /// A history with a non-finite value, or with a row count that does not match the path, is a
-/// failure of the solver: it is reported as such and never printed as a result.
+/// failure of the solver: it is reported as such and never printed as a result. So is a panic:
+/// see [`solve_catching_panics`].
 pub fn run(solver: &dyn Solver, scene: &Scene) -> Result<History, SolveError> {
     let start = Instant::now();
-    let mut history = solver.solve(scene)?;
+    let mut history = solve_catching_panics(solver, scene)?;
     validate(&history, scene.steps().len())?;
     let meta = &mut history.metadata;
     meta.wall_time_s = start.elapsed().as_secs_f64();
@@ -68,7 +69,27 @@ pub fn run(solver: &dyn Solver, scene: &Scene) -> Result<History, SolveError> {
     Ok(history)
 }
 
-/// Rejects histories that would print NaN or misalign with the path.
+/// `solver.solve(scene)`, with a panic turned into a failure of this solver.
+///
+/// The last line of defence: case validation keeps every derived quantity a normal number so
+/// that no solver should panic, but a bug that still does so must fail its own solver only, with
+/// the panic's message, and let the others of the run go on. (The panic is still printed by
+/// the default hook, with its location, for a bug report.)
+pub fn solve_catching_panics(solver: &dyn Solver, scene: &Scene) -> Result<History, SolveError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| solver.solve(scene))).unwrap_or_else(|payload| {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_owned())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "no message".to_owned());
+        Err(SolveError::Failed(format!(
+            "internal error (a panic, please report it): {message}"
+        )))
+    })
+}
+
+/// Rejects histories that would print NaN or inf in any output column, or misalign with the
+/// path: the rows (path columns and quantities) and the surface fields.
 fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
     if history.steps.len() != steps {
         return Err(SolveError::Failed(format!(
@@ -76,14 +97,34 @@ fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
             history.steps.len()
         )));
     }
+    let non_finite = |what: &str, at: String| SolveError::Failed(format!("non-finite {what} at {at}"));
     for row in &history.steps {
-        for quantity in Quantity::ALL {
-            if quantity.of(row).is_some_and(|v| !v.is_finite()) {
-                return Err(SolveError::Failed(format!(
-                    "non-finite {quantity} at step {}",
-                    row.step
-                )));
+        let columns = [("delta_n", Some(row.delta_n)), ("delta_t", Some(row.delta_t))];
+        let quantities = Quantity::ALL.map(|q| (q.name(), q.of(row)));
+        for (name, value) in columns.into_iter().chain(quantities) {
+            if value.is_some_and(|v| !v.is_finite()) {
+                return Err(non_finite(name, format!("step {}", row.step)));
             }
+        }
+    }
+    for field in &history.fields {
+        let at = || format!("the field of position {}", field.position);
+        let points = field.points.iter().flatten();
+        let traction = field.traction.iter().flatten().flatten();
+        if !points
+            .chain(&field.pressure)
+            .chain(traction)
+            .all(|v| v.is_finite())
+        {
+            return Err(non_finite("surface field value", at()));
+        }
+        let lengths = [
+            Some(field.pressure.len()),
+            field.traction.as_ref().map(Vec::len),
+            field.stick.as_ref().map(Vec::len),
+        ];
+        if lengths.into_iter().flatten().any(|n| n != field.points.len()) {
+            return Err(SolveError::Failed(format!("{}: arrays of unequal lengths", at())));
         }
     }
     Ok(())

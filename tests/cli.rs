@@ -3,27 +3,14 @@
 
 mod common;
 
-use common::root;
-use std::path::Path;
-use std::process::{Command, Output};
+use common::{root, spherecontact};
 
-/// A valid case; each bad-input test breaks one rule of it.
-const VALID: &str = r#"
-name = "cli-test"
-friction = 0.2
-solvers = ["hertz", "mdr"]
-
-[body1]
-radius = 0.1
-young = 70e9
-poisson = 0.3
-
-[path]
-unit = "um"
-delta_n = [0, 10, 10]
-delta_t = [0, 0, 1]
-substeps = 4
-
+/// A valid case: the small case with one check; each bad-input test breaks one rule of it.
+fn valid() -> String {
+    format!(
+        "{}{}",
+        common::SMALL_CASE,
+        r#"
 [[checks]]
 solver = "mdr"
 quantity = "normal_force"
@@ -31,14 +18,8 @@ at = "every-position"
 reference = { solver = "hertz" }
 tolerance = 1e-3
 reason = "midpoint rule on 4000 springs"
-"#;
-
-fn spherecontact(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_spherecontact"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
+"#
+    )
 }
 
 /// Writes `text` as case.toml in a fresh folder, runs `run` on it into out/, and returns
@@ -57,8 +38,9 @@ fn run_case_text(text: &str) -> (i32, String) {
 /// Asserts that replacing `from` by `to` in the valid case is rejected with exit code 2 and a
 /// message naming the file, `field` and containing `allowed`.
 fn assert_rejected(from: &str, to: &str, field: &str, allowed: &str) {
-    assert!(VALID.contains(from), "test error: `{from}` not in the valid case");
-    let (code, stderr) = run_case_text(&VALID.replacen(from, to, 1));
+    let valid = valid();
+    assert!(valid.contains(from), "test error: `{from}` not in the valid case");
+    let (code, stderr) = run_case_text(&valid.replacen(from, to, 1));
     assert_eq!(code, 2, "{from} → {to}: exit code {code}, stderr: {stderr}");
     assert!(stderr.contains("case.toml"), "no file name in: {stderr}");
     assert!(stderr.contains(field), "no field `{field}` in: {stderr}");
@@ -68,14 +50,15 @@ fn assert_rejected(from: &str, to: &str, field: &str, allowed: &str) {
 
 #[test]
 fn the_valid_case_runs() {
-    let (code, stderr) = run_case_text(VALID);
+    let (code, stderr) = run_case_text(&valid());
     assert_eq!(code, 0, "{stderr}");
 }
 
 #[test]
-fn young_modulus_must_be_positive() {
-    assert_rejected("young = 70e9", "young = 0.0", "body1.young", "E > 0");
-    assert_rejected("young = 70e9", "young = -70e9", "body1.young", "E > 0");
+fn young_modulus_must_be_in_its_physical_range() {
+    for bad in ["young = 0.0", "young = -70e9", "young = 999.0", "young = 1.1e13"] {
+        assert_rejected("young = 70e9", bad, "body1.young", "1e3 ≤ E ≤ 1e13 Pa");
+    }
 }
 
 #[test]
@@ -85,14 +68,16 @@ fn poisson_ratio_must_lie_between_minus_one_and_one_half() {
 }
 
 #[test]
-fn friction_must_be_non_negative() {
-    assert_rejected("friction = 0.2", "friction = -0.1", "friction", "μ ≥ 0");
+fn friction_must_be_between_zero_and_ten() {
+    assert_rejected("friction = 0.2", "friction = -0.1", "friction", "0 ≤ μ ≤ 10");
+    assert_rejected("friction = 0.2", "friction = 10.5", "friction", "0 ≤ μ ≤ 10");
 }
 
 #[test]
-fn radius_must_be_positive() {
-    assert_rejected("radius = 0.1", "radius = 0.0", "body1.radius", "R > 0");
-    assert_rejected("radius = 0.1", "radius = -inf", "body1.radius", "R > 0");
+fn radius_must_be_in_its_physical_range() {
+    for bad in ["radius = 0.0", "radius = -inf", "radius = 1e-10", "radius = 2e3"] {
+        assert_rejected("radius = 0.1", bad, "body1.radius", "1e-9 ≤ R ≤ 1e3 in m, or inf");
+    }
 }
 
 #[test]
@@ -107,8 +92,8 @@ fn two_flats_are_rejected() {
 
 #[test]
 fn numbers_must_be_finite() {
-    assert_rejected("young = 70e9", "young = nan", "body1.young", "finite");
-    assert_rejected("friction = 0.2", "friction = inf", "friction", "finite");
+    assert_rejected("young = 70e9", "young = nan", "body1.young", "1e3 ≤ E ≤ 1e13 Pa");
+    assert_rejected("friction = 0.2", "friction = inf", "friction", "0 ≤ μ ≤ 10");
     assert_rejected(
         "delta_n = [0, 10, 10]",
         "delta_n = [0, nan, 10]",
@@ -237,7 +222,7 @@ fn checks_are_validated() {
 
 #[test]
 fn syntax_errors_give_line_and_column() {
-    let (code, stderr) = run_case_text(&VALID.replacen("young = 70e9", "young = = 70e9", 1));
+    let (code, stderr) = run_case_text(&valid().replacen("young = 70e9", "young = = 70e9", 1));
     assert_eq!(code, 2);
     assert!(stderr.contains("case.toml:8:"), "no line number in: {stderr}");
 }
@@ -253,7 +238,7 @@ fn a_missing_case_file_is_bad_input() {
 #[test]
 fn run_writes_the_documented_csv_columns_and_json() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("case.toml"), VALID).unwrap();
+    std::fs::write(dir.path().join("case.toml"), valid()).unwrap();
     let output = spherecontact(
         &["run", "case.toml", "--solver", "mdr", "--out", "out"],
         dir.path(),
@@ -309,7 +294,7 @@ fn verify_passes_on_the_shipped_cases_and_writes_junit() {
 fn verify_fails_with_exit_code_one_on_a_nook() {
     let dir = tempfile::tempdir().unwrap();
     // MDR cannot meet 1e-12 against Hertz on 4000 springs (its quadrature error is ~1e-7).
-    let text = VALID.replacen("tolerance = 1e-3", "tolerance = 1e-12", 1);
+    let text = valid().replacen("tolerance = 1e-3", "tolerance = 1e-12", 1);
     std::fs::write(dir.path().join("case.toml"), text).unwrap();
     let output = spherecontact(&["verify", "case.toml"], dir.path());
     assert_eq!(output.status.code(), Some(1));
@@ -319,7 +304,7 @@ fn verify_fails_with_exit_code_one_on_a_nook() {
 #[test]
 fn run_writes_vtu_fields_for_solvers_that_have_them() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("case.toml"), VALID).unwrap();
+    std::fs::write(dir.path().join("case.toml"), valid()).unwrap();
     let output = spherecontact(
         &[
             "run",
@@ -356,7 +341,7 @@ fn run_writes_vtu_fields_for_solvers_that_have_them() {
 #[test]
 fn run_writes_the_bem_maps_as_vtu_grids() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("case.toml"), VALID).unwrap();
+    std::fs::write(dir.path().join("case.toml"), valid()).unwrap();
     let output = spherecontact(
         &["run", "case.toml", "--solver", "bem", "--out", "out", "--vtu"],
         dir.path(),

@@ -220,14 +220,11 @@ fn contact_holds_at_every_candidate_node() {
             .settings(&s)
             .unwrap();
         let model = Model::generate(&s, &settings).unwrap();
-        let mut active = vec![false; model.radii.len()];
+        let mut contact = model.contact().unwrap();
         for delta in [1e-6, 5e-6, 10e-6, 20e-6, 3e-6, 0.0] {
-            let state = model
-                .problem
-                .solve(model.reduction.approach(delta), &mut active)
-                .unwrap();
+            contact.advance(model.reduction.approach(delta), &[]).unwrap();
             let scale = model.reduction.approach(delta).abs().max(1e-9);
-            for (i, (&f, &g)) in state.forces.iter().zip(&state.gaps).enumerate() {
+            for (i, (&f, &g)) in contact.pressure().iter().zip(&contact.gaps()).enumerate() {
                 assert!(f >= 0.0, "negative force at node {i}");
                 // Exact on the active set (round-off of the dense solve), open elsewhere.
                 assert!(g >= -1e-11 * scale, "penetration {g} at node {i}");

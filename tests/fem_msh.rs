@@ -75,6 +75,7 @@ fn the_gmsh_mesh_of_the_decks_feeds_the_solver_and_agrees_with_the_generated_mes
             grip: Grip::Axial,
             ..Domain::default()
         },
+        fields: Default::default(),
     };
     let mesh = msh::read(Path::new(GMSH_SPHERE)).unwrap();
     assert!(

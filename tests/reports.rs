@@ -2,32 +2,24 @@
 //! - they regenerate identically from the same inputs, apart from timings;
 //! - every SVG is well-formed XML, and the HTML page is self-contained;
 //! - a solver missing from a run is shown as missing, never as a line or a zero;
-//! - the HTML loads in headless Chromium without console errors (skipped, with the reason
-//!   printed, where Chromium is not installed).
+//! - the HTML loads in headless Chromium at a laptop's width without console messages, fits that
+//!   width, and its first screen can be shot (skipped, with the reason printed, where Chromium is
+//!   not installed).
 
 mod common;
 
 use std::path::Path;
 use std::process::Command;
 
-use common::{case, root};
+use common::root;
+use spherecontact::report::claims::Study;
 use spherecontact::report::{compare, paper};
 use spherecontact::solver::SolveError;
 use spherecontact::verify::{self, CaseRun};
 
-/// The paper's case with the in-crate solvers only: these tests are about the reports, and the
-/// external decks (tested in tests/external.rs) would make them minutes long.
+/// The paper's case with the in-crate solvers.
 fn paper_run() -> CaseRun {
-    let mut case = case("cases/paper-fig7.toml");
-    let external: Vec<&str> = spherecontact::external::solvers()
-        .iter()
-        .map(|s| s.name())
-        .collect();
-    case.solvers.retain(|s| !external.contains(&s.as_str()));
-    case.checks.retain(|c| {
-        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
-    });
-    verify::run_case(case)
+    verify::run_case(common::paper_case_in_crate())
 }
 
 /// Text with the timing cells masked: HTML cells of class "timing", and the last Markdown cell of
@@ -54,7 +46,7 @@ fn reports_regenerate_identically_apart_from_timings() {
     let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
     for dir in &dirs {
         let run = paper_run();
-        paper::document(&run, &root().join("reference"))
+        paper::document(&run, &Study::none(), &root().join("reference"))
             .unwrap()
             .write(dir.path())
             .unwrap();
@@ -148,22 +140,21 @@ fn a_missing_solver_is_shown_as_missing_not_as_a_line() {
     );
 }
 
-#[test]
-fn the_page_loads_in_headless_chromium_without_console_errors() {
-    let Some(chromium) = ["chromium", "chromium-browser"]
+/// A laptop's viewport [px]: the width a reader is most likely to open the report at.
+const LAPTOP: (u32, u32) = (1366, 768);
+
+/// Headless Chromium with a throw-away profile and nothing on the network; `None` (and a line
+/// saying why the test is skipped) where Chromium is not installed.
+fn chromium(profile: &Path) -> Option<Command> {
+    let Some(binary) = ["chromium", "chromium-browser"]
         .into_iter()
         .find(|c| Command::new(c).arg("--version").output().is_ok())
     else {
         println!("skipped: Chromium is not installed (apt-get install chromium)");
-        return;
+        return None;
     };
-    let dir = tempfile::tempdir().unwrap();
-    paper::document(&paper_run(), &root().join("reference"))
-        .unwrap()
-        .write(dir.path())
-        .unwrap();
-    let profile = tempfile::tempdir().unwrap();
-    let output = Command::new(chromium)
+    let mut command = Command::new(binary);
+    command
         .args([
             "--headless",
             "--no-sandbox",
@@ -176,14 +167,34 @@ fn the_page_loads_in_headless_chromium_without_console_errors() {
             "--disable-component-update",
             "--disable-sync",
         ])
-        .arg(format!("--user-data-dir={}", profile.path().display()))
-        .args([
-            "--enable-logging=stderr",
-            "--v=0",
-            "--virtual-time-budget=2000",
-            "--dump-dom",
-        ])
-        .arg(format!("file://{}", dir.path().join("report.html").display()))
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg(format!("--window-size={},{}", LAPTOP.0, LAPTOP.1))
+        .args(["--hide-scrollbars", "--virtual-time-budget=3000"]);
+    Some(command)
+}
+
+/// The width and height of a PNG, from its header.
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "a PNG");
+    let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+    (word(16), word(20))
+}
+
+#[test]
+fn the_page_loads_at_laptop_width_in_headless_chromium_without_console_messages() {
+    let profile = tempfile::tempdir().unwrap();
+    let Some(mut load) = chromium(profile.path()) else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    paper::document(&paper_run(), &Study::none(), &root().join("reference"))
+        .unwrap()
+        .write(dir.path())
+        .unwrap();
+    let page = dir.path().join("report.html");
+    let output = load
+        .args(["--enable-logging=stderr", "--v=0", "--dump-dom"])
+        .arg(format!("file://{}", page.display()))
         .output()
         .unwrap();
     let (dom, log) = (
@@ -194,9 +205,59 @@ fn the_page_loads_in_headless_chromium_without_console_errors() {
         dom.contains("Figure 9: tangential force"),
         "the page did not load: {log}"
     );
-    let console_errors: Vec<_> = log
-        .lines()
-        .filter(|l| l.contains("CONSOLE") && l.contains("ERROR"))
-        .collect();
-    assert!(console_errors.is_empty(), "console errors: {console_errors:?}");
+    // Any console message — error, warning or log — is something a reader's browser complains of.
+    let console: Vec<_> = log.lines().filter(|l| l.contains("CONSOLE")).collect();
+    assert!(console.is_empty(), "console messages: {console:?}");
+
+    // At laptop width nothing runs off the side: a measuring page loads the report in a frame
+    // of that width and prints the width it needs.
+    let measure = dir.path().join("measure.html");
+    std::fs::write(
+        &measure,
+        format!(
+            "<!DOCTYPE html><html><body style=\"margin:0\"><iframe id=\"page\" src=\"file://{}\" \
+             style=\"width:{}px;height:600px;border:0\"></iframe><pre id=\"size\"></pre><script>\
+             document.getElementById('page').onload = () => {{ const d = document.getElementById('page').contentDocument; \
+             document.getElementById('size').textContent = 'NEEDS=' + d.documentElement.scrollWidth + 'x' + \
+             d.documentElement.scrollHeight; }};</script></body></html>",
+            page.display(),
+            LAPTOP.0
+        ),
+    )
+    .unwrap();
+    let output = chromium(profile.path())
+        .unwrap()
+        .args(["--allow-file-access-from-files", "--dump-dom"])
+        .arg(format!("file://{}", measure.display()))
+        .output()
+        .unwrap();
+    let dom = String::from_utf8_lossy(&output.stdout);
+    let needs = dom
+        .split("NEEDS=")
+        .nth(1)
+        .and_then(|rest| rest.split('<').next())
+        .unwrap_or_else(|| panic!("the measuring page printed no size: {dom}"));
+    let (width, height) = needs.split_once('x').unwrap();
+    let (width, height): (u32, u32) = (width.parse().unwrap(), height.parse().unwrap());
+    assert!(
+        width <= LAPTOP.0,
+        "the page needs {width} px: it scrolls sideways at {} px",
+        LAPTOP.0
+    );
+    assert!(
+        height > 5 * LAPTOP.1,
+        "control: the whole report was measured ({height} px)"
+    );
+
+    // The first screen, as a reader sees it on opening the report.
+    let shot = dir.path().join("laptop.png");
+    let output = chromium(profile.path())
+        .unwrap()
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .unwrap();
+    let png = std::fs::read(&shot)
+        .unwrap_or_else(|e| panic!("no screenshot ({e}): {}", String::from_utf8_lossy(&output.stderr)));
+    assert_eq!(png_size(&png), LAPTOP);
 }

@@ -26,6 +26,7 @@
 //! The normal load must be constant while the tangential displacement changes; this solver
 //! reports itself not applicable otherwise (MDR covers varying loads).
 
+use crate::hertz::Hertz;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -158,6 +159,34 @@ fn stick_radius(contact_radius: f64, shed: f64, sliding_force: f64) -> f64 {
     }
 }
 
+/// Cattaneo–Mindlin's traction q(r) [Pa] of a Hertz contact at approach `delta_n`, loaded
+/// tangentially from a virgin state to the force `force` at constant normal load, signed as
+/// the force: (μ p0 / c) [√(c² − r²)₊ − √(c_s² − r²)₊] with c_s = c (1 − |Q|/μP)^{1/3}
+/// (Johnson 1985, eq. 7.50); μ p(r) in gross sliding. Zero outside a closed contact.
+pub fn virgin_traction(hertz: &Hertz, friction: f64, delta_n: f64, force: f64, r: f64) -> f64 {
+    let c = hertz.contact_radius(delta_n);
+    if c <= 0.0 {
+        return 0.0;
+    }
+    let curve = VirginCurve {
+        sliding_force: friction * hertz.force(delta_n),
+        // The traction's shape does not depend on the displacement scale.
+        sliding_displacement: f64::INFINITY,
+    };
+    let scale = friction * hertz.peak_pressure(delta_n) / c;
+    scale * curve.traction_shape(r, c, force.abs()).copysign(force)
+}
+
+/// Cattaneo–Mindlin's stick radius c (1 − |Q|/μP)^{1/3} [m] at approach `delta_n` and tangential
+/// force `force` (0 in gross sliding).
+pub fn virgin_stick_radius(hertz: &Hertz, friction: f64, delta_n: f64, force: f64) -> f64 {
+    stick_radius(
+        hertz.contact_radius(delta_n),
+        force.abs(),
+        friction * hertz.force(delta_n),
+    )
+}
+
 /// Sample points of the surface fields along x: from the centre to beyond the largest contact.
 const FIELD_POINTS: usize = 101;
 
@@ -264,7 +293,9 @@ impl Solver for CattaneoMindlin {
                     row.tangential_force = Some(q);
                     row.stick_radius = Some(stick_radius(c, shed, sliding_force));
                 }
-                if let (Some(position), true) = (step.position, c > 0.0) {
+                if let (Some(position), true) =
+                    (step.position.filter(|&p| scene.records_fields_at(p)), c > 0.0)
+                {
                     fields.push(surface_field(
                         scene,
                         position,
@@ -324,6 +355,33 @@ mod tests {
                 scale * m.traction_shape(r, c) * 2.0 * std::f64::consts::PI * r * dr
             })
             .sum()
+    }
+
+    #[test]
+    fn virgin_traction_is_the_first_branch_of_the_solver() {
+        // The public closed form equals the Masing state's traction on the virgin curve.
+        let (mut m, c, p0) = masing();
+        let (q, _) = m.move_to(0.4 * m.curve.sliding_displacement);
+        let (hertz, _, delta) = paper_contact();
+        for r in [0.0, 0.3 * c, 0.7 * c, 0.95 * c] {
+            let expected = 0.2 * p0 / c * m.traction_shape(r, c);
+            assert_relative_eq!(
+                virgin_traction(&hertz, 0.2, delta, q, r),
+                expected,
+                max_relative = 1e-12
+            );
+        }
+        let cs = virgin_stick_radius(&hertz, 0.2, delta, q);
+        assert_relative_eq!(
+            cs,
+            c * (1.0 - q / (0.2 * hertz.force(delta))).cbrt(),
+            max_relative = 1e-12
+        );
+        assert_eq!(
+            virgin_traction(&hertz, 0.2, 0.0, q, 0.0),
+            0.0,
+            "no contact, no traction"
+        );
     }
 
     #[test]

@@ -224,6 +224,7 @@ pub(crate) mod fixtures {
             friction: 0.2,
             path: LoadingPath::try_new(vec![origin], vec![]).expect("one position"),
             domain: Default::default(),
+            fields: Default::default(),
         }
     }
 

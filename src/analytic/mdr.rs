@@ -33,6 +33,7 @@
 //! problem is even in x, so one half is modelled and doubled). P then has a relative error of
 //! order (Δx/c)², from the one cell cut by the contact edge.
 
+use crate::case::limits::MAX_MDR_SPRINGS;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -239,18 +240,24 @@ impl Solver for Mdr {
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        if !(1..=MAX_MDR_SPRINGS).contains(&self.springs) {
+            let message = format!("mdr needs 1 to {MAX_MDR_SPRINGS} springs (got {})", self.springs);
+            return Err(SolveError::Failed(message));
+        }
         let hertz = scene.hertz();
         let steps = scene.steps();
         let mut rows = Vec::with_capacity(steps.len());
         let mut fields = Vec::new();
         if scene.max_contact_radius() > 0.0 {
-            let mut bed = SpringBed::new(scene, self.springs.max(1));
+            let mut bed = SpringBed::new(scene, self.springs);
             let mut previous_t = steps[0].delta_t;
             for step in &steps {
                 let state = bed.advance(step.delta_n, step.delta_t - previous_t);
                 previous_t = step.delta_t;
                 let in_contact = step.delta_n > 0.0;
-                if let (Some(position), true) = (step.position, in_contact) {
+                if let (Some(position), true) =
+                    (step.position.filter(|&p| scene.records_fields_at(p)), in_contact)
+                {
                     fields.push(bed.surface_field(position, step.delta_n, state.stick_radius));
                 }
                 rows.push(StepResult {
@@ -278,6 +285,14 @@ impl Solver for Mdr {
                     self.springs,
                     (1.0 + WINDOW_MARGIN) * scene.max_contact_radius()
                 ),
+                // The stick radius is a cell edge: within one spacing of the true one.
+                extra: [(
+                    "spring_spacing_m".to_owned(),
+                    serde_json::json!(
+                        (1.0 + WINDOW_MARGIN) * scene.max_contact_radius() / self.springs as f64
+                    ),
+                )]
+                .into(),
                 ..Metadata::default()
             },
             steps: rows,

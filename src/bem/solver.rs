@@ -3,6 +3,7 @@
 
 use serde_json::json;
 
+use crate::case::limits::MAX_BEM_GRID;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::{Scene, DISSIMILARITY_BETA};
 use crate::solver::{SolveError, Solver};
@@ -62,9 +63,9 @@ impl Bem {
     /// Solves `scene`, returning the history and the full grid fields at every path position
     /// (pressure, traction, stick and accumulated slip: what a VTU writer needs).
     pub fn solve_with_fields(&self, scene: &Scene) -> Result<(History, Vec<PositionFields>), SolveError> {
-        if self.grid < 4 || !self.grid.is_multiple_of(2) {
+        if self.grid < 4 || !self.grid.is_multiple_of(2) || self.grid > MAX_BEM_GRID {
             return Err(SolveError::Failed(format!(
-                "bem needs an even grid of at least 4 panels a side (got {})",
+                "bem needs an even grid of 4 to {MAX_BEM_GRID} panels a side (got {})",
                 self.grid
             )));
         }
@@ -106,7 +107,7 @@ impl Bem {
             total.tangential_iterations += cost.tangential_iterations;
             let snapshot = state.snapshot();
             rows.push(row(step, snapshot));
-            if let Some(position) = step.position {
+            if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
                 fields.push(PositionFields {
                     position,
                     snapshot: snapshot.clone(),

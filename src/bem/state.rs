@@ -58,14 +58,10 @@ impl Snapshot {
     }
 
     /// Where a field that vanishes like a square root at an edge (p at the contact edge, μp − |q|
-    /// at the stick edge) reaches zero along the four half-axes +x, −x, +y, −y [m].
-    ///
-    /// Near the edge of a smooth non-conforming contact p ∝ √(c − r) (Johnson 1985, §5.1), and
-    /// for Hertz p² = p0² (1 − r²/c²) exactly; Cattaneo's stick-zone deficit μp − q is
-    /// μp0 (c_s/c) √(1 − r²/c_s²) (Johnson 1985, eq. 7.38). So along each half-axis a
-    /// least-squares line of value² against r² through the panels of the outer half of the zone
-    /// (value > 0) meets zero at the edge: sub-panel resolution, where counting whole panels is
-    /// first order and noisy. `None` when an axis has fewer than two panels in the zone.
+    /// at the stick edge) reaches zero along the four half-axes +x, −x, +y, −y [m], each fitted
+    /// through the panels from the centre out while the value is positive
+    /// ([`crate::fit::square_root_edge`]). `None` when an axis has fewer than two panels in the
+    /// outer half of the zone.
     fn axis_edges(&self, value: impl Fn(usize) -> f64) -> Option<[f64; 4]> {
         let grid = &self.grid;
         let centre = grid.n / 2;
@@ -77,19 +73,14 @@ impl Snapshot {
         ];
         let mut edges = [0.0; 4];
         for (edge, panel) in edges.iter_mut().zip(half_axes) {
-            let panels: Vec<usize> = (0..).map_while(panel).take_while(|&k| value(k) > 0.0).collect();
-            let first = panels.len() / 2;
-            if panels.len() - first < 2 {
-                return None;
-            }
-            let points: Vec<(f64, f64)> = (first..panels.len())
-                .map(|i| ((i as f64 * grid.h).powi(2), value(panels[i]).powi(2)))
+            let samples: Vec<(f64, f64)> = (0..)
+                .map_while(panel)
+                .map(&value)
+                .take_while(|&v| v > 0.0)
+                .enumerate()
+                .map(|(i, v)| (i as f64 * grid.h, v))
                 .collect();
-            *edge = crate::fit::Line::fit(&points)
-                .filter(|l| l.slope < 0.0)?
-                .zero()?
-                .max(0.0)
-                .sqrt();
+            *edge = crate::fit::square_root_edge(&samples)?;
         }
         Some(edges)
     }

@@ -2,23 +2,28 @@
 //! verification case, read and validated into a [`Case`].
 //!
 //! ```toml
-//! name = "hertz-normal"                 # optional, defaults to the file stem
+//! name = "hertz-normal"                 # optional, defaults to the file stem; a plain name:
+//!                                       # 1–64 of A–Z a–z 0–9 . _ -, starting with a letter or digit
 //! description = "…"
-//! friction = 0.2                        # Coulomb μ ≥ 0
+//! friction = 0.2                        # Coulomb 0 ≤ μ ≤ 10
 //! solvers = ["hertz", "mdr"]
 //! focus = 2                             # optional: the position whose surface fields reports
 //!                                       # show (default: the first of largest δn)
+//! fields = "every-position"             # optional: where solvers keep surface fields:
+//!                                       # "every-position", "focus", or [1, 5, 7] (the focus is
+//!                                       # always added); at most 16 positions. Default: every
+//!                                       # position for a path of at most 16, else the focus only
 //!
 //! [body1]                               # SI: m, Pa
-//! radius = 0.1                          # > 0; `inf` for a flat
-//! young = 70e9                          # > 0
+//! radius = 0.1                          # 1e-9 ≤ R ≤ 1e3; `inf` for a flat
+//! young = 70e9                          # 1e3 ≤ E ≤ 1e13
 //! poisson = 0.3                         # −1 < ν < 0.5
 //! # [body2] is optional: absent means two identical spheres
 //!
 //! [path]
-//! unit = "um"                           # "m", "mm", "um" or "µm"
-//! delta_n = [0, 10, 17]                 # total approach of the far points
-//! delta_t = [0, 0, 2]                   # relative tangential displacement
+//! unit = "um"                           # "m", "mm", "um", "µm" or "μm" (micro sign or Greek mu)
+//! delta_n = [0, 10, 17]                 # total approach of the far points, |δn| ≤ R_min
+//! delta_t = [0, 0, 2]                   # relative tangential displacement, |δt| ≤ R_min
 //! substeps = 20                         # per segment: one count, or one per segment
 //!
 //! [domain]                              # optional: the finite body FEM solvers and decks mesh
@@ -40,31 +45,47 @@
 //!
 //! Every rule broken gives a [`CaseError`] naming the file, the field, its line and column where
 //! known, and the allowed range.
+//!
+//! **Physical ranges.** R_min is the smaller finite radius: Hertz, Mindlin and every solver here
+//! are small-displacement theories, and a displacement beyond the radius has no meaning for them.
+//! The derived quantities must be normal positive floating-point numbers: E*, R*, G*, and at the
+//! largest approach (when the path closes the gap) the Hertz contact radius, force and peak
+//! pressure, the stiffnesses 2E*c and 8G*c, and the sliding force μP when μ > 0.
+//!
+//! **Limits** ([`limits`]): what a valid case may ask for, so that it cannot exhaust the machine.
+//!
+//! | what | limit |
+//! |---|---|
+//! | case or reference file | a regular file (no FIFO, device or folder), at most 4 MiB |
+//! | increments of the path, in all | at most 1 000 000 (a history and its JSON: 0.43 GB a solver) |
+//! | positions with surface fields | at most 16 (see `fields`) |
+//! | BEM grid | at most 512² panels |
+//! | MDR bed | at most 1 000 000 springs |
+//! | mesh (`mesh --resolution`) | pole element ≥ c_max/320 (≥ R1/32 000 without contact): under a million triangles |
 
 mod domain;
+mod check_rules;
 mod error;
+pub mod input;
+pub mod limits;
 mod raw;
 pub mod reference;
+mod scene_rules;
 
 pub use error::CaseError;
+pub use limits::{MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-use crate::check::{CheckSpec, ErrorMeasure, Reference, Where};
+use crate::check::{CheckSpec, Reference};
 use crate::domain::Domain;
-use crate::history::Quantity;
-use crate::pair::{Body, ContactPair, Material};
-use crate::path::{LoadingPath, Position};
+use crate::number::Short;
+use crate::pair::ContactPair;
 use crate::registry;
 use crate::scene::Scene;
-use raw::{RawBody, RawCase, RawCheck, RawPath};
-use reference::LoadError;
-
-/// The most increments a path may have in all: each step keeps a row of every solver's history,
-/// so this bounds the memory a case can ask for (about 100 bytes a row and solver).
-pub const MAX_INCREMENTS: usize = 1_000_000;
+use raw::RawCase;
 
 /// A validated case.
 #[derive(Clone, Debug)]
@@ -84,9 +105,9 @@ pub struct Case {
 }
 
 impl Case {
-    /// Reads and validates the case file at `file`.
+    /// Reads and validates the case file at `file` (a regular file of at most 4 MiB).
     pub fn load(file: &Path) -> Result<Self, CaseError> {
-        let text = std::fs::read_to_string(file)
+        let text = input::read_text(file)
             .map_err(|e| CaseError::new(file, None, "", format!("cannot read the case file: {e}")))?;
         Self::parse(file, &text)
     }
@@ -94,8 +115,15 @@ impl Case {
     /// Validates the text of a case file; `file` names it in errors and anchors reference paths.
     pub fn parse(file: &Path, text: &str) -> Result<Self, CaseError> {
         let raw: RawCase = toml::from_str(text).map_err(|e| {
-            let span = e.span().map(|s| (text, s));
-            CaseError::new(file, span, "", e.message().to_owned())
+            // The parser locates its errors but does not name the field: read it at the span.
+            let field = e.span().and_then(|s| error::field_at(text, s.start));
+            let message = error::parser_message(&e);
+            CaseError::new(
+                file,
+                e.span().map(|s| (text, s)),
+                field.unwrap_or_default(),
+                message,
+            )
         })?;
         Validator { file, text }.case(raw)
     }
@@ -138,7 +166,7 @@ impl Validator<'_> {
         CaseError::new(self.file, Some((self.text, spanned.span())), field, message)
     }
 
-    /// A finite number in the open or closed range the predicate describes.
+    /// A number in the range the predicate describes (`allowed`, in words).
     fn number(
         &self,
         value: &Spanned<f64>,
@@ -150,37 +178,26 @@ impl Validator<'_> {
         if ok(v) {
             Ok(v)
         } else {
-            Err(self.error(value, field, format!("{v} is out of range (allowed: {allowed})")))
+            Err(self.error(
+                value,
+                field,
+                format!("{} is out of range (allowed: {allowed})", Short(v)),
+            ))
         }
     }
 
     fn case(&self, raw: RawCase) -> Result<Case, CaseError> {
+        let name = self.name(raw.name.as_ref())?;
         let friction = self.number(
             &raw.friction,
             "friction",
-            |m| m.is_finite() && m >= 0.0,
-            "finite μ ≥ 0",
+            |m| (0.0..=limits::MAX_FRICTION).contains(&m),
+            "0 ≤ μ ≤ 10",
         )?;
-        let body1 = self.body(&raw.body1, "body1")?;
-        let body2 = match &raw.body2 {
-            Some(b) => self.body(b, "body2")?,
-            None => body1,
-        };
-        if body1.radius.is_infinite() && body2.radius.is_infinite() {
-            let at = raw.body2.as_ref().map_or(&raw.body1.radius, |b| &b.radius);
-            return Err(self.error(
-                at,
-                "body2.radius",
-                "two flats make no Hertz contact (allowed: at least one finite radius)",
-            ));
-        }
-        let path = self.path(&raw.path)?;
+        let pair = self.pair(&raw)?;
+        let path = self.path(&raw.path, &pair)?;
+        self.derived(&raw, &pair, friction, &path)?;
         let solvers = self.solvers(&raw.solvers)?;
-        let name = raw.name.unwrap_or_else(|| {
-            self.file
-                .file_stem()
-                .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
-        });
         let checks = raw
             .checks
             .iter()
@@ -188,12 +205,14 @@ impl Validator<'_> {
             .map(|(i, c)| self.check(c, &format!("checks[{i}]"), path.positions().len()))
             .collect::<Result<_, _>>()?;
         let focus = self.focus(raw.focus.as_ref(), &path)?;
+        let fields = self.fields(raw.fields.as_ref(), path.positions().len(), focus)?;
         let mut scene = Scene {
             name,
-            pair: ContactPair { body1, body2 },
+            pair,
             friction,
             path,
             domain: Domain::default(),
+            fields,
         };
         if let Some(domain) = &raw.domain {
             scene.domain = self.domain(domain, &scene)?;
@@ -208,143 +227,22 @@ impl Validator<'_> {
         })
     }
 
-    fn focus(&self, raw: Option<&Spanned<i64>>, path: &LoadingPath) -> Result<usize, CaseError> {
-        let positions = path.positions();
-        let Some(raw) = raw else {
-            // The first position of largest δn.
-            let largest = path.max_approach();
-            return Ok(positions.iter().position(|p| p.delta_n == largest).unwrap_or(0));
+    /// The two bodies: each in range, and not two flats.
+    fn pair(&self, raw: &RawCase) -> Result<ContactPair, CaseError> {
+        let body1 = self.body(&raw.body1, "body1")?;
+        let body2 = match &raw.body2 {
+            Some(b) => self.body(b, "body2")?,
+            None => body1,
         };
-        match usize::try_from(*raw.get_ref()) {
-            Ok(k) if k < positions.len() => Ok(k),
-            _ => Err(self.error(
-                raw,
-                "focus",
-                format!(
-                    "{} is not a path position (allowed: 0 to {})",
-                    raw.get_ref(),
-                    positions.len() - 1
-                ),
-            )),
-        }
-    }
-
-    fn body(&self, raw: &RawBody, field: &str) -> Result<Body, CaseError> {
-        let radius = self.number(
-            &raw.radius,
-            &format!("{field}.radius"),
-            |r| r > 0.0,
-            "R > 0 in m, or inf for a flat",
-        )?;
-        let young = self.number(
-            &raw.young,
-            &format!("{field}.young"),
-            |e| e.is_finite() && e > 0.0,
-            "finite E > 0 in Pa",
-        )?;
-        let poisson = self.number(
-            &raw.poisson,
-            &format!("{field}.poisson"),
-            |v| v > -1.0 && v < 0.5,
-            "−1 < ν < 0.5",
-        )?;
-        Ok(Body {
-            radius,
-            material: Material { young, poisson },
-        })
-    }
-
-    fn path(&self, raw: &RawPath) -> Result<LoadingPath, CaseError> {
-        let scale = match raw.unit.get_ref().as_str() {
-            "m" => 1.0,
-            "mm" => 1e-3,
-            "um" | "µm" => 1e-6,
-            other => {
-                return Err(self.error(
-                    &raw.unit,
-                    "path.unit",
-                    format!("unknown unit `{other}` (allowed: m, mm, um, µm)"),
-                ))
-            }
-        };
-        let values = |list: &Spanned<Vec<Spanned<f64>>>, field: &str| -> Result<Vec<f64>, CaseError> {
-            list.get_ref()
-                .iter()
-                .enumerate()
-                .map(|(i, v)| {
-                    self.number(
-                        v,
-                        &format!("path.{field}[{i}]"),
-                        f64::is_finite,
-                        "a finite number",
-                    )
-                    .map(|v| v * scale)
-                })
-                .collect()
-        };
-        let (delta_n, delta_t) = (values(&raw.delta_n, "delta_n")?, values(&raw.delta_t, "delta_t")?);
-        if delta_n.is_empty() {
+        if body1.radius.is_infinite() && body2.radius.is_infinite() {
+            let at = raw.body2.as_ref().map_or(&raw.body1.radius, |b| &b.radius);
             return Err(self.error(
-                &raw.delta_n,
-                "path.delta_n",
-                "no positions (allowed: at least one)",
+                at,
+                "body2.radius",
+                "two flats make no Hertz contact (allowed: at least one finite radius)",
             ));
         }
-        if delta_t.len() != delta_n.len() {
-            return Err(self.error(
-                &raw.delta_t,
-                "path.delta_t",
-                format!(
-                    "{} values for {} positions of delta_n (allowed: one per position)",
-                    delta_t.len(),
-                    delta_n.len()
-                ),
-            ));
-        }
-        let segments = delta_n.len() - 1;
-        let substeps = self.substeps(&raw.substeps, segments)?;
-        let positions = delta_n
-            .into_iter()
-            .zip(delta_t)
-            .map(|(delta_n, delta_t)| Position { delta_n, delta_t })
-            .collect();
-        Ok(LoadingPath::try_new(positions, substeps).expect("positions and substeps validated above"))
-    }
-
-    fn substeps(&self, raw: &Spanned<toml::Value>, segments: usize) -> Result<Vec<usize>, CaseError> {
-        let count = |v: &toml::Value| match v {
-            toml::Value::Integer(n) if *n >= 1 && *n <= MAX_INCREMENTS as i64 => Ok(*n as usize),
-            other => Err(self.error(
-                raw,
-                "path.substeps",
-                format!("{other} is not a whole number from 1 to {MAX_INCREMENTS}"),
-            )),
-        };
-        let counts: Vec<usize> = match raw.get_ref() {
-            toml::Value::Array(list) if list.len() == segments => {
-                list.iter().map(count).collect::<Result<_, _>>()?
-            }
-            toml::Value::Array(list) => {
-                return Err(self.error(
-                    raw,
-                    "path.substeps",
-                    format!(
-                        "{} counts for {segments} segments (allowed: one count, or one per segment)",
-                        list.len()
-                    ),
-                ))
-            }
-            single => vec![count(single)?; segments],
-        };
-        let total: usize = counts.iter().sum();
-        if total > MAX_INCREMENTS {
-            return Err(self.error(
-                raw,
-                "path.substeps",
-                format!("{total} increments in all (allowed: at most {MAX_INCREMENTS})"),
-            ));
-        }
-        Ok(counts)
+        Ok(ContactPair { body1, body2 })
     }
 
     fn solvers(&self, raw: &Spanned<Vec<Spanned<String>>>) -> Result<Vec<String>, CaseError> {
@@ -378,172 +276,5 @@ impl Validator<'_> {
                 known.join(", ")
             ),
         ))
-    }
-
-    fn check(&self, raw: &RawCheck, field: &str, positions: usize) -> Result<CheckSpec, CaseError> {
-        let solver = self.solver_name(&raw.solver, &format!("{field}.solver"))?;
-        let quantity = Quantity::from_name(raw.quantity.get_ref()).ok_or_else(|| {
-            let names: Vec<_> = Quantity::ALL.iter().map(|q| q.name()).collect();
-            self.error(
-                &raw.quantity,
-                format!("{field}.quantity"),
-                format!(
-                    "unknown quantity `{}` (allowed: {})",
-                    raw.quantity.get_ref(),
-                    names.join(", ")
-                ),
-            )
-        })?;
-        let at = self.at(&raw.at, &format!("{field}.at"), positions)?;
-        let reference = self.reference(&raw.reference, &format!("{field}.reference"), quantity)?;
-        let measure = match &raw.error {
-            None => ErrorMeasure::Relative,
-            Some(name) => ErrorMeasure::from_name(name.get_ref()).ok_or_else(|| {
-                self.error(
-                    name,
-                    format!("{field}.error"),
-                    format!(
-                        "unknown error measure `{}` (allowed: relative, relative-to-peak, absolute)",
-                        name.get_ref()
-                    ),
-                )
-            })?,
-        };
-        let tolerance = match (&raw.tolerance, raw.informational) {
-            (Some(t), _) => Some(self.number(
-                t,
-                &format!("{field}.tolerance"),
-                |t| t.is_finite() && t > 0.0,
-                "finite tolerance > 0",
-            )?),
-            (None, true) => None,
-            (None, false) => {
-                return Err(self.error(
-                    &raw.solver,
-                    format!("{field}.tolerance"),
-                    "missing (required unless informational = true)",
-                ))
-            }
-        };
-        let tolerance = if raw.informational { None } else { tolerance };
-        let reason = raw.reason.clone().unwrap_or_default();
-        if tolerance.is_some() && reason.trim().is_empty() {
-            return Err(self.error(
-                &raw.solver,
-                format!("{field}.reason"),
-                "missing: every tolerance needs its reason (discretisation, domain, model …)",
-            ));
-        }
-        Ok(CheckSpec {
-            solver,
-            quantity,
-            at,
-            reference,
-            measure,
-            tolerance,
-            reason,
-        })
-    }
-
-    fn at(&self, raw: &Spanned<toml::Value>, field: &str, positions: usize) -> Result<Where, CaseError> {
-        let allowed = "\"every-step\", \"every-position\", { position = K } or { positions = [FIRST, LAST] }";
-        let bad = |what: String| {
-            self.error(
-                raw,
-                field,
-                format!(
-                    "{what} (allowed: {allowed}, with positions 0 to {})",
-                    positions - 1
-                ),
-            )
-        };
-        let index = |v: &toml::Value| match v {
-            toml::Value::Integer(k) if *k >= 0 && (*k as usize) < positions => Ok(*k as usize),
-            other => Err(bad(format!("position {other} is not on the path"))),
-        };
-        match raw.get_ref() {
-            toml::Value::String(s) if s == "every-step" => Ok(Where::EveryStep),
-            toml::Value::String(s) if s == "every-position" => Ok(Where::EveryPosition),
-            toml::Value::Table(t) if t.len() == 1 => match (t.get("position"), t.get("positions")) {
-                (Some(k), None) => Ok(Where::Position(index(k)?)),
-                (None, Some(toml::Value::Array(range))) if range.len() == 2 => {
-                    let (a, b) = (index(&range[0])?, index(&range[1])?);
-                    if a > b {
-                        return Err(bad(format!("range {a}–{b} runs backwards")));
-                    }
-                    Ok(Where::Positions(a, b))
-                }
-                _ => Err(bad(format!("`{}` is not understood", raw.get_ref()))),
-            },
-            other => Err(bad(format!("`{other}` is not understood"))),
-        }
-    }
-
-    fn reference(
-        &self,
-        raw: &Spanned<toml::Value>,
-        field: &str,
-        quantity: Quantity,
-    ) -> Result<Reference, CaseError> {
-        let allowed = "{ solver = \"NAME\" } or { file = \"PATH\", key = \"KEY\" }";
-        let table = match raw.get_ref() {
-            toml::Value::Table(t) => t,
-            other => {
-                return Err(self.error(
-                    raw,
-                    field,
-                    format!("`{other}` is not understood (allowed: {allowed})"),
-                ))
-            }
-        };
-        let get = |key: &str| table.get(key).and_then(toml::Value::as_str);
-        match (get("solver"), get("file"), get("key"), table.len()) {
-            (Some(name), None, None, 1) => {
-                let name = Spanned::new(raw.span(), name.to_owned());
-                Ok(Reference::Solver(
-                    self.solver_name(&name, &format!("{field}.solver"))?,
-                ))
-            }
-            (None, Some(file), Some(key), 2) => self.stored_value(raw, field, file, key, quantity),
-            _ => Err(self.error(
-                raw,
-                field,
-                format!("`{}` is not understood (allowed: {allowed})", raw.get_ref()),
-            )),
-        }
-    }
-
-    /// A value from a reference file, which is resolved against the case file's folder.
-    fn stored_value(
-        &self,
-        raw: &Spanned<toml::Value>,
-        field: &str,
-        file: &str,
-        key: &str,
-        quantity: Quantity,
-    ) -> Result<Reference, CaseError> {
-        let path = self.file.parent().unwrap_or(Path::new(".")).join(file);
-        let stored = reference::load(&path, key).map_err(|e| match e {
-            LoadError::Unreadable(e) => self.error(
-                raw,
-                format!("{field}.file"),
-                format!("cannot read reference file {}: {e}", path.display()),
-            ),
-            LoadError::NoKey => self.error(
-                raw,
-                format!("{field}.key"),
-                format!("no key `{key}` in {}", path.display()),
-            ),
-            LoadError::Invalid(e) => e,
-        })?;
-        if stored.quantity != quantity {
-            let message = format!("holds {} but the check judges {quantity}", stored.quantity);
-            return Err(CaseError::new(&path, None, key, message));
-        }
-        Ok(Reference::Value {
-            value: stored.value,
-            key: format!("{file}#{key}"),
-            source: stored.source,
-        })
     }
 }

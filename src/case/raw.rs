@@ -6,13 +6,17 @@ use toml::Spanned;
 
 /// A case file as written.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a case: a table of name, friction, solvers, body1, path …"
+)]
 pub struct RawCase {
-    pub name: Option<String>,
+    pub name: Option<Spanned<String>>,
     pub description: Option<String>,
     pub friction: Spanned<f64>,
     pub solvers: Spanned<Vec<Spanned<String>>>,
     pub focus: Option<Spanned<i64>>,
+    pub fields: Option<Spanned<toml::Value>>,
     pub body1: RawBody,
     pub body2: Option<RawBody>,
     pub path: RawPath,
@@ -32,7 +36,10 @@ pub struct RawDomain {
 
 /// A body as written.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a body: a table of radius, young and poisson"
+)]
 pub struct RawBody {
     pub radius: Spanned<f64>,
     pub young: Spanned<f64>,
@@ -41,7 +48,10 @@ pub struct RawBody {
 
 /// The loading path as written.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a path: a table of unit, delta_n, delta_t and substeps"
+)]
 pub struct RawPath {
     pub unit: Spanned<String>,
     pub delta_n: Spanned<Vec<Spanned<f64>>>,
@@ -51,7 +61,10 @@ pub struct RawPath {
 
 /// A check as written.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a check: a table of solver, quantity, at, reference, tolerance and reason"
+)]
 pub struct RawCheck {
     pub solver: Spanned<String>,
     pub quantity: Spanned<String>,
@@ -66,7 +79,10 @@ pub struct RawCheck {
 
 /// One stored reference value in a `reference/*.toml` file.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a reference value: a table of quantity, value, unit and source"
+)]
 pub struct RawReferenceValue {
     pub quantity: String,
     pub value: f64,

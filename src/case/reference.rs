@@ -36,23 +36,23 @@ pub enum LoadError {
     Invalid(CaseError),
 }
 
-/// Reads entry `key` of the reference file `path`, checking that its value is finite and its
-/// quantity and unit are known and agree.
+/// Reads entry `key` of the reference file `path` (a regular file of bounded size), checking
+/// that its value is finite and its quantity and unit are known and agree.
 pub fn load(path: &Path, key: &str) -> Result<StoredValue, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(LoadError::Unreadable)?;
+    let text = super::input::read_text(path).map_err(LoadError::Unreadable)?;
     let invalid = |message: String| LoadError::Invalid(CaseError::new(path, None, key, message));
     let mut table: toml::Table = toml::from_str(&text).map_err(|e| {
         LoadError::Invalid(CaseError::new(
             path,
             e.span().map(|s| (text.as_str(), s)),
             "",
-            e.message().to_owned(),
+            super::error::parser_message(&e),
         ))
     })?;
     let entry = table.remove(key).ok_or(LoadError::NoKey)?;
     let entry: RawReferenceValue = entry
         .try_into()
-        .map_err(|e: toml::de::Error| invalid(e.message().to_owned()))?;
+        .map_err(|e: toml::de::Error| invalid(super::error::parser_message(&e)))?;
     let quantity = Quantity::from_name(&entry.quantity)
         .ok_or_else(|| invalid(format!("unknown quantity `{}`", entry.quantity)))?;
     if !entry.value.is_finite() {

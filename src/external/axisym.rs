@@ -247,13 +247,15 @@ impl<D: Deck> AxisymSolver<D> {
                         row.peak_pressure = Some(deck_row.p0);
                         reaction.push(json!([position, deck_row.force_reaction]));
                         iterations.push(json!([position, deck_row.iterations]));
-                        fields.push(SurfaceField {
-                            position,
-                            points: profiles[i].iter().map(|s| [s.r, 0.0]).collect(),
-                            pressure: profiles[i].iter().map(|s| s.pressure).collect(),
-                            traction: None,
-                            stick: None,
-                        });
+                        if scene.records_fields_at(position) {
+                            fields.push(SurfaceField {
+                                position,
+                                points: profiles[i].iter().map(|s| [s.r, 0.0]).collect(),
+                                pressure: profiles[i].iter().map(|s| s.pressure).collect(),
+                                traction: None,
+                                stick: None,
+                            });
+                        }
                     }
                     None => {
                         // δn ≤ 0: the spheres do not touch.

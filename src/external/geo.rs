@@ -57,7 +57,8 @@ pub fn default_resolution(scene: &Scene) -> f64 {
 /// Reads a resolution (a length) such as `20um`, `0.02mm` or `2e-5` (metres) into metres.
 pub fn parse_length(text: &str) -> Result<f64, String> {
     let text = text.trim();
-    let (number, scale) = [("um", 1e-6), ("µm", 1e-6), ("mm", 1e-3), ("m", 1.0)]
+    let units = [("um", 1e-6), ("µm", 1e-6), ("μm", 1e-6), ("mm", 1e-3), ("m", 1.0)];
+    let (number, scale) = units
         .iter()
         .find_map(|(unit, scale)| text.strip_suffix(unit).map(|n| (n, *scale)))
         .unwrap_or((text, 1.0));
@@ -68,7 +69,7 @@ pub fn parse_length(text: &str) -> Result<f64, String> {
     if value.is_finite() && value > 0.0 {
         Ok(value * scale)
     } else {
-        Err(format!("`{text}`: a length must be positive"))
+        Err(format!("`{text}`: a length must be finite and positive"))
     }
 }
 
@@ -182,12 +183,13 @@ pub fn mesh(
     toolchain: &Toolchain,
 ) -> Result<MeshFiles, SolveError> {
     toolchain.require(Tool::Gmsh).map_err(SolveError::Unavailable)?;
-    let stem = "mesh";
-    let geo = dir.join(format!("{stem}.geo"));
+    // gmsh runs inside `dir`, so it is handed the files' names, never paths relative to the
+    // caller's folder.
+    let (geo_name, msh41_name, msh22_name) = ("mesh.geo", "mesh.msh", "mesh_p1_mm.msh");
+    let geo = dir.join(geo_name);
     std::fs::write(&geo, geo_for_scene(scene, resolution)?)
         .map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
-    let msh41 = dir.join(format!("{stem}.msh"));
-    let msh22_mm = dir.join(format!("{stem}_p1_mm.msh"));
+    let (msh41, msh22_mm) = (dir.join(msh41_name), dir.join(msh22_name));
     let quadratic = ["-order", "2", "-format", "msh41"];
     let linear_mm = [
         "-order",
@@ -199,10 +201,13 @@ pub fn mesh(
         "1000",
     ];
     let mut wall_s = 0.0;
-    for (options, out) in [(&quadratic[..], &msh41), (&linear_mm[..], &msh22_mm)] {
-        let mut args = vec![geo.display().to_string(), "-2".into()];
+    for (options, out, out_name) in [
+        (&quadratic[..], &msh41, msh41_name),
+        (&linear_mm[..], &msh22_mm, msh22_name),
+    ] {
+        let mut args = vec![geo_name.to_owned(), "-2".into()];
         args.extend(options.iter().map(|s| s.to_string()));
-        args.extend(["-o".into(), out.display().to_string()]);
+        args.extend(["-o".into(), out_name.to_owned()]);
         let job = Job {
             program: toolchain.gmsh.clone(),
             args,
@@ -322,7 +327,9 @@ mod tests {
         assert!((parse_length("20um").unwrap() - 20e-6).abs() < 1e-18);
         assert!((parse_length("0.02mm").unwrap() - 2e-5).abs() < 1e-18);
         assert_eq!(parse_length("2e-5").unwrap(), 2e-5);
+        assert_eq!(parse_length("20μm").unwrap(), parse_length("20µm").unwrap());
         assert!(parse_length("-1um").is_err());
+        assert!(parse_length("inf").unwrap_err().contains("finite and positive"));
         assert!(parse_length("abc").is_err());
     }
 }

@@ -7,16 +7,18 @@
 //! | [`quadrature`] | Gauss rules |
 //! | [`assembly`] | global stiffness of a meridian mesh, Dirichlet elimination, reaction row |
 //! | [`factor`] | sparse Cholesky with a fill-reducing ordering |
+//! | [`condense`] | the dense compliance of a factored body at its contact DOFs |
 //! | [`axisym`] | the axisymmetric contact model and the `fem-axisym` solver |
 //!
 //! The stiffness is assembled and factored once per mesh; the compliance of the candidate
 //! contact nodes is computed once by solves with the factor; each path step then re-solves only
-//! the small condensed contact problem. Verification: `tests/fem_element.rs` (patch test,
+//! the small condensed contact problem, on the shared engine ([`crate::contact`]). Verification: `tests/fem_element.rs` (patch test,
 //! manufactured-solution rates), `tests/fem_hertz.rs` (Hertz, convergence), `tests/fem_msh.rs`,
 //! `tests/fem_hard_cases.rs`; speed: `examples/fem_timing.rs`.
 
 pub mod assembly;
 pub mod axisym;
+pub mod condense;
 pub mod element;
 pub mod factor;
 pub mod mesh;

@@ -95,13 +95,14 @@ pub fn document(case: &str, increments: usize, repeat: usize, rungs: &[RungResul
                 continue;
             };
             let point = (median(&rung.timing.cpu_seconds) * 1e3, e);
+            // A solver's rungs form one run: the line joins consecutive resolutions.
             match series.iter_mut().find(|s| s.name == rung.timing.solver) {
-                Some(s) => s.points.push(point),
-                None => series.push(Series {
-                    name: rung.timing.solver.clone(),
-                    points: vec![point],
-                    style: Style::Markers,
-                }),
+                Some(s) => s.runs[0].push(point),
+                None => series.push(Series::joined(
+                    rung.timing.solver.clone(),
+                    vec![point],
+                    Style::Markers,
+                )),
             }
         }
         if series.is_empty() {
@@ -120,7 +121,7 @@ pub fn document(case: &str, increments: usize, repeat: usize, rungs: &[RungResul
                 .series
                 .iter()
                 .flat_map(|s| {
-                    s.points.iter().map(|p| {
+                    s.points().map(|p| {
                         vec![
                             Cell::plain(&s.name),
                             Cell::plain(format!("{:.6e}", p.0)),

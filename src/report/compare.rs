@@ -35,7 +35,10 @@ pub fn case_section(run: &CaseRun) -> Section {
             run.case.file.display()
         ),
     ];
-    paragraphs.extend(run.warnings.iter().map(|w| format!("Warning: {w}")));
+    paragraphs.extend(figures::warnings(run).iter().map(|w| match w.solvers.len() {
+        0 => format!("Warning: {}", w.text),
+        _ => format!("Warning ({}): {}", w.solvers.join(", "), w.text),
+    }));
     Section {
         title: "Case and solvers".into(),
         paragraphs,

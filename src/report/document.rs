@@ -105,9 +105,9 @@ fn escape_markdown_cell(text: &str) -> String {
 
 const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
 h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}\
-table{border-collapse:collapse;margin:1em 0;font-size:.85em;display:block;overflow-x:auto}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top;max-width:30em;overflow-wrap:anywhere}\
+table{border-collapse:collapse;margin:1em 0;font-size:.85em;display:block;overflow-x:auto}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top;max-width:30em;overflow-wrap:break-word}th{white-space:nowrap}\
 th{background:#f3f3f3}td.ok{color:#176b1e;font-weight:bold}td.nook{color:#b00;font-weight:bold}td.info{color:#555}td.na{color:#a60}\
-figure{margin:1.5em 0}figcaption{font-size:.85em;color:#444;max-width:820px}svg{max-width:100%;height:auto}";
+nav p{margin:.2em 0}nav ul{margin:.2em 0 1em;columns:2}figure{margin:1.5em 0}figcaption{font-size:.85em;color:#444;max-width:820px}svg{max-width:100%;height:auto}";
 
 impl Document {
     /// The self-contained HTML page.
@@ -119,8 +119,26 @@ impl Document {
             "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n\
              <style>{STYLE}</style>\n</head>\n<body>\n<h1>{title}</h1>\n"
         );
-        for section in &self.sections {
-            let _ = writeln!(html, "<section>\n<h2>{}</h2>", escape_html(&section.title));
+        // Contents: a reader jumps to the claims or a figure without scrolling through tables.
+        if self.sections.len() > 1 {
+            html.push_str("<nav><p>Contents:</p><ul>\n");
+            for (k, section) in self.sections.iter().enumerate() {
+                let _ = writeln!(
+                    html,
+                    "<li><a href=\"#section-{}\">{}</a></li>",
+                    k + 1,
+                    escape_html(&section.title)
+                );
+            }
+            html.push_str("</ul></nav>\n");
+        }
+        for (k, section) in self.sections.iter().enumerate() {
+            let _ = writeln!(
+                html,
+                "<section id=\"section-{}\">\n<h2>{}</h2>",
+                k + 1,
+                escape_html(&section.title)
+            );
             for paragraph in &section.paragraphs {
                 let _ = writeln!(html, "<p>{}</p>", escape_html(paragraph));
             }
@@ -264,6 +282,19 @@ mod tests {
             !html.contains("http-equiv") && !html.contains("<script"),
             "no network, no script"
         );
+    }
+
+    #[test]
+    fn pages_of_several_sections_list_them_with_links() {
+        let mut doc = document();
+        assert!(!doc.to_html().contains("<nav>"), "one section: no contents");
+        doc.sections.push(Section {
+            title: "Claims & more".into(),
+            ..Section::default()
+        });
+        let html = doc.to_html();
+        assert!(html.contains("<li><a href=\"#section-2\">Claims &amp; more</a></li>"));
+        assert!(html.contains("<section id=\"section-2\">"));
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use super::figures::surface::FieldView;
 use crate::history::{History, Quantity};
 use crate::io::write_atomically;
 
@@ -44,20 +45,19 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
         "traction_y",
         "stick",
     ])?;
-    for field in &history.fields {
-        for (i, [x, y]) in field.points.iter().enumerate() {
-            let traction = field.traction.as_ref().map(|t| t[i]);
-            let in_contact = field.pressure[i] > 0.0;
+    for field in FieldView::all(history) {
+        for i in 0..field.len() {
+            let [x, y] = field.point(i);
+            let traction = field.traction(i);
             let stick = field
-                .stick
-                .as_ref()
-                .filter(|_| in_contact)
-                .map(|s| u8::from(s[i]).to_string());
+                .stick(i)
+                .filter(|_| field.in_contact(i))
+                .map(|s| u8::from(s).to_string());
             writer.write_record([
-                field.position.to_string(),
+                field.position().to_string(),
                 format!("{x:.10e}"),
                 format!("{y:.10e}"),
-                format!("{:.10e}", field.pressure[i]),
+                format!("{:.10e}", field.pressure(i)),
                 traction.map_or_else(String::new, |t| format!("{:.10e}", t[0])),
                 traction.map_or_else(String::new, |t| format!("{:.10e}", t[1])),
                 stick.unwrap_or_default(),

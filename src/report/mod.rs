@@ -2,6 +2,7 @@
 //! files, and JUnit XML for CI.
 
 pub mod bench;
+pub mod claims;
 pub mod compare;
 pub mod document;
 pub mod figures;

@@ -10,6 +10,7 @@ use std::path::Path;
 
 use anyhow::{anyhow, Result};
 
+use super::claims::{self, Study};
 use super::compare::{case_section, checks_section, figure_section};
 use super::document::{Cell, Document, Section, Table};
 use super::figures;
@@ -69,37 +70,86 @@ fn readings(run: &CaseRun) -> Vec<Reading> {
     list
 }
 
-/// The section on the paper's own numbers.
-pub fn paper_numbers(run: &CaseRun, reference_dir: &Path) -> Result<Section> {
-    let quoted = |key: &str| {
-        reference::load(&reference_dir.join("paper.toml"), key)
-            .map_err(|e| anyhow!("reference/paper.toml#{key}: {e:?}"))
-            .map(|v| v.value)
-    };
-    let (hertz_p0, ansys_p0) = (quoted("hertz_p0_17um")?, quoted("ansys_p0_17um")?);
-    let rows: Vec<(Reading, f64)> = readings(run)
+/// The peak pressures the paper quotes at 17 µm [Pa].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quoted {
+    /// Its Hertz value (581 MPa).
+    pub hertz_p0: f64,
+    /// Its ANSYS value (585 MPa).
+    pub ansys_p0: f64,
+}
+
+impl Quoted {
+    /// The quoted values from `reference/paper.toml`.
+    pub fn load(reference_dir: &Path) -> Result<Self> {
+        let quoted = |key: &str| {
+            reference::load(&reference_dir.join("paper.toml"), key)
+                .map_err(|e| anyhow!("reference/paper.toml#{key}: {e:?}"))
+                .map(|v| v.value)
+        };
+        Ok(Self {
+            hertz_p0: quoted("hertz_p0_17um")?,
+            ansys_p0: quoted("ansys_p0_17um")?,
+        })
+    }
+}
+
+/// Which readings of the paper's formulas give its Hertz p0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReadingVerdict {
+    /// The readings that reproduce it within its three significant figures.
+    pub matches: Vec<String>,
+    /// The closest reading and its p0 [Pa].
+    pub closest: (String, f64),
+    /// p0 at 17 µm under the standard reading [Pa].
+    pub standard_p0: f64,
+    /// The approach that would give the quoted value under the standard reading [m].
+    pub implied_approach: f64,
+}
+
+/// Hertz's p0 under every reading, and which reproduce `hertz_p0`.
+fn evaluate(rows: &[(Reading, f64)], run: &CaseRun, hertz_p0: f64) -> ReadingVerdict {
+    let misfit = |p0: f64| (p0 / hertz_p0 - 1.0).abs();
+    let closest = rows
+        .iter()
+        .min_by(|a, b| misfit(a.1).total_cmp(&misfit(b.1)))
+        .map(|(r, p0)| (r.what.clone(), *p0))
+        .unwrap_or_default();
+    let standard = run.case.scene.hertz().peak_pressure(QUOTED_APPROACH);
+    ReadingVerdict {
+        matches: rows
+            .iter()
+            .filter(|(_, p0)| misfit(*p0) <= THREE_FIGURES)
+            .map(|(r, _)| r.what.clone())
+            .collect(),
+        closest,
+        standard_p0: standard,
+        // Under the standard reading p0 ∝ √δ.
+        implied_approach: QUOTED_APPROACH * (hertz_p0 / standard).powi(2),
+    }
+}
+
+/// Every reading with its p0 [Pa].
+fn evaluated_readings(run: &CaseRun) -> Vec<(Reading, f64)> {
+    readings(run)
         .into_iter()
         .map(|r| {
             let p0 = r.hertz.peak_pressure(r.approach);
             (r, p0)
         })
-        .collect();
-    let closest = rows
-        .iter()
-        .min_by(|a, b| {
-            (a.1 / hertz_p0 - 1.0)
-                .abs()
-                .total_cmp(&(b.1 / hertz_p0 - 1.0).abs())
-        })
-        .expect("eight readings");
-    let matches: Vec<&str> = rows
-        .iter()
-        .filter(|(_, p0)| (p0 / hertz_p0 - 1.0).abs() <= THREE_FIGURES)
-        .map(|(r, _)| r.what.as_str())
-        .collect();
-    let standard = run.case.scene.hertz();
-    // Under the standard reading p0 ∝ √δ: the approach that would give the quoted value.
-    let implied = QUOTED_APPROACH * (hertz_p0 / standard.peak_pressure(QUOTED_APPROACH)).powi(2);
+        .collect()
+}
+
+/// Which readings reproduce the paper's Hertz p0.
+pub fn reading_verdict(run: &CaseRun, quoted: &Quoted) -> ReadingVerdict {
+    evaluate(&evaluated_readings(run), run, quoted.hertz_p0)
+}
+
+/// The section on the paper's own numbers.
+pub fn paper_numbers(run: &CaseRun, quoted: &Quoted) -> Result<Section> {
+    let Quoted { hertz_p0, ansys_p0 } = *quoted;
+    let rows = evaluated_readings(run);
+    let verdict = evaluate(&rows, run, hertz_p0);
     let table = Table {
         header: ["reading", "P [N]", "c [mm]", "p0 [MPa]", "p0 / 581 MPa − 1"]
             .iter()
@@ -122,20 +172,21 @@ pub fn paper_numbers(run: &CaseRun, reference_dir: &Path) -> Result<Section> {
             })
             .collect(),
     };
-    let verdict = if matches.is_empty() {
+    let standard_p0 = verdict.standard_p0;
+    let verdict = if verdict.matches.is_empty() {
         format!(
             "No reading reproduces {:.0} MPa within its three significant figures; the closest is \"{}\" at {:.1} MPa. \
              Under the standard reading 581 MPa would need δn = {:.2} µm, not 17 µm.",
             hertz_p0 * 1e-6,
-            closest.0.what,
-            closest.1 * 1e-6,
-            implied * 1e6
+            verdict.closest.0,
+            verdict.closest.1 * 1e-6,
+            verdict.implied_approach * 1e6
         )
     } else {
         format!(
             "{:.0} MPa is reproduced by: {}.",
             hertz_p0 * 1e-6,
-            matches.join("; ")
+            verdict.matches.join("; ")
         )
     };
     Ok(Section {
@@ -156,8 +207,8 @@ pub fn paper_numbers(run: &CaseRun, reference_dir: &Path) -> Result<Section> {
             format!(
                 "The ANSYS value is {:+.2} % from the paper's own Hertz value and {:+.2} % from the standard reading's {:.1} MPa.",
                 (ansys_p0 / hertz_p0 - 1.0) * 100.0,
-                (ansys_p0 / standard.peak_pressure(QUOTED_APPROACH) - 1.0) * 100.0,
-                standard.peak_pressure(QUOTED_APPROACH) * 1e-6
+                (ansys_p0 / standard_p0 - 1.0) * 100.0,
+                standard_p0 * 1e-6
             ),
         ],
         tables: vec![table],
@@ -165,13 +216,16 @@ pub fn paper_numbers(run: &CaseRun, reference_dir: &Path) -> Result<Section> {
     })
 }
 
-/// The reproduce-paper report.
-pub fn document(run: &CaseRun, reference_dir: &Path) -> Result<Document> {
+/// The reproduce-paper report; `study` resolves the surface-field claims ([`Study::of_ladders`],
+/// or [`Study::none`] for the run's own fields only).
+pub fn document(run: &CaseRun, study: &Study, reference_dir: &Path) -> Result<Document> {
     let focus = run.case.focus;
+    let quoted = Quoted::load(reference_dir)?;
     let mut fields = figures::profiles(run, focus)?;
     fields.extend(figures::maps(run, focus)?);
     let sections = vec![
         case_section(run),
+        claims::section(run, study, &quoted),
         figure_section(
             "Figure 7: normal and tangential loading",
             vec![figures::loading_path(run)?],
@@ -188,7 +242,7 @@ pub fn document(run: &CaseRun, reference_dir: &Path) -> Result<Document> {
             &format!("Figures 10–12: pressure, frictional stress and contact status at position {focus}"),
             fields,
         ),
-        paper_numbers(run, reference_dir)?,
+        paper_numbers(run, &quoted)?,
         figure_section("Errors against the references", figures::errors(run)?),
         checks_section(run),
     ];

@@ -27,7 +27,7 @@ pub fn screen(run: &CaseRun) -> String {
             None => writeln!(text, "  {name:<22} not run"),
         };
     }
-    for warning in &run.warnings {
+    for warning in super::figures::warnings(run) {
         let _ = writeln!(text, "  warning: {warning}");
     }
     let count = |v: Verdict| run.outcomes.iter().filter(|o| o.verdict == v).count();

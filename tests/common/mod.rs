@@ -9,6 +9,34 @@ use spherecontact::scene::Scene;
 use spherecontact::{registry, solver};
 use std::path::{Path, PathBuf};
 
+/// A small valid case of the paper's spheres (hertz and mdr, three positions, 8 increments): the
+/// tests of the command line and of hostile inputs each break or change one thing of it.
+pub const SMALL_CASE: &str = r#"
+name = "cli-test"
+friction = 0.2
+solvers = ["hertz", "mdr"]
+
+[body1]
+radius = 0.1
+young = 70e9
+poisson = 0.3
+
+[path]
+unit = "um"
+delta_n = [0, 10, 10]
+delta_t = [0, 0, 1]
+substeps = 4
+"#;
+
+/// Runs the `spherecontact` command with `args` in the folder `cwd`.
+pub fn spherecontact(args: &[&str], cwd: &Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
+}
+
 /// The crate's folder (where cases/ and reference/ live).
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -96,5 +124,21 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
         friction: 0.2,
         path,
         domain: Default::default(),
+        fields: Default::default(),
     }
+}
+
+/// The paper's case with the in-crate solvers only (the external decks, tested in
+/// tests/external.rs, would make report tests minutes long), and the checks that need no deck.
+pub fn paper_case_in_crate() -> Case {
+    let mut case = case("cases/paper-fig7.toml");
+    let external: Vec<&str> = spherecontact::external::solvers()
+        .iter()
+        .map(|s| s.name())
+        .collect();
+    case.solvers.retain(|s| !external.contains(&s.as_str()));
+    case.checks.retain(|c| {
+        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
+    });
+    case
 }

@@ -2,13 +2,11 @@
 //!
 //! | file | concept |
 //! |---|---|
-//! | [`model`] | the scene's reduction (symmetric or two bodies) and its discrete model |
-//! | [`contact`] | condensed contact-surface compliance and the semi-smooth Newton contact solve |
+//! | [`model`] | the scene's reduction (symmetric or two bodies), its discrete model and its contact (the shared engine, [`crate::contact`]) |
 //! | [`pressure`] | nodal pressure, p0 and c from the contact forces |
 //! | [`output`] | displacement and stress fields, VTU files |
 //! | [`solver`] | the `Solver` implementation |
 
-pub mod contact;
 pub mod model;
 pub mod output;
 pub mod pressure;

@@ -9,9 +9,12 @@
 
 use std::time::Instant;
 
-use super::contact::{self, Condensed, Problem};
+use faer::Mat;
+
 use crate::domain::Domain;
+use crate::contact::{Contact, DenseCompliance, Settings as ContactSettings};
 use crate::fem::assembly::{self, System};
+use crate::fem::condense::{condense, Condensed};
 use crate::fem::element::tri6::{edge_weights, Integration, Lame};
 use crate::fem::factor::{Factor, Ordering};
 use crate::fem::mesh::meridian::{self, Grading, Mesh};
@@ -116,7 +119,7 @@ impl BodyModel {
             .map(|&n| system.dofs.free(2 * n + 1))
             .collect::<Option<Vec<usize>>>()
             .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
-        let condensed = contact::condense(&system, &factor, &dofs);
+        let condensed = condense(&factor, system.dofs.count(), &dofs, &system.reaction);
         let times = [t1 - t0, t2 - t1, t2.elapsed()].map(|d| d.as_secs_f64());
         Ok(Self {
             mesh,
@@ -167,8 +170,10 @@ pub struct Model {
     pub reduction: Reduction,
     /// The meshed bodies (one when symmetric).
     pub bodies: Vec<BodyModel>,
-    /// The condensed contact problem of the pair.
-    pub problem: Problem,
+    /// The pair's condensed normal compliance at the candidates [m/N].
+    pub compliance: Mat<f64>,
+    /// Initial separation of the surfaces at each candidate [m].
+    pub heights: Vec<f64>,
     /// Candidate radii [m].
     pub radii: Vec<f64>,
     /// Ring weights of the candidates (body 1's surface) [m²].
@@ -224,7 +229,7 @@ impl Model {
         let radii = bodies[0].radii();
         let m = radii.len();
         let mut heights = vec![0.0; m];
-        let mut compliance = vec![0.0; m * m];
+        let mut compliance = Mat::<f64>::zeros(m, m);
         for body in &bodies {
             let r = body.radii();
             let same = r.len() == m
@@ -235,18 +240,28 @@ impl Model {
                 return Err("the bodies' candidate contact nodes are not at the same radii".into());
             }
             heights.iter_mut().zip(body.heights()).for_each(|(h, b)| *h += b);
-            compliance
-                .iter_mut()
-                .zip(&body.condensed.compliance)
-                .for_each(|(c, b)| *c += b);
+            compliance += &body.condensed.compliance;
         }
         let weights = bodies[0].weights();
         Ok(Self {
             reduction,
-            problem: Problem { compliance, heights },
+            compliance,
+            heights,
             bodies,
             radii,
             weights,
         })
+    }
+}
+
+/// The contact of a model: its condensed compliance on the shared engine, frictionless.
+pub type FrictionlessContact = Contact<DenseCompliance, DenseCompliance>;
+
+impl Model {
+    /// A fresh contact on the candidates (the engine picks the dense active-set solver for these
+    /// few hundred nodes); `Err` when the condensed compliance is not a valid one.
+    pub fn contact(&self) -> Result<FrictionlessContact, String> {
+        let compliance = DenseCompliance::scalar(self.compliance.clone()).map_err(|e| e.to_string())?;
+        Contact::new(compliance, self.heights.clone(), ContactSettings::default()).map_err(|e| e.to_string())
     }
 }

@@ -4,7 +4,6 @@ use std::path::Path;
 
 use faer::Mat;
 
-use super::contact::State;
 use super::model::{BodyModel, Model};
 use crate::fem::element::tri6::{self, Lame, NODES};
 use crate::fem::mesh::meridian::Mesh;
@@ -50,12 +49,12 @@ pub fn nodal_stress(mesh: &Mesh, lame: Lame, u: &[[f64; 2]]) -> Vec<[f64; 4]> {
         .collect()
 }
 
-/// Writes each body's displacement and stress at contact state `state` (approach `approach`,
+/// Writes each body's displacement and stress under the contact ring forces `forces` (approach `approach`,
 /// split equally between two bodies) to `path` (`path-bodyK.vtu` when there are two bodies).
-pub fn write_fields(model: &Model, state: &State, approach: f64, path: &Path) -> Result<(), VtuError> {
+pub fn write_fields(model: &Model, forces: &[f64], approach: f64, path: &Path) -> Result<(), VtuError> {
     let shift = approach / model.bodies.len() as f64;
     for (k, body) in model.bodies.iter().enumerate() {
-        let u = displacement(body, &state.forces, shift);
+        let u = displacement(body, forces, shift);
         let stress = nodal_stress(&body.mesh, body.lame, &u);
         let target = if model.bodies.len() == 1 {
             path.to_path_buf()

@@ -10,8 +10,7 @@ use std::time::Instant;
 
 use serde_json::json;
 
-use super::contact::State;
-use super::model::{Model, Reduction, Settings};
+use super::model::{FrictionlessContact, Model, Reduction, Settings};
 use super::output;
 use super::pressure::{self, Profile};
 use crate::domain::Grip;
@@ -140,7 +139,7 @@ impl Solver for FemAxisym {
     }
 
     fn description(&self) -> &'static str {
-        "axisymmetric FEM (6-node triangles, graded mesh), frictionless contact by semi-smooth Newton on the condensed surface"
+        "axisymmetric FEM (6-node triangles, graded mesh), frictionless contact by the shared engine's active set on the condensed surface"
     }
 
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
@@ -176,7 +175,7 @@ impl Solver for FemAxisym {
             Some(file) => self.read_model(scene, file, &settings),
         }
         .map_err(SolveError::Failed)?;
-        let mut run = Run::new(&model);
+        let mut run = Run::new(&model).map_err(SolveError::Failed)?;
         let t = Instant::now();
         for step in scene.steps() {
             run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
@@ -188,7 +187,7 @@ impl Solver for FemAxisym {
 
 /// The state carried along the path and the rows produced.
 struct Run {
-    active: Vec<bool>,
+    contact: FrictionlessContact,
     steps: Vec<StepResult>,
     fields: Vec<SurfaceField>,
     iterations: (usize, usize),
@@ -199,9 +198,9 @@ struct Run {
 }
 
 impl Run {
-    fn new(model: &Model) -> Self {
-        Self {
-            active: vec![false; model.radii.len()],
+    fn new(model: &Model) -> Result<Self, String> {
+        Ok(Self {
+            contact: model.contact()?,
             steps: Vec::new(),
             fields: Vec::new(),
             iterations: (0, 0),
@@ -209,7 +208,7 @@ impl Run {
             unresolved: Vec::new(),
             max_strain: 0.0,
             pole_size: model.bodies[0].mesh.pole_size(),
-        }
+        })
     }
 
     fn step(
@@ -220,11 +219,12 @@ impl Run {
         vtu_dir: Option<&std::path::Path>,
     ) -> Result<(), SolveError> {
         let approach = model.reduction.approach(step.delta_n);
-        let state = model
-            .problem
-            .solve(approach, &mut self.active)
+        let cost = self
+            .contact
+            .advance(approach, &[])
             .map_err(|e| SolveError::Failed(format!("step {}: {e}", step.index)))?;
-        if self.active.last() == Some(&true) {
+        let forces = self.contact.pressure().to_vec();
+        if forces.last().is_some_and(|&f| f > 0.0) {
             return Err(SolveError::Failed(format!(
                 "step {}: the contact reached the edge of the candidate zone ({} m)",
                 step.index,
@@ -232,14 +232,14 @@ impl Run {
             )));
         }
         self.iterations = (
-            self.iterations.0 + state.iterations,
-            self.iterations.1.max(state.iterations),
+            self.iterations.0 + cost.normal_iterations,
+            self.iterations.1.max(cost.normal_iterations),
         );
-        let force: f64 = state.forces.iter().sum();
-        self.check_balance(model, &state, force);
-        let profile = pressure::recover(&model.radii, &model.weights, &state.forces);
+        let force = self.contact.normal_force();
+        self.check_balance(model, &forces, force);
+        let profile = pressure::recover(&model.radii, &model.weights, &forces);
         self.judge_resolution(&profile, force, step.delta_n, scene);
-        if let Some(position) = step.position {
+        if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
             self.fields.push(SurfaceField {
                 position,
                 points: model.radii.iter().map(|&r| [r, 0.0]).collect(),
@@ -251,7 +251,7 @@ impl Run {
                 let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));
                 std::fs::create_dir_all(dir)
                     .map_err(|e| SolveError::Failed(format!("creating {}: {e}", dir.display())))?;
-                output::write_fields(model, &state, approach, &path)
+                output::write_fields(model, &forces, approach, &path)
                     .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
             }
         }
@@ -265,13 +265,13 @@ impl Run {
     }
 
     /// Σλ against each body's far-boundary reaction ρ·λ.
-    fn check_balance(&mut self, model: &Model, state: &State, force: f64) {
+    fn check_balance(&mut self, model: &Model, forces: &[f64], force: f64) {
         for body in &model.bodies {
             let reaction: f64 = body
                 .condensed
                 .reaction
                 .iter()
-                .zip(&state.forces)
+                .zip(forces)
                 .map(|(r, l)| r * l)
                 .sum();
             if force > 0.0 {

@@ -1,0 +1,104 @@
+//! What a case may ask for: the ranges of its physical values and the resources of its run.
+//!
+//! The ranges keep every derived quantity (E*, R*, G*, the Hertz force, radius and pressure, the
+//! stiffnesses) a normal floating-point number far from overflow, and hold the loading to the
+//! small-displacement setting that every model here assumes. The resource limits make every
+//! valid case solve in bounded memory on an ordinary machine: no limit here is hit by a case that
+//! means something physically.
+
+use crate::scene::Scene;
+
+/// The largest case or reference file read [bytes] (4 MiB): parsing costs about 30 bytes of
+/// memory per byte of TOML, and a case that lists a million positions is under 3 MiB.
+pub const MAX_INPUT_BYTES: u64 = 4 << 20;
+
+/// The longest case name [characters].
+pub const MAX_NAME_CHARS: usize = 64;
+
+/// The radius of a sphere [m]: a nanoparticle to a boulder (or `inf` for a flat).
+pub const RADIUS_RANGE: [f64; 2] = [1e-9, 1e3];
+
+/// Young's modulus [Pa]: a soft gel (kPa) to diamond (1.2e12 Pa), with a decade to spare.
+pub const YOUNG_RANGE: [f64; 2] = [1e3, 1e13];
+
+/// The largest Coulomb coefficient: measured dry-friction coefficients lie between about 0.05
+/// and 2; 10 leaves room for adhesive, high-friction studies.
+pub const MAX_FRICTION: f64 = 10.0;
+
+/// The most increments a path may have in all: each step keeps a row of every solver's history
+/// (about 100 bytes) and `run` builds the JSON text of a history in memory (about 300 bytes a
+/// row), so this bounds the memory of the histories: 0.43 GB peak for `run` of one solver on
+/// 10⁶ increments (measured, MDR and hertz-mindlin-spring).
+pub const MAX_INCREMENTS: usize = 1_000_000;
+
+/// The most path positions at which solvers keep surface fields: a BEM field at 64² panels costs
+/// about 1 MB of memory and 0.75 MB of JSON, at the largest grid (`MAX_BEM_GRID`) 64 times that;
+/// 16 positions hold every position of the shipped cases. Measured (`run --solver bem`): 100 000
+/// reversals, fields at the focus only, peak 75 MB (it passed 20 GB when every position kept
+/// its field).
+pub const MAX_FIELD_POSITIONS: usize = 16;
+
+/// The largest BEM grid [panels a side]: 512² panels cost about 0.1 GB for the solve (FFT
+/// kernels on the doubled grid), 4 times the finest rung of the BEM's own ladder.
+pub const MAX_BEM_GRID: usize = 512;
+
+/// The most springs of an MDR bed (three `f64` each: 24 MB), 62 times its default.
+pub const MAX_MDR_SPRINGS: usize = 1_000_000;
+
+/// The finest mesh [pole elements per largest contact radius]: 4 times the finest rung of the
+/// FEM ladder (c/80). A meridian mesh uniform at size h over 1.5 c_max around the pole has about
+/// 8.2 (c_max/h)² triangles: 0.84 million at c_max/320, a few seconds and a few hundred MB for
+/// gmsh or the in-crate FEM.
+pub const MAX_ELEMENTS_PER_CONTACT_RADIUS: f64 = 320.0;
+
+/// The smallest pole element size a mesh of `scene` may ask for [m]: c_max/320, or, when the
+/// path never closes the gap, R1/32 000 (the same count over a hundredth of the radius).
+pub fn min_mesh_size(scene: &Scene) -> f64 {
+    let c_max = scene.max_contact_radius();
+    let span = if c_max > 0.0 {
+        c_max
+    } else {
+        scene.pair.body1.radius / 100.0
+    };
+    span / MAX_ELEMENTS_PER_CONTACT_RADIUS
+}
+
+/// The characters of a plain name, as shown in messages.
+pub const NAME_CHARACTERS: &str = "A–Z a–z 0–9 . _ -, starting with a letter or digit";
+
+/// True for a plain name: 1 to [`MAX_NAME_CHARS`] ASCII letters, digits, `.`, `_` and `-`,
+/// starting with a letter or digit. Such a name is safe as a file or folder name (no separator,
+/// no `..`, no leading `-` or `.`) and inside generated decks (no quote, no newline).
+pub fn is_plain_name(name: &str) -> bool {
+    let allowed = |c: char| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-');
+    name.len() <= MAX_NAME_CHARS
+        && name.starts_with(|c: char| c.is_ascii_alphanumeric())
+        && name.chars().all(allowed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plain_names() {
+        for name in ["paper-fig7", "hard-grazing", "a", "v1.2_b"] {
+            assert!(is_plain_name(name), "{name}");
+        }
+        let long = "x".repeat(MAX_NAME_CHARS + 1);
+        for name in [
+            "",
+            "..",
+            ".hidden",
+            "-rf",
+            "a/b",
+            "x/../../e",
+            "a b",
+            "é",
+            "a\nb",
+            &long,
+        ] {
+            assert!(!is_plain_name(name), "{name:?}");
+        }
+    }
+}

@@ -1,0 +1,240 @@
+//! The frictionless normal problem at a prescribed approach: exact non-penetration.
+//!
+//! Unknowns: the multipliers λ ≥ 0 (pressures or nodal forces) at m points. Gap at point i:
+//! g_i = o_i + (C λ)_i, with o_i = h_i − δ the opening of the undeformed surfaces (h: initial
+//! separation, δ: approach). Conditions: g ≥ 0, λ ≥ 0, λ_i g_i = 0 at every point. λ minimises
+//! ½⟨λ, Cλ⟩ + ⟨o, λ⟩ over λ ≥ 0 (C self-adjoint positive definite in the work product, so the
+//! solution is unique), and g is the gradient.
+//!
+//! Two algorithms, one answer:
+//! - [`solve_iterative`], for any operator: the constrained conjugate gradient of Polonsky &
+//!   Keer (1999, Wear 231, 206–219) in its displacement-controlled form (Bugnicourt et al. 2018,
+//!   Tribol. Lett. 66:29): CG on the points in contact, negative multipliers clamped to zero,
+//!   penetrating points re-admitted (restarting the conjugate directions). One product with C a
+//!   step; the displacement u = Cλ is carried between calls, and changes at a few points are
+//!   added column by column where the operator makes that cheaper.
+//! - [`solve_direct`], for an operator that holds its matrix: the primal–dual active set method
+//!   (Hintermüller, Ito & Kunisch 2003, a semi-smooth Newton method), C_AA λ_A = −o_A on the
+//!   active set A by faer's dense Cholesky, λ = 0 off it, until A repeats: exact to round-off.
+
+use faer::linalg::solvers::Solve;
+use faer::{Col, Mat, Side};
+
+use super::operator::{update_after_changes, Compliance};
+
+/// The multipliers and the displacement they cause, carried from one solve to the next.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NormalState {
+    /// λ ≥ 0 at each point.
+    pub multipliers: Vec<f64>,
+    /// u = C λ.
+    pub displacement: Vec<f64>,
+}
+
+impl NormalState {
+    /// No contact on `m` points.
+    pub fn zeros(m: usize) -> Self {
+        Self {
+            multipliers: vec![0.0; m],
+            displacement: vec![0.0; m],
+        }
+    }
+
+    /// The gap o + u at each point.
+    pub fn gaps(&self, opening: &[f64]) -> Vec<f64> {
+        opening
+            .iter()
+            .zip(&self.displacement)
+            .map(|(o, u)| o + u)
+            .collect()
+    }
+}
+
+/// One normal problem.
+#[derive(Clone, Copy, Debug)]
+pub struct NormalProblem<'a> {
+    /// o_i = h_i − δ [m].
+    pub opening: &'a [f64],
+    /// The length the tolerance is relative to (the approach δ) [m].
+    pub scale: f64,
+    /// Iterative solver: stops when the weighted rms gap on the contact is below
+    /// `tolerance · scale` and no open point penetrates by more than that.
+    pub tolerance: f64,
+    /// Iteration cap.
+    pub max_iterations: usize,
+    /// Multiplier per unit penetration that seeds a contact from nothing [multiplier/m].
+    pub seed_stiffness: f64,
+}
+
+/// Why a normal solve failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum NormalError {
+    /// The iteration cap was reached.
+    #[error("the normal problem did not converge in {iterations} iterations (residual {residual:.2e})")]
+    NotConverged {
+        /// Iterations spent.
+        iterations: usize,
+        /// The last residual.
+        residual: f64,
+    },
+    /// The active set did not settle (direct solver).
+    #[error("the contact set did not settle in {iterations} active-set iterations")]
+    NotSettled {
+        /// Iterations spent.
+        iterations: usize,
+    },
+    /// An active block of C is not positive definite (direct solver).
+    #[error("the compliance is not positive definite on the contact set")]
+    NotPositiveDefinite,
+}
+
+/// Solves by Polonsky–Keer constrained CG from `state` (updated in place, `state.displacement`
+/// must be C times `state.multipliers`); returns the products with C spent.
+pub fn solve_iterative(
+    op: &mut dyn Compliance,
+    problem: &NormalProblem,
+    state: &mut NormalState,
+) -> Result<usize, NormalError> {
+    let a = op.weights().to_vec();
+    let m = a.len();
+    let (p, u) = (&mut state.multipliers, &mut state.displacement);
+    let tolerance = problem.tolerance * problem.scale;
+    let mut direction = vec![0.0; m];
+    let mut product = vec![0.0; m];
+    let mut gap = vec![0.0; m];
+    let mut changes: Vec<(usize, f64)> = Vec::new();
+    let (mut previous_norm, mut restart, mut residual) = (1.0, true, f64::INFINITY);
+    let mut products = 0;
+    for _ in 0..problem.max_iterations {
+        let (mut norm, mut active) = (0.0, 0.0);
+        for i in 0..m {
+            gap[i] = u[i] + problem.opening[i];
+            if p[i] > 0.0 {
+                norm += a[i] * gap[i] * gap[i];
+                active += a[i];
+            }
+        }
+        if active == 0.0 {
+            // Nothing in contact: done unless a point penetrates, which seeds the contact.
+            if gap.iter().all(|&g| g >= 0.0) {
+                return Ok(products);
+            }
+            for (p, g) in p.iter_mut().zip(&gap) {
+                *p = (-g).max(0.0) * problem.seed_stiffness;
+            }
+            op.apply(p, u);
+            products += 1;
+            restart = true;
+            continue;
+        }
+        residual = (norm / active).sqrt();
+        let penetrates = (0..m).any(|i| p[i] == 0.0 && gap[i] < -tolerance);
+        if residual < tolerance && !penetrates {
+            return Ok(products);
+        }
+        // Conjugate direction on the contact set (Polonsky & Keer, eq. 10).
+        let beta = if restart { 0.0 } else { norm / previous_norm };
+        for i in 0..m {
+            direction[i] = if p[i] > 0.0 {
+                gap[i] + beta * direction[i]
+            } else {
+                0.0
+            };
+        }
+        previous_norm = norm;
+        op.apply(&direction, &mut product);
+        products += 1;
+        let (num, den) = (0..m).filter(|&i| p[i] > 0.0).fold((0.0, 0.0), |(x, y), i| {
+            (
+                x + a[i] * gap[i] * direction[i],
+                y + a[i] * product[i] * direction[i],
+            )
+        });
+        let step = if den > 0.0 { num / den } else { 0.0 };
+        changes.clear();
+        for i in 0..m {
+            if p[i] > 0.0 {
+                let next = p[i] - step * direction[i];
+                if next < 0.0 {
+                    changes.push((i, -next)); // clamped to zero: λ changed by −next more
+                }
+                p[i] = next.max(0.0);
+            }
+        }
+        // Points out of contact that penetrate re-enter (P&K, eq. 13), restarting the CG.
+        restart = false;
+        for i in 0..m {
+            if p[i] == 0.0 && gap[i] < 0.0 {
+                p[i] = -step * gap[i];
+                changes.push((i, p[i]));
+                restart = true;
+            }
+        }
+        u.iter_mut().zip(&product).for_each(|(u, r)| *u -= step * r);
+        products += usize::from(update_after_changes(op, &changes, p, u));
+    }
+    Err(NormalError::NotConverged {
+        iterations: problem.max_iterations,
+        residual: residual / problem.scale.max(f64::MIN_POSITIVE),
+    })
+}
+
+/// Iteration cap of the active set method; it settles in a few iterations when warm-started.
+const MAX_ACTIVE_SET_ITERATIONS: usize = 200;
+
+/// Solves by the primal–dual active set method with dense Cholesky on the active block, starting
+/// from the contact set of `state` (updated in place); returns the iterations.
+///
+/// # Panics
+/// When `op` holds no matrix (see [`Compliance::matrix`]).
+pub fn solve_direct(
+    op: &mut dyn Compliance,
+    problem: &NormalProblem,
+    state: &mut NormalState,
+) -> Result<usize, NormalError> {
+    let a = op.weights().to_vec();
+    let m = a.len();
+    // Gaps below this count as penetration: round-off of C λ relative to the problem's lengths.
+    let scale = problem
+        .opening
+        .iter()
+        .fold(problem.scale.abs(), |s, o| s.max(o.abs()));
+    let tolerance = 1e-12 * scale;
+    let mut active: Vec<bool> = state.multipliers.iter().map(|&p| p > 0.0).collect();
+    for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
+        let set: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
+        let matrix = op
+            .matrix()
+            .expect("the direct solver needs the operator's matrix");
+        // a_A C_AA is symmetric positive definite; (a_A C_AA) λ_A = −a_A o_A.
+        let block = Mat::from_fn(set.len(), set.len(), |r, c| a[set[r]] * matrix[(set[r], set[c])]);
+        let mut rhs = Col::from_fn(set.len(), |r| -a[set[r]] * problem.opening[set[r]]);
+        if !set.is_empty() {
+            let llt = block
+                .llt(Side::Lower)
+                .map_err(|_| NormalError::NotPositiveDefinite)?;
+            llt.solve_in_place(rhs.as_mat_mut());
+        }
+        state.multipliers.fill(0.0);
+        for (r, &i) in set.iter().enumerate() {
+            state.multipliers[i] = rhs[r];
+        }
+        op.apply(&state.multipliers, &mut state.displacement);
+        let next: Vec<bool> = (0..m)
+            .map(|i| {
+                if active[i] {
+                    state.multipliers[i] > 0.0
+                } else {
+                    problem.opening[i] + state.displacement[i] < -tolerance
+                }
+            })
+            .collect();
+        if next == active {
+            return Ok(iteration);
+        }
+        active = next;
+    }
+    Err(NormalError::NotSettled {
+        iterations: MAX_ACTIVE_SET_ITERATIONS,
+    })
+}

@@ -1,0 +1,47 @@
+//! Numbers in messages: short and exact, never a 300-digit decimal.
+//!
+//! Rust's `{}` prints an `f64` as a plain decimal, so `5e-324` becomes a 324-digit string. [`Short`]
+//! prints the shortest text that reads back as the same number: plainly for magnitudes from 1e-3
+//! to 1e6, in scientific notation outside (`5e-324`, `1.7e308`, `7e10`).
+
+use std::fmt;
+
+/// An `f64` shown for a reader: `Short(0.25)` is `0.25`, `Short(5e-324)` is `5e-324`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Short(pub f64);
+
+impl fmt::Display for Short {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-3..1e6).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Short;
+
+    #[test]
+    fn extremes_print_in_scientific_notation_and_read_back_exactly() {
+        for (v, text) in [
+            (5e-324, "5e-324"),
+            (-5e-324, "-5e-324"),
+            (1.7e308, "1.7e308"),
+            (70e9, "7e10"),
+            (0.25, "0.25"),
+            (-1000.0, "-1000"),
+            (0.0, "0"),
+            (f64::INFINITY, "inf"),
+        ] {
+            let shown = Short(v).to_string();
+            assert_eq!(shown, text);
+            if v.is_finite() {
+                assert_eq!(shown.parse::<f64>().unwrap(), v);
+            }
+        }
+    }
+}

@@ -1,0 +1,178 @@
+//! The paper's claims put to the test: one row per claim — what the paper says, what the harness
+//! measured (with the solver and resolution), the verdict, and the figure or check behind it.
+//!
+//! A claim that needs a solver or a model this build does not have says so ("not measured:
+//! needs fem-3d"); nothing stands in for a measurement. Rows are built from whatever solvers ran,
+//! so a new finite element solver or surface-field solver appears in them as it lands:
+//! finite element solvers are recognised by the registry's naming (`fem-*`, `freefem-*`,
+//! `fenicsx-*`), surface-field solvers by their maps.
+
+mod fields;
+mod forces;
+pub mod measure;
+pub mod study;
+
+pub use study::Study;
+
+use super::document::{Cell, Section, Table};
+use super::paper::Quoted;
+use crate::verify::CaseRun;
+
+/// What a measurement says about a claim.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// The measurement agrees with the claim.
+    Confirmed,
+    /// It agrees with part of it.
+    Partly,
+    /// It contradicts the claim.
+    NotConfirmed,
+    /// Nothing in this build measures it.
+    NotMeasured,
+}
+
+impl Verdict {
+    /// The verdict's word.
+    pub fn label(self) -> &'static str {
+        match self {
+            Verdict::Confirmed => "confirmed",
+            Verdict::Partly => "partly",
+            Verdict::NotConfirmed => "not confirmed",
+            Verdict::NotMeasured => "not measured",
+        }
+    }
+
+    /// Its CSS class in the report.
+    fn class(self) -> &'static str {
+        match self {
+            Verdict::Confirmed => "ok",
+            Verdict::Partly => "info",
+            Verdict::NotConfirmed => "nook",
+            Verdict::NotMeasured => "na",
+        }
+    }
+}
+
+/// One claim of the paper and what the harness found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Claim {
+    /// What the paper says, and where.
+    pub claim: String,
+    /// What was measured, by which solver, at which resolution.
+    pub measured: String,
+    /// The verdict.
+    pub verdict: Verdict,
+    /// The verdict in a sentence.
+    pub reading: String,
+    /// The figure, check or section behind it.
+    pub evidence: String,
+}
+
+impl Claim {
+    /// A claim nothing in this build measures, and what it needs.
+    fn not_measured(claim: &str, needs: &str, evidence: &str) -> Self {
+        Self {
+            claim: claim.into(),
+            measured: format!("not measured: needs {needs}"),
+            verdict: Verdict::NotMeasured,
+            reading: String::new(),
+            evidence: evidence.into(),
+        }
+    }
+}
+
+/// True for the finite element solvers (in-crate or external decks), by the registry's naming.
+pub fn is_finite_element(solver: &str) -> bool {
+    ["fem-", "freefem-", "fenicsx-"]
+        .iter()
+        .any(|prefix| solver.starts_with(prefix))
+}
+
+/// Every claim, in the paper's order.
+pub fn claims(run: &CaseRun, study: &Study, quoted: &Quoted) -> Vec<Claim> {
+    let mut rows = forces::claims(run, quoted);
+    rows.extend(fields::claims(run, study));
+    rows
+}
+
+/// The section: the claims table and how the surface fields were resolved.
+pub fn section(run: &CaseRun, study: &Study, quoted: &Quoted) -> Section {
+    let claims = claims(run, study, quoted);
+    let table = Table {
+        header: ["claim (paper)", "measured", "verdict", "finding", "behind it"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+        rows: claims
+            .iter()
+            .map(|c| {
+                vec![
+                    Cell::plain(&c.claim),
+                    Cell::plain(&c.measured),
+                    Cell::with_class(c.verdict.label(), c.verdict.class()),
+                    Cell::plain(&c.reading),
+                    Cell::plain(&c.evidence),
+                ]
+            })
+            .collect(),
+    };
+    let mut paragraphs = vec![
+        "Each claim of the paper, what the harness measured on this run, and the verdict. \"Not measured\" names the \
+         solver or model a claim needs that this build does not have; no value stands in for it."
+            .to_owned(),
+    ];
+    paragraphs.extend(study_paragraphs(run, study));
+    Section {
+        title: "The paper's claims put to the test".into(),
+        paragraphs,
+        tables: vec![table],
+        figures: vec![],
+    }
+}
+
+/// How the surface-field claims were resolved: the study's rungs and their cost.
+fn study_paragraphs(run: &CaseRun, study: &Study) -> Vec<String> {
+    if study.solvers.is_empty() {
+        return match study::map_solvers(run).is_empty() {
+            true => Vec::new(),
+            false => vec![
+                "Surface-field claims are measured on this run's own fields only: the resolution study did not run."
+                    .into(),
+            ],
+        };
+    }
+    study
+        .solvers
+        .iter()
+        .map(|s| {
+            let rungs: Vec<String> = s
+                .rungs
+                .iter()
+                .map(|r| format!("{} ({:.1} s)", r.resolution, r.seconds))
+                .collect();
+            let mut text = format!(
+                "Resolution study of {} for the surface-field claims: the path cut at position {}, {} increments a \
+                 segment (the run itself: {}), at {}. Sizes h are the sample spacing over the contact radius c at \
+                 position {}.",
+                s.solver,
+                run.case.focus,
+                study::STUDY_INCREMENTS,
+                run.case.scene.path.substeps().first().copied().unwrap_or(0),
+                rungs.join("; "),
+                run.case.focus
+            );
+            if !s.problems.is_empty() {
+                text.push_str(&format!(" Problems: {}.", s.problems.join("; ")));
+            }
+            text
+        })
+        .collect()
+}
+
+/// A relative difference as a signed percentage, "+0.37 %".
+fn percent(value: f64) -> String {
+    format!("{:+.2} %", value * 100.0)
+}
+
+#[cfg(test)]
+mod tests;

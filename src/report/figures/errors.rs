@@ -1,0 +1,133 @@
+//! Each solver's error against its reference at every path position, on a log axis. An error
+//! that is exactly zero cannot be drawn there: the caption says where, no point stands on an
+//! invented floor.
+
+use anyhow::Result;
+
+use super::{data_of, histories, missing, NORMAL_REFERENCE, TANGENTIAL_REFERENCE};
+use crate::history::{History, Quantity};
+use crate::report::document::Figure;
+use crate::report::plot::{Axes, LinePlot, Series};
+use crate::verify::CaseRun;
+
+/// |value − reference| at every path position where both exist and the scale is positive:
+/// relative to the reference for P, to the reference's peak |Q| for Q.
+pub fn position_errors(quantity: Quantity, history: &History, reference: &History) -> Vec<(usize, f64)> {
+    let peak = reference.peak(quantity);
+    history
+        .at_positions()
+        .filter_map(|row| {
+            let value = quantity.of(row)?;
+            let expected = quantity.of(reference.steps.get(row.step)?)?;
+            let scale = if quantity == Quantity::NormalForce {
+                expected.abs()
+            } else {
+                peak
+            };
+            let position = row.position?;
+            (scale > 0.0).then(|| (position, (value - expected).abs() / scale))
+        })
+        .collect()
+}
+
+/// "a (positions 0, 11); b (position 3)".
+fn zero_list(zeros: &[(String, Vec<usize>)]) -> String {
+    zeros
+        .iter()
+        .map(|(name, at)| {
+            let list: Vec<String> = at.iter().map(|p| p.to_string()).collect();
+            let word = if at.len() == 1 { "position" } else { "positions" };
+            format!("{name} ({word} {})", list.join(", "))
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// The error figures: P against Hertz (relative), Q against MDR (relative to MDR's peak |Q|).
+/// Solvers identical to the reference at every position are named in the caption, not drawn.
+pub fn errors(run: &CaseRun) -> Result<Vec<Figure>> {
+    let all = histories(run);
+    let mut figures = Vec::new();
+    for (quantity, symbol, reference, measure, y_label) in [
+        (
+            Quantity::NormalForce,
+            "P",
+            NORMAL_REFERENCE,
+            "relative",
+            format!("|P − P_{NORMAL_REFERENCE}| / P_{NORMAL_REFERENCE}"),
+        ),
+        (
+            Quantity::TangentialForce,
+            "Q",
+            TANGENTIAL_REFERENCE,
+            "relative to the reference's peak |Q|",
+            format!("|Q − Q_{TANGENTIAL_REFERENCE}| / max |Q_{TANGENTIAL_REFERENCE}|"),
+        ),
+    ] {
+        let Some(reference_history) = all.iter().find(|(n, _)| n == reference).map(|(_, h)| *h) else {
+            continue;
+        };
+        let (mut series, mut exact, mut zeros) = (Vec::new(), Vec::new(), Vec::new());
+        for (name, history) in all.iter().filter(|(n, _)| n != reference) {
+            let points = position_errors(quantity, history, reference_history);
+            if points.is_empty() {
+                continue;
+            }
+            let zero_at: Vec<usize> = points.iter().filter(|p| p.1 == 0.0).map(|p| p.0).collect();
+            if zero_at.len() == points.len() {
+                exact.push(name.clone());
+                continue;
+            }
+            if !zero_at.is_empty() {
+                zeros.push((name.clone(), zero_at));
+            }
+            let drawn = points
+                .iter()
+                .filter(|p| p.1 > 0.0)
+                .map(|&(k, e)| (k as f64, e))
+                .collect();
+            series.push(Series::scattered(name.clone(), drawn));
+        }
+        if series.is_empty() {
+            continue;
+        }
+        let mut caption = format!(
+            "Error of {symbol} against {reference} at every path position ({measure}); the solvers' markers \
+             are set side by side around each position so that equal errors do not hide each other."
+        );
+        if !exact.is_empty() {
+            caption.push_str(&format!(
+                " Identical to {reference} at every position (zero error, not drawn on the log axis): {}.",
+                exact.join(", ")
+            ));
+        }
+        if !zeros.is_empty() {
+            caption.push_str(&format!(
+                " Zero error (not drawn on the log axis) at: {}.",
+                zero_list(&zeros)
+            ));
+        }
+        caption.push_str(&missing(run));
+        // The data keep the positions; the drawing sets the solvers side by side around them.
+        let data = LinePlot {
+            title: format!("{}: {symbol} error against {reference}", run.case.name()),
+            x_label: "path position".into(),
+            y_label,
+            series,
+            axes: Axes::LogY,
+        };
+        let mut plot = data.clone();
+        let count = plot.series.len() as f64;
+        for (k, series) in plot.series.iter_mut().enumerate() {
+            let shift = 0.5 * (k as f64 - (count - 1.0) / 2.0) / count;
+            series.runs.iter_mut().flatten().for_each(|p| p.0 += shift);
+        }
+        figures.push(Figure {
+            id: format!("{}-error", quantity.name().replace('_', "-")),
+            data: data_of(&data, "position", "error"),
+            svg: plot.to_svg()?,
+            caption,
+        });
+    }
+    Ok(figures)
+}

@@ -1,0 +1,258 @@
+//! The tables of a report: the check table, the solver table, and the warnings grouped once with
+//! the solvers they concern.
+
+use super::histories;
+use crate::check::Verdict;
+use crate::report::document::{Cell, Table};
+use crate::report::format_value;
+use crate::solver::SolveError;
+use crate::verify::CaseRun;
+
+/// A warning stated once, with the solvers that gave it (none for the scene's own).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Warning {
+    /// The solvers that gave it, in the case's order; empty for a warning about the scene.
+    pub solvers: Vec<String>,
+    /// What it says.
+    pub text: String,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.solvers.is_empty() {
+            write!(f, "{}", self.text)
+        } else {
+            write!(f, "{}: {}", self.solvers.join(", "), self.text)
+        }
+    }
+}
+
+/// The run's warnings, each stated once: a solver warning with every solver that gave it,
+/// then the scene's own warnings.
+pub fn warnings(run: &CaseRun) -> Vec<Warning> {
+    let mut grouped: Vec<Warning> = Vec::new();
+    let mut from_solvers = Vec::new();
+    for (name, history) in histories(run) {
+        for text in &history.metadata.warnings {
+            from_solvers.push(format!("{name}: {text}"));
+            match grouped.iter_mut().find(|w| &w.text == text) {
+                Some(w) => w.solvers.push(name.clone()),
+                None => grouped.push(Warning {
+                    solvers: vec![name.clone()],
+                    text: text.clone(),
+                }),
+            }
+        }
+    }
+    let scene = run
+        .warnings
+        .iter()
+        .filter(|w| !from_solvers.contains(w))
+        .map(|w| Warning {
+            solvers: Vec::new(),
+            text: w.clone(),
+        });
+    grouped.extend(scene);
+    grouped
+}
+
+/// The check table: verdict, what, value, reference, error, tolerance and reason.
+pub fn check_table(run: &CaseRun) -> Table {
+    // Five columns, so that the table fits a laptop screen: what is checked, the value against
+    // its reference, the error against the tolerance, and why that tolerance.
+    let header = [
+        "verdict",
+        "check",
+        "value against reference",
+        "error (measure) / tolerance",
+        "reason",
+    ];
+    Table {
+        header: header.iter().map(|s| s.to_string()).collect(),
+        rows: run
+            .outcomes
+            .iter()
+            .map(|o| {
+                let class = match o.verdict {
+                    Verdict::Ok => "ok",
+                    Verdict::Nook => "nook",
+                    Verdict::Info => "info",
+                    Verdict::Unavailable => "na",
+                };
+                let unit = o.spec.quantity.unit();
+                let worst = o
+                    .worst_step
+                    .map_or_else(String::new, |step| format!(" (worst: step {step})"));
+                let mut reason = o.spec.reason.clone();
+                if let Some(message) = &o.message {
+                    reason = format!("{message}. {reason}");
+                }
+                let tolerance = o.spec.tolerance.map_or_else(
+                    || "informational".to_owned(),
+                    |t| format!("≤ {}", format_value(Some(t))),
+                );
+                vec![
+                    Cell::with_class(o.verdict.label(), class),
+                    Cell::plain(format!(
+                        "{} {} at {}{worst}",
+                        o.spec.solver,
+                        o.spec.quantity.name(),
+                        o.spec.at
+                    )),
+                    Cell::plain(format!(
+                        "{} {unit} against {} {unit} ({})",
+                        format_value(o.value),
+                        format_value(o.reference),
+                        o.spec.reference
+                    )),
+                    Cell::plain(format!(
+                        "{} ({}) / {tolerance}",
+                        format_value(o.error),
+                        o.spec.measure.name()
+                    )),
+                    Cell::plain(reason),
+                ]
+            })
+            .collect(),
+    }
+}
+
+/// Whether a metadata key is a duration in seconds (`meshing_s`, `solving_s`, …).
+fn is_duration(key: &str) -> bool {
+    key.ends_with("_s")
+}
+
+/// The wall time, with the solver's own split of it (`meshing 1.37 s, …`) where it gives one.
+fn wall_time_of(metadata: &crate::history::Metadata) -> String {
+    let parts: Vec<String> = metadata
+        .extra
+        .iter()
+        .filter(|(key, _)| is_duration(key))
+        .filter_map(|(key, value)| {
+            Some(format!(
+                "{} {:.3} s",
+                key.trim_end_matches("_s").replace('_', " "),
+                value.as_f64()?
+            ))
+        })
+        .collect();
+    let total = format!("{:.3} ms", metadata.wall_time_s * 1e3);
+    if parts.is_empty() {
+        total
+    } else {
+        format!("{total} ({})", parts.join(", "))
+    }
+}
+
+/// The scalar facts of a solver's metadata (`key = value`), durations excepted (they go with the
+/// wall time); lists and long texts are left to the solver's JSON file, and named as such.
+fn details_of(extra: &std::collections::BTreeMap<String, serde_json::Value>) -> Vec<String> {
+    let mut shown = Vec::new();
+    let mut elsewhere = Vec::new();
+    for (key, value) in extra.iter().filter(|(key, _)| !is_duration(key)) {
+        match value {
+            serde_json::Value::Number(n) => match n.as_f64() {
+                Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => shown.push(format!("{key} = {x}")),
+                Some(x) => shown.push(format!("{key} = {}", significant(x))),
+                None => shown.push(format!("{key} = {n}")),
+            },
+            serde_json::Value::String(text) if text.chars().count() <= 80 => {
+                shown.push(format!("{key} = {text}"))
+            }
+            serde_json::Value::Bool(b) => shown.push(format!("{key} = {b}")),
+            _ => elsewhere.push(key.as_str()),
+        }
+    }
+    if !elsewhere.is_empty() {
+        shown.push(format!("more in solvers/<name>.json: {}", elsewhere.join(", ")));
+    }
+    shown
+}
+
+/// A measured number to four significant digits, without float noise: "0.1622", "3.492e-5",
+/// "2.079e6" ("0.0000" would hide a panel size of 35 µm).
+fn significant(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let magnitude = x.abs().log10().floor();
+    if !(-3.0..5.0).contains(&magnitude) {
+        return format!("{x:.3e}");
+    }
+    let decimals = (3.0 - magnitude).max(0.0) as usize;
+    let text = format!("{x:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    }
+}
+
+/// The solver table: what ran, how (model, resolution, version, facts) and how long; what did
+/// not run and why.
+pub fn solver_table(run: &CaseRun) -> Table {
+    let header = [
+        "solver",
+        "status",
+        "model",
+        "resolution",
+        "version",
+        "details",
+        "wall time",
+    ];
+    Table {
+        header: header.iter().map(|s| s.to_string()).collect(),
+        rows: run
+            .case
+            .required_solvers()
+            .iter()
+            .map(|name| match run.histories.get(name) {
+                Some(Ok(h)) => {
+                    let m = &h.metadata;
+                    let details = details_of(&m.extra);
+                    vec![
+                        Cell::plain(name),
+                        Cell::with_class("ran", "ok"),
+                        Cell::plain(&m.model),
+                        Cell::plain(&m.resolution),
+                        Cell::plain(&m.version),
+                        Cell::plain(details.join("; ")),
+                        Cell::with_class(wall_time_of(m), "timing"),
+                    ]
+                }
+                Some(Err(e)) => {
+                    let (status, class) = match e {
+                        SolveError::Unavailable(_) => ("missing: not available", "na"),
+                        SolveError::NotApplicable(_) => ("missing: not applicable", "na"),
+                        SolveError::Failed(_) => ("missing: failed", "nook"),
+                    };
+                    let mut row = vec![
+                        Cell::plain(name),
+                        Cell::with_class(status, class),
+                        Cell::plain(e.to_string()),
+                    ];
+                    row.extend((0..4).map(|_| Cell::plain("—")));
+                    row
+                }
+                None => vec![Cell::plain(name), Cell::with_class("not run", "na")]
+                    .into_iter()
+                    .chain((0..5).map(|_| Cell::plain("—")))
+                    .collect(),
+            })
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn details_keep_four_significant_digits() {
+        assert_eq!(significant(3.4917e-5), "3.492e-5");
+        assert_eq!(significant(0.16218), "0.1622");
+        assert_eq!(significant(1238.347), "1238");
+        assert_eq!(significant(2079452.5), "2.079e6");
+        assert_eq!(significant(0.0), "0");
+    }
+}
