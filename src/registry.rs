@@ -11,6 +11,7 @@ pub fn registry() -> Vec<Box<dyn Solver>> {
     let mut solvers = analytic::solvers();
     solvers.push(Box::new(bem::Bem::default()));
     solvers.push(Box::new(fem::FemAxisym::default()));
+    solvers.push(Box::new(fem::MdrDomain::default()));
     solvers.extend(external::solvers());
     solvers
 }

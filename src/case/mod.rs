@@ -63,8 +63,8 @@
 //! | MDR bed | at most 1 000 000 springs |
 //! | mesh (`mesh --resolution`) | pole element ≥ c_max/320 (≥ R1/32 000 without contact): under a million triangles |
 
-mod domain;
 mod check_rules;
+mod domain;
 mod error;
 pub mod input;
 pub mod limits;

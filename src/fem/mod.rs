@@ -24,4 +24,4 @@ pub mod factor;
 pub mod mesh;
 pub mod quadrature;
 
-pub use axisym::FemAxisym;
+pub use axisym::{FemAxisym, MdrDomain};

@@ -11,8 +11,8 @@ use std::time::Instant;
 
 use faer::Mat;
 
-use crate::domain::Domain;
 use crate::contact::{Contact, DenseCompliance, Settings as ContactSettings};
+use crate::domain::Domain;
 use crate::fem::assembly::{self, System};
 use crate::fem::condense::{condense, Condensed};
 use crate::fem::element::tri6::{edge_weights, Integration, Lame};
@@ -72,12 +72,14 @@ pub struct Settings {
     pub integration: Integration,
     /// The modelled finite body (cap height, grip).
     pub domain: Domain,
+    /// Growth of the element size beyond the fine zone (default [`GROWTH`]).
+    pub growth: f64,
 }
 
 /// Uniformly fine zone: 5 % beyond the candidate zone, so the contact edge sits in it.
 const FINE_MARGIN: f64 = 1.05;
 /// Growth of the element size beyond the fine zone (h = h0 + g (r − r_f)).
-const GROWTH: f64 = 0.25;
+pub const GROWTH: f64 = 0.25;
 /// Domain of a flat, in units of the largest contact radius: the far-arc offset of a
 /// half-space region falls as c/D (Boussinesq), ≈ 1e-4 of P at 1000 c.
 pub(super) const FLAT_DOMAIN: f64 = 1000.0;
@@ -193,7 +195,7 @@ pub fn grading(body: &Body, settings: &Settings, contact_radius: f64) -> Grading
         domain,
         pole_size: settings.pole_size,
         fine_radius: FINE_MARGIN * settings.candidate_radius,
-        growth: GROWTH,
+        growth: settings.growth,
     }
 }
 

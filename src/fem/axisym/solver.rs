@@ -50,6 +50,10 @@ pub struct FemAxisym {
     /// A gmsh MSH 4.1 mesh of the sphere to use instead of the generated one (symmetric
     /// reduction only; see [`crate::fem::mesh::msh`] for its conventions).
     pub mesh_file: Option<PathBuf>,
+    /// Growth of the element size away from the contact's fine zone (`None`:
+    /// [`super::model::GROWTH`]); smaller refines the far field, which the finite body's
+    /// compliance depends on.
+    pub growth: Option<f64>,
 }
 
 impl FemAxisym {
@@ -88,6 +92,7 @@ impl FemAxisym {
             ordering: self.ordering.unwrap_or(Ordering::Amd),
             integration,
             domain: scene.domain,
+            growth: self.growth.unwrap_or(super::model::GROWTH),
         })
     }
 }
