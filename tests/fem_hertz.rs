@@ -228,7 +228,7 @@ fn contact_holds_at_every_candidate_node() {
             .settings(&s)
             .unwrap();
         let model = Model::generate(&s, &settings).unwrap();
-        let mut contact = model.contact().unwrap();
+        let mut contact = model.contact(0.0).unwrap();
         for delta in [1e-6, 5e-6, 10e-6, 20e-6, 3e-6, 0.0] {
             contact.advance(model.reduction.approach(delta), &[]).unwrap();
             let scale = model.reduction.approach(delta).abs().max(1e-9);

@@ -7,6 +7,7 @@
 //! | [`pressure`] | nodal pressure, p0 and c from the contact forces |
 //! | [`output`] | displacement and stress fields, VTU files |
 //! | [`solver`] | the `Solver` implementation |
+//! | [`tangential`] | the tangential problem: Fourier mode n = 1, condensed, Coulomb on the shared engine |
 //! | [`reference`] | `mdr-domain`: MDR in series with the domain's compliances, the finite-body reference |
 
 pub mod compliance;
@@ -15,6 +16,7 @@ pub mod output;
 pub mod pressure;
 pub mod reference;
 pub mod solver;
+pub mod tangential;
 
 pub use reference::MdrDomain;
 pub use solver::FemAxisym;

@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use faer::Mat;
 
-use crate::contact::{Contact, DenseCompliance, Settings as ContactSettings};
+use crate::contact::{Contact, DenseCompliance, FrictionSet, Settings as ContactSettings};
 use crate::domain::Domain;
 use crate::fem::assembly::{self, System};
 use crate::fem::condense::{condense, Condensed};
@@ -180,6 +180,9 @@ pub struct Model {
     pub radii: Vec<f64>,
     /// Ring weights of the candidates (body 1's surface) [m²].
     pub weights: Vec<f64>,
+    /// The pair's condensed Fourier n = 1 compliance at the candidates' A DOFs [m/N], when the
+    /// tangential problem is solved ([`Model::with_shear`]).
+    pub shear: Option<Mat<f64>>,
 }
 
 /// The generator's grading for `body` under `settings`: a sphere's cap (the hemisphere, or the
@@ -252,18 +255,38 @@ impl Model {
             bodies,
             radii,
             weights,
+            shear: None,
         })
+    }
+
+    /// Adds the tangential compliance: the mode n = 1 assembled, factored and condensed on the
+    /// same meshes ([`super::tangential`]).
+    pub fn with_shear(mut self, settings: &Settings) -> Result<Self, String> {
+        self.shear = Some(super::tangential::pair_compliance(&self.bodies, settings)?);
+        Ok(self)
     }
 }
 
-/// The contact of a model: its condensed compliance on the shared engine, frictionless.
-pub type FrictionlessContact = Contact<DenseCompliance, DenseCompliance>;
+/// The contact of a model on the shared engine: normal (n = 0) and, when the model has its
+/// shear compliance, tangential (n = 1, an interval friction set).
+pub type AxisymContact = Contact<DenseCompliance, DenseCompliance>;
 
 impl Model {
     /// A fresh contact on the candidates (the engine picks the dense active-set solver for these
-    /// few hundred nodes); `Err` when the condensed compliance is not a valid one.
-    pub fn contact(&self) -> Result<FrictionlessContact, String> {
+    /// few hundred nodes), with Coulomb friction μ = `friction` when the model has its shear
+    /// compliance; `Err` when a condensed compliance is not a valid one.
+    pub fn contact(&self, friction: f64) -> Result<AxisymContact, String> {
         let compliance = DenseCompliance::scalar(self.compliance.clone()).map_err(|e| e.to_string())?;
-        Contact::new(compliance, self.heights.clone(), ContactSettings::default()).map_err(|e| e.to_string())
+        let contact = Contact::new(compliance, self.heights.clone(), ContactSettings::default())
+            .map_err(|e| e.to_string())?;
+        match &self.shear {
+            None => Ok(contact),
+            Some(shear) => {
+                let shear = DenseCompliance::scalar(shear.clone()).map_err(|e| e.to_string())?;
+                contact
+                    .with_friction(shear, FrictionSet::Interval, friction)
+                    .map_err(|e| e.to_string())
+            }
+        }
     }
 }
