@@ -300,21 +300,16 @@ impl Run {
     /// The traction along x at the candidates, q_i = f_i / w_i (the axis node, of zero weight,
     /// takes its neighbour's value), as (q_x, q_y = 0): the model has no q_y.
     fn traction(&self, model: &Model) -> Vec<[f64; 2]> {
-        let q: Vec<f64> = self
-            .contact
-            .traction()
-            .iter()
-            .zip(&model.weights)
-            .map(|(&f, &w)| if w > 0.0 { f / w } else { f64::NAN })
-            .collect();
-        (0..q.len())
+        let (f, w) = (self.contact.traction(), &model.weights);
+        let nodal = |i: usize| (w[i] > 0.0).then(|| f[i] / w[i]);
+        (0..f.len())
             .map(|i| {
-                let v = if q[i].is_nan() {
-                    q.get(i + 1).copied().filter(|v| !v.is_nan()).unwrap_or(0.0)
-                } else {
-                    q[i]
-                };
-                [v, 0.0]
+                [
+                    nodal(i)
+                        .or_else(|| (i + 1 < f.len()).then(|| nodal(i + 1)).flatten())
+                        .unwrap_or(0.0),
+                    0.0,
+                ]
             })
             .collect()
     }
