@@ -2,12 +2,15 @@
 # Install the external toolchain of spherecontact on a fresh Debian 12 (bookworm) machine, as root.
 # Idempotent: packages already installed are left as they are, the FreeFEM pref line is added once.
 #   gmsh 4.8.4 (+ python3-gmsh), FreeFem++ 4.11 (+ libfreefem++ plugins: gmsh, iovtk),
-#   dolfinx 0.5.2 for /usr/bin/python3, meshio 5 and h5py.
-# Measured: ~245 packages, ~200 MB download, 2-3 minutes on a fresh machine (docs/toolchain.md).
+#   dolfinx 0.5.2 for /usr/bin/python3, meshio 5 and h5py;
+#   the DEM codes LAMMPS (Debian 20220106, "29 Sep 2021 - Update 2", GRANULAR built in) and
+#   YADE 2023.02a (the lammps-* and yade-mindlin solvers).
+# Measured: ~245 packages, ~200 MB download, 2-3 minutes on a fresh machine (docs/toolchain.md);
+# LAMMPS and YADE add 115 packages, 192 MB, about 2 minutes (docs/toolchain.md).
 # Afterwards prints the versions found (the same facts as `spherecontact doctor`).
 set -euo pipefail
 
-PACKAGES=(gmsh python3-gmsh freefem++ libfreefem++ python3-dolfinx-real python3-meshio python3-h5py)
+PACKAGES=(gmsh python3-gmsh freefem++ libfreefem++ python3-dolfinx-real python3-meshio python3-h5py lammps yade)
 export DEBIAN_FRONTEND=noninteractive
 APT=(apt-get -y -q -o DPkg::Lock::Timeout=900 --no-install-recommends)
 
@@ -46,3 +49,7 @@ ffout=$(FF_LOADPATH=/usr/lib/freefem++ FreeFem++ -nw -ns -v 0 "$smoke" 2>&1) || 
 rm -f "$smoke"
 echo "FreeFem++ $(command -v FreeFem++): $(echo "$ffout" | sed -n 's/^ffversion //p') (plugins gmsh, iovtk load)"
 /usr/bin/python3 -c "import dolfinx, gmsh, meshio, h5py; print('dolfinx  ', dolfinx.__version__, '(/usr/bin/python3); meshio', meshio.__version__, '; h5py', h5py.__version__, '; python gmsh', gmsh.__version__)"
+lmpout=$(lmp -h 2>&1) || { echo "$lmpout" | tail -n 5; exit 1; }
+echo "$lmpout" | grep -qw GRANULAR || { echo "setup.sh: lmp lacks the GRANULAR package"; exit 1; }
+echo "LAMMPS    $(command -v lmp): $(echo "$lmpout" | sed -n 's/.*Simulator - //p' | head -n1) (GRANULAR package)"
+echo "YADE      $(command -v yade): $(yade --version 2>&1 | sed -n 's/^Yade version: *//p')"

@@ -148,6 +148,9 @@ pub struct SurfaceField {
     pub traction: Option<Vec<[f64; 2]>>,
     /// Stick (true) or slip (false) at each point in contact (p > 0); `None` where not resolved.
     pub stick: Option<Vec<bool>>,
+    /// Relative tangential displacement of the surfaces (body 1 − body 2) [m] at each point,
+    /// accumulated along the path; `None` for solvers that do not resolve it.
+    pub slip: Option<Vec<[f64; 2]>>,
 }
 
 /// A solver's result along a whole path.

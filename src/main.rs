@@ -192,7 +192,7 @@ fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::
     names
         .iter()
         .map(|name| {
-            registry::by_name(name).ok_or_else(|| {
+            case.solver(name).ok_or_else(|| {
                 InputError(format!(
                     "--solver: unknown solver `{name}` (see `spherecontact list`)"
                 ))

@@ -27,10 +27,10 @@ pub enum SolveError {
 /// A way of solving a scene.
 pub trait Solver: Send + Sync {
     /// The name used on the command line and in case files.
-    fn name(&self) -> &'static str;
+    fn name(&self) -> &str;
 
     /// One line: the model and the method.
-    fn description(&self) -> &'static str;
+    fn description(&self) -> &str;
 
     /// Solves the scene along its whole path. Implementations fill the per-step rows and the
     /// metadata's model, resolution and warnings; [`run`] adds name, version and wall time.
@@ -140,11 +140,11 @@ pub struct SurfaceVtu {
 }
 
 impl Solver for SurfaceVtu {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         self.inner.name()
     }
 
-    fn description(&self) -> &'static str {
+    fn description(&self) -> &str {
         self.inner.description()
     }
 

@@ -2,7 +2,6 @@
 
 use crate::case::Case;
 use crate::check::{Histories, Outcome, Verdict};
-use crate::registry;
 use crate::solver::{self, SolveError};
 
 /// A case after its solvers ran and its checks were judged.
@@ -42,7 +41,7 @@ pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, 
     let names = case.required_solvers();
     for (index, name) in names.iter().cloned().enumerate() {
         progress(&name, index, names.len());
-        let result = match registry::by_name(&name) {
+        let result = match case.solver(&name) {
             Some(s) => solver::run(s.as_ref(), &case.scene),
             None => Err(solver::SolveError::Unavailable(format!(
                 "no solver `{name}` in this build"

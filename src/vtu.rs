@@ -19,6 +19,9 @@ pub enum CellType {
     QuadraticTriangle,
     /// 8-node quadrilateral (VTK_QUADRATIC_QUAD = 23).
     QuadraticQuad,
+    /// 10-node tetrahedron (VTK_QUADRATIC_TETRA = 24): corners, then midsides 0–1, 1–2, 2–0,
+    /// 0–3, 1–3, 2–3.
+    QuadraticTetra,
 }
 
 impl CellType {
@@ -29,6 +32,7 @@ impl CellType {
             Self::Quad => 9,
             Self::QuadraticTriangle => 22,
             Self::QuadraticQuad => 23,
+            Self::QuadraticTetra => 24,
         }
     }
 
@@ -39,6 +43,7 @@ impl CellType {
             Self::Quad => 4,
             Self::QuadraticTriangle => 6,
             Self::QuadraticQuad => 8,
+            Self::QuadraticTetra => 10,
         }
     }
 }
@@ -269,6 +274,7 @@ mod tests {
             pressure: vec![1.0; 5],
             traction: None,
             stick: None,
+            slip: None,
         };
         assert!(Grid::of_surface_field(&profile).is_none());
         let points: Vec<[f64; 2]> = (0..12).map(|k| [(k % 4) as f64, (k / 4) as f64]).collect();
@@ -280,6 +286,7 @@ mod tests {
                 .collect(),
             traction: Some(points.iter().map(|p| [p[1], 0.0]).collect()),
             stick: Some(points.iter().map(|p| p[1] > 0.0).collect()),
+            slip: None,
             points,
         };
         let grid = Grid::of_surface_field(&field).unwrap();

@@ -111,3 +111,84 @@ fn direct_and_iterative_agree_on_a_dense_cattaneo_problem() {
         "{direct} vs {iterative}"
     );
 }
+
+#[test]
+fn the_fft_operator_and_the_dense_matrix_give_the_same_contact() {
+    use spherecontact::bem::operator::FftCompliance;
+    use spherecontact::contact::Compliance;
+    // The paper's spheres (ν = 0.3: the Cerruti cross term is in) on 16² panels.
+    let mut pair = pair();
+    pair.body1.material.poisson = 0.3;
+    pair.body2.material.poisson = 0.3;
+    let hertz = Hertz::of(&pair);
+    let c = hertz.contact_radius(17e-6);
+    let grid = Grid::covering(16, 1.1 * c);
+    let compliance = PairCompliance::of(&pair);
+    let (zz, t) = (
+        Kernels::normal(&grid, &compliance),
+        Kernels::tangential(&grid, &compliance),
+    );
+    let weights = vec![grid.panel_area(); grid.len()];
+    let dense_normal = DenseCompliance::try_new(dense(&grid, &[&zz], 1), weights.clone(), 1).unwrap();
+    let dense_tangential =
+        DenseCompliance::try_new(dense(&grid, &[&t.xx, &t.xy, &t.xy, &t.yy], 2), weights, 2).unwrap();
+    // The products agree, and so do the columns added to a product.
+    let mut fft = FftCompliance::tangential(&grid, &compliance);
+    let mut matrix = dense_tangential.clone();
+    let load: Vec<f64> = (0..2 * grid.len()).map(|k| ((k * 7) % 13) as f64 - 6.0).collect();
+    let (mut a, mut b) = (vec![0.0; load.len()], vec![0.0; load.len()]);
+    fft.apply(&load, &mut a);
+    matrix.apply(&load, &mut b);
+    let scale = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12 * scale));
+    fft.add_columns(&[(3, 2.0), (grid.len() + 40, -1.0)], &mut a);
+    matrix.add_columns(&[(3, 2.0), (grid.len() + 40, -1.0)], &mut b);
+    assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12 * scale));
+    // The same contact along a short path: loading, partial slip, reversal.
+    let r_star = pair.effective_radius();
+    let separation: Vec<f64> = grid
+        .centres()
+        .iter()
+        .map(|[x, y]| (x * x + y * y) / (2.0 * r_star))
+        .collect();
+    let settings = Settings {
+        normal_tolerance: 1e-12,
+        tangential_tolerance: 1e-11,
+        seed_stiffness: Some(pair.effective_modulus() / c),
+        ..Settings::default()
+    };
+    let mut with_fft = Contact::new(
+        FftCompliance::normal(&grid, &compliance),
+        separation.clone(),
+        settings,
+    )
+    .unwrap()
+    .with_friction(
+        FftCompliance::tangential(&grid, &compliance),
+        FrictionSet::Disc,
+        0.2,
+    )
+    .unwrap();
+    let mut with_matrix = Contact::new(
+        dense_normal,
+        separation,
+        Settings {
+            method: Method::Direct,
+            ..settings
+        },
+    )
+    .unwrap()
+    .with_friction(dense_tangential, FrictionSet::Disc, 0.2)
+    .unwrap();
+    let mu_p = 0.2 * hertz.force(17e-6);
+    for (delta, shift) in [(17e-6, 0.0), (17e-6, 1e-6), (17e-6, 1e-6), (16e-6, -1.5e-6)] {
+        with_fft.advance(delta, &[shift, 0.0]).unwrap();
+        with_matrix.advance(delta, &[shift, 0.0]).unwrap();
+        let (p, q) = (with_fft.normal_force(), with_fft.tangential_force(0));
+        let (p_ref, q_ref) = (with_matrix.normal_force(), with_matrix.tangential_force(0));
+        // Tolerance: both solves converge to 1e-11–1e-12 of their scales.
+        assert!((p - p_ref).abs() < 1e-9 * p_ref, "P {p} vs {p_ref}");
+        assert!((q - q_ref).abs() < 1e-8 * mu_p, "Q {q} vs {q_ref}");
+        assert_eq!(with_fft.stick(), with_matrix.stick());
+    }
+}

@@ -21,16 +21,9 @@ fn folder() -> PathBuf {
     common::root().join("tests/hostile/extreme")
 }
 
-/// Every solver of this build that runs in-crate (not an external program).
-fn in_crate_solvers() -> Vec<&'static str> {
-    let external: Vec<_> = spherecontact::external::solvers()
-        .iter()
-        .map(|s| s.name())
-        .collect();
-    registry::names()
-        .into_iter()
-        .filter(|n| !external.contains(n))
-        .collect()
+/// Every solver of this build that runs in-crate (not an external program: a deck or a DEM code).
+fn in_crate_solvers() -> Vec<String> {
+    registry::in_crate().iter().map(|s| s.name().to_owned()).collect()
 }
 
 /// The failures a case file's header expects: (solver, message fragment).
@@ -126,7 +119,7 @@ fn run_extreme(name: &str) {
     let case = Case::load(&file).unwrap_or_else(|e| panic!("{e}"));
     let expected = expected_diagnostics(&text);
     let mut problems = Vec::new();
-    for solver_name in in_crate_solvers() {
+    for solver_name in &in_crate_solvers() {
         let s = registry::by_name(solver_name).unwrap();
         let expectation = expected.iter().find(|(s, _)| s == solver_name);
         let result = solver::run(s.as_ref(), &case.scene);

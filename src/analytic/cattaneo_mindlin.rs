@@ -220,6 +220,7 @@ fn surface_field(
         pressure: radii.iter().map(|&r| hertz.pressure(delta_n, r)).collect(),
         traction: Some(radii.iter().map(|&r| [traction(r), 0.0]).collect()),
         stick: Some(radii.iter().map(|&r| r < stick_radius.unwrap_or(c)).collect()),
+        slip: None,
     }
 }
 

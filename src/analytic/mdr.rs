@@ -260,6 +260,7 @@ impl SpringBed {
             pressure,
             traction: Some(traction.into_iter().map(|q| [q, 0.0]).collect()),
             stick: Some(radii.iter().map(|&r| r < stick_radius).collect()),
+            slip: None,
         }
     }
 }

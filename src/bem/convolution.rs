@@ -66,20 +66,33 @@ impl Convolver {
 
     /// The spectrum of a 2n × 2n kernel in the circulant layout of [`super::influence::Kernels`].
     pub fn kernel_spectrum(&mut self, kernel: &[f64]) -> Spectrum {
-        self.forward(kernel, 2 * self.n)
+        let mut spectrum = self.spectrum();
+        self.forward(kernel, 2 * self.n, &mut spectrum);
+        spectrum
     }
 
-    /// The spectrum of an n × n field, zero-padded.
-    pub fn field_spectrum(&mut self, field: &[f64]) -> Spectrum {
-        self.forward(field, self.n)
+    /// A zero spectrum of this grid: the work space of [`Convolver::field_spectrum_into`].
+    pub fn spectrum(&self) -> Spectrum {
+        Spectrum(vec![Complex::default(); (self.n + 1) * 2 * self.n])
+    }
+
+    /// The spectrum of an n × n field, zero-padded, into `out` (no allocation).
+    pub fn field_spectrum_into(&mut self, field: &[f64], out: &mut Spectrum) {
+        self.forward(field, self.n, out);
     }
 
     /// Forward transform of the rows of `data` (each `width` long, n or 2n), zero-padded to 2n
     /// columns and (for n rows) 2n rows.
-    fn forward(&mut self, data: &[f64], width: usize) -> Spectrum {
+    fn forward(&mut self, data: &[f64], width: usize, out: &mut Spectrum) {
         let (n, m) = (self.n, 2 * self.n);
         let half = n + 1;
-        let mut spectrum = vec![Complex::default(); half * m];
+        let spectrum = &mut out.0;
+        if width < m {
+            // The padding rows: zero in every column.
+            for kx in 0..half {
+                spectrum[kx * m + n..(kx + 1) * m].fill(Complex::default());
+            }
+        }
         // Rows are transformed in blocks and written out column by column, `ROW_BLOCK` values at a
         // time: the transposition then touches each memory page once per block, not once per row.
         for (block, rows) in data.chunks(ROW_BLOCK * width).enumerate() {
@@ -104,19 +117,18 @@ impl Convolver {
             }
         }
         self.columns_forward
-            .process_with_scratch(&mut spectrum, &mut self.scratch);
-        Spectrum(spectrum)
+            .process_with_scratch(spectrum, &mut self.scratch);
     }
 
-    /// The n × n window of the inverse transform of `spectrum` (consumed as work space).
-    pub fn field(&mut self, mut spectrum: Spectrum) -> Vec<f64> {
+    /// The n × n window of the inverse transform of `spectrum` (consumed as work space), into
+    /// `out` (no allocation).
+    pub fn field_into(&mut self, spectrum: &mut Spectrum, out: &mut [f64]) {
         let (n, m) = (self.n, 2 * self.n);
         let half = n + 1;
         self.columns_inverse
             .process_with_scratch(&mut spectrum.0, &mut self.scratch);
         let scale = 1.0 / (m * m) as f64;
-        let mut field = vec![0.0; n * n];
-        for (block, out) in field.chunks_mut(ROW_BLOCK * n).enumerate() {
+        for (block, out) in out.chunks_mut(ROW_BLOCK * n).enumerate() {
             let (first, count) = (block * ROW_BLOCK, out.len() / n);
             for kx in 0..half {
                 let column = &spectrum.0[kx * m + first..kx * m + first + count];
@@ -137,27 +149,23 @@ impl Convolver {
                 }
             }
         }
-        field
     }
 }
 
 impl Spectrum {
-    /// Σ_k kernel_k ∘ field_k: the spectrum of the summed convolutions.
-    pub fn combination(terms: &[(&Spectrum, &Spectrum)]) -> Spectrum {
-        let len = terms.first().map_or(0, |(k, _)| k.0.len());
-        let mut out = vec![Complex::default(); len];
+    /// `self = Σ_k kernel_k ∘ field_k`: the spectrum of the summed convolutions, in place.
+    pub fn set_combination(&mut self, terms: &[(&Spectrum, &Spectrum)]) {
+        self.0.fill(Complex::default());
         for (kernel, field) in terms {
-            for ((o, k), f) in out.iter_mut().zip(&kernel.0).zip(&field.0) {
+            for ((o, k), f) in self.0.iter_mut().zip(&kernel.0).zip(&field.0) {
                 *o += k * f;
             }
         }
-        Spectrum(out)
     }
 
-    /// This spectrum multiplied by `kernel`, in place: one convolution without a new buffer.
-    pub fn times(mut self, kernel: &Spectrum) -> Spectrum {
+    /// Multiplies this spectrum by `kernel`, in place: one convolution without a new buffer.
+    pub fn times(&mut self, kernel: &Spectrum) {
         self.0.iter_mut().zip(&kernel.0).for_each(|(f, k)| *f *= k);
-        self
     }
 
     /// The values, in the half-spectrum layout.
@@ -194,8 +202,11 @@ mod tests {
         let field: Vec<f64> = (0..n * n).map(|k| ((k * 7) % 11) as f64 - 5.0).collect();
         let mut conv = Convolver::new(n);
         let ks = conv.kernel_spectrum(&kernel);
-        let fs = conv.field_spectrum(&field);
-        let u = conv.field(Spectrum::combination(&[(&ks, &fs)]));
+        let mut fs = conv.spectrum();
+        conv.field_spectrum_into(&field, &mut fs);
+        fs.times(&ks);
+        let mut u = vec![0.0; n * n];
+        conv.field_into(&mut fs, &mut u);
         for (i, &ui) in u.iter().enumerate() {
             let (ix, iy) = ((i % n) as isize, (i / n) as isize);
             let direct: f64 = (0..n * n)

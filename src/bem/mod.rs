@@ -5,10 +5,10 @@
 //! half-spaces loaded over the contact. The contact plane is cut into a square [`grid`] of
 //! constant-traction panels over a window sized from the path's largest Hertz contact radius;
 //! [`influence`] gives the Boussinesq and Cerruti coefficients of a panel in closed form;
-//! [`convolution`] applies them by zero-padded FFT; [`normal`] solves the frictionless normal
-//! problem (Polonsky–Keer constrained conjugate gradients, exact non-penetration);
-//! [`tangential`] solves Kalker's incremental Coulomb problem; [`state`] carries the fields from
-//! one increment to the next and [`solver`] runs the path.
+//! [`convolution`] applies them by zero-padded FFT, and [`operator`] makes them the compliances of
+//! the shared contact engine ([`crate::contact`]: the normal problem with exact non-penetration,
+//! Kalker's incremental Coulomb problem with memory); [`state`] carries the fields from one
+//! increment to the next and [`solver`] runs the path.
 //!
 //! Outputs: per step the History quantities (P, Q, contact radius from the pressure edge, peak
 //! pressure, stick radius as the area-equivalent disc of the stick panels); at every path
@@ -22,10 +22,9 @@
 pub mod convolution;
 pub mod grid;
 pub mod influence;
-pub mod normal;
+pub mod operator;
 pub mod solver;
 pub mod state;
-pub mod tangential;
 
 pub use solver::Bem;
 

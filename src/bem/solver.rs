@@ -196,6 +196,7 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
                 .collect(),
         ),
         stick: Some(s.stick.clone()),
+        slip: None,
     }
 }
 
@@ -206,14 +207,7 @@ fn increment_failure(error: IncrementError, step: usize) -> SolveError {
             "at step {step} the contact (radius {radius:.3e} m) reached the edge of the window \
              (half-width {half_width:.3e} m): enlarge `window`"
         ),
-        IncrementError::NotConverged {
-            problem,
-            iterations,
-            residual,
-        } => format!(
-            "at step {step} the {problem} problem did not converge in {iterations} iterations \
-             (residual {residual:.2e})"
-        ),
+        IncrementError::Engine(error) => format!("at step {step}: {error}"),
     })
 }
 
@@ -223,7 +217,7 @@ impl Solver for Bem {
     }
 
     fn description(&self) -> &'static str {
-        "half-space boundary elements: Boussinesq–Cerruti panels, FFT, Polonsky–Keer CG, incremental Coulomb"
+        "half-space boundary elements: Boussinesq–Cerruti panels, FFT, the shared contact engine (Polonsky–Keer CG, incremental Coulomb by accelerated projected gradients)"
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {

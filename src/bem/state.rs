@@ -1,28 +1,60 @@
-//! The state of the boundary-element contact along a path: the fields carried from one increment
-//! to the next (pressure, traction, accumulated slip) and the step that advances them.
+//! The state of the boundary-element contact along a path: the shared contact engine
+//! ([`crate::contact`]) on the grid's FFT compliances, and the fields it carries from one
+//! increment to the next (pressure, traction, accumulated slip) as a [`Snapshot`].
 
+use crate::contact::{Contact, ContactError, FrictionSet, Method, Settings};
 use crate::scene::Scene;
 
-use super::convolution::Convolver;
 use super::grid::Grid;
-use super::influence::{Kernels, PairCompliance};
-use super::normal::{NormalOperator, NormalProblem};
-use super::tangential::{TangentialOperator, TangentialProblem, Vector2Field};
+use super::influence::PairCompliance;
+use super::operator::FftCompliance;
+
+/// A tangential traction or displacement field: x and y components per panel.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Vector2Field {
+    /// x components.
+    pub x: Vec<f64>,
+    /// y components.
+    pub y: Vec<f64>,
+}
+
+impl Vector2Field {
+    /// A zero field of `len` panels.
+    pub fn zeros(len: usize) -> Self {
+        Self {
+            x: vec![0.0; len],
+            y: vec![0.0; len],
+        }
+    }
+
+    /// The field of a component-major engine vector (x of every panel, then y); zeros when empty.
+    fn of(values: &[f64], len: usize) -> Self {
+        if values.is_empty() {
+            return Self::zeros(len);
+        }
+        Self {
+            x: values[..len].to_vec(),
+            y: values[len..].to_vec(),
+        }
+    }
+
+    /// |v_i|.
+    pub fn magnitude(&self, i: usize) -> f64 {
+        (self.x[i] * self.x[i] + self.y[i] * self.y[i]).sqrt()
+    }
+}
 
 /// Solver settings that an increment needs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerances {
     /// Normal problem: rms gap on the contact over δ.
     pub normal: f64,
-    /// Tangential problem: projected-gradient step over μ p_max.
+    /// Tangential problem: the engine's stick and slip conditions over λ_max μ p_max (see
+    /// [`crate::contact::coulomb`]).
     pub tangential: f64,
     /// Iteration cap of either problem.
     pub max_iterations: usize,
 }
-
-/// A panel sticks when its traction is below the Coulomb bound by more than this fraction: the
-/// projection puts slipping panels exactly on the bound, so this only absorbs rounding.
-const STICK_MARGIN: f64 = 1e-6;
 
 /// The fields on the grid after an increment.
 #[derive(Clone, Debug, PartialEq)]
@@ -128,7 +160,7 @@ impl Snapshot {
 pub struct IncrementCost {
     /// Conjugate-gradient iterations of the normal problem.
     pub normal_iterations: usize,
-    /// Projected-gradient iterations of the tangential problem.
+    /// Accelerated projected-gradient iterations of the tangential problem.
     pub tangential_iterations: usize,
 }
 
@@ -142,37 +174,20 @@ pub enum IncrementError {
         /// Window half-width [m].
         half_width: f64,
     },
-    /// A problem did not converge.
-    NotConverged {
-        /// "normal" or "tangential".
-        problem: &'static str,
-        /// Iterations spent.
-        iterations: usize,
-        /// Last residual.
-        residual: f64,
-    },
+    /// The contact engine failed (a problem did not converge).
+    Engine(ContactError),
 }
 
 /// The contact's state on one grid.
 pub struct ContactState {
     grid: Grid,
-    normal: NormalOperator,
-    /// The pair's compliances, for the tangential operator built when friction is first needed.
-    compliance: PairCompliance,
-    tangential: Option<TangentialOperator>,
-    /// Initial separation r²/2R* of each panel [m].
-    separation: Vec<f64>,
-    /// Pressure per unit overlap of Hertz's order, E*/c_max, to seed the normal solver [Pa/m].
-    stiffness: f64,
-    tolerances: Tolerances,
+    contact: Contact<FftCompliance, FftCompliance>,
     snapshot: Snapshot,
-    /// The last increment's traction change and shift, to extrapolate the next starting guess.
-    last_change: Vector2Field,
-    last_shift: f64,
 }
 
 impl ContactState {
-    /// The unloaded contact of `scene` on `grid`.
+    /// The unloaded contact of `scene` on `grid`; the Cerruti compliance is built only when the
+    /// scene has friction and a tangential path.
     pub fn new(scene: &Scene, grid: Grid, tolerances: Tolerances) -> Self {
         let compliance = PairCompliance::of(&scene.pair);
         let r_star = scene.pair.effective_radius();
@@ -181,14 +196,30 @@ impl ContactState {
             .iter()
             .map(|[x, y]| (x * x + y * y) / (2.0 * r_star))
             .collect();
+        let settings = Settings {
+            normal_tolerance: tolerances.normal,
+            tangential_tolerance: tolerances.tangential,
+            max_iterations: tolerances.max_iterations,
+            method: Method::Iterative,
+            // Pressure per unit overlap of Hertz's order, E*/c_max, to seed the normal solver.
+            seed_stiffness: Some(scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h)),
+        };
+        let contact = Contact::new(FftCompliance::normal(&grid, &compliance), separation, settings)
+            .expect("one separation a panel");
+        let contact = if scene.friction > 0.0 && !scene.path.is_normal_only() {
+            contact
+                .with_friction(
+                    FftCompliance::tangential(&grid, &compliance),
+                    FrictionSet::Disc,
+                    scene.friction,
+                )
+                .expect("the grid's two compliances fit")
+        } else {
+            contact
+        };
         let len = grid.len();
         Self {
-            normal: NormalOperator::new(Convolver::new(grid.n), &Kernels::normal(&grid, &compliance)),
-            compliance,
-            tangential: None,
-            separation,
-            stiffness: scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h),
-            tolerances,
+            contact,
             snapshot: Snapshot {
                 grid,
                 pressure: vec![0.0; len],
@@ -197,8 +228,6 @@ impl ContactState {
                 slip: Vector2Field::zeros(len),
                 friction: scene.friction,
             },
-            last_change: Vector2Field::zeros(len),
-            last_shift: 0.0,
             grid,
         }
     }
@@ -210,38 +239,27 @@ impl ContactState {
 
     /// Moves to approach `delta_n` with a tangential shift increment `shift` along x.
     pub fn advance(&mut self, delta_n: f64, shift: f64) -> Result<IncrementCost, IncrementError> {
-        let normal_iterations = self.solve_normal(delta_n)?;
-        self.check_window()?;
-        let tangential_iterations = self.solve_tangential(shift)?;
-        Ok(IncrementCost {
-            normal_iterations,
-            tangential_iterations,
-        })
-    }
-
-    fn solve_normal(&mut self, delta_n: f64) -> Result<usize, IncrementError> {
-        let pressure = &mut self.snapshot.pressure;
-        if delta_n <= 0.0 {
-            pressure.fill(0.0);
-            return Ok(0);
-        }
-        let problem = NormalProblem {
-            separation: &self.separation,
-            approach: delta_n,
-            tolerance: self.tolerances.normal,
-            max_iterations: self.tolerances.max_iterations,
-            stiffness: self.stiffness,
+        let cost = self
+            .contact
+            .advance(delta_n, &[shift, 0.0])
+            .map_err(IncrementError::Engine)?;
+        let len = self.grid.len();
+        let s = &mut self.snapshot;
+        s.pressure.copy_from_slice(self.contact.pressure());
+        s.traction = Vector2Field::of(self.contact.traction(), len);
+        s.slip = Vector2Field::of(self.contact.slip(), len);
+        s.stick = if s.friction > 0.0 && self.contact.traction().is_empty() {
+            // Friction without a tangential path (no Cerruti operator built): nothing loads the
+            // traction, so every panel in contact sticks.
+            s.pressure.iter().map(|&p| p > 0.0).collect()
+        } else {
+            self.contact.stick()
         };
-        if pressure.iter().all(|&p| p == 0.0) {
-            *pressure = problem.starting_pressure();
-        }
-        problem
-            .solve(&mut self.normal, pressure)
-            .map_err(|e| IncrementError::NotConverged {
-                problem: "normal",
-                iterations: e.iterations,
-                residual: e.residual,
-            })
+        self.check_window()?;
+        Ok(IncrementCost {
+            normal_iterations: cost.normal_iterations,
+            tangential_iterations: cost.tangential.iterations,
+        })
     }
 
     fn check_window(&self) -> Result<(), IncrementError> {
@@ -254,86 +272,5 @@ impl ContactState {
             });
         }
         Ok(())
-    }
-
-    fn solve_tangential(&mut self, shift: f64) -> Result<usize, IncrementError> {
-        let snapshot = &mut self.snapshot;
-        let bound: Vec<f64> = snapshot.pressure.iter().map(|p| snapshot.friction * p).collect();
-        if shift == 0.0
-            && snapshot
-                .traction
-                .x
-                .iter()
-                .chain(&snapshot.traction.y)
-                .all(|&q| q == 0.0)
-        {
-            // No shift and no traction: q = 0 solves the increment exactly (zero gradient), and
-            // every panel in contact sticks where friction can hold it.
-            for (k, &g) in bound.iter().enumerate() {
-                snapshot.stick[k] = g > 0.0;
-                if snapshot.pressure[k] <= 0.0 {
-                    snapshot.slip.x[k] = 0.0;
-                    snapshot.slip.y[k] = 0.0;
-                }
-            }
-            return Ok(0);
-        }
-        let (grid, compliance) = (&self.grid, &self.compliance);
-        let operator = self.tangential.get_or_insert_with(|| {
-            let kernels = Kernels::tangential(grid, compliance);
-            TangentialOperator::new(Convolver::new(grid.n), &kernels.xx, &kernels.xy, &kernels.yy)
-        });
-        let ratio = if self.last_shift != 0.0 {
-            shift / self.last_shift
-        } else {
-            0.0
-        };
-        let extrapolate =
-            |q: &[f64], dq: &[f64]| -> Vec<f64> { q.iter().zip(dq).map(|(q, dq)| q + ratio * dq).collect() };
-        let problem = TangentialProblem {
-            bound: &bound,
-            previous: &snapshot.traction,
-            guess: Vector2Field {
-                x: extrapolate(&snapshot.traction.x, &self.last_change.x),
-                y: extrapolate(&snapshot.traction.y, &self.last_change.y),
-            },
-            shift,
-            tolerance: self.tolerances.tangential,
-            max_iterations: self.tolerances.max_iterations,
-        };
-        let solution = problem
-            .solve(operator)
-            .map_err(|e| IncrementError::NotConverged {
-                problem: "tangential",
-                iterations: e.iterations,
-                residual: e.residual,
-            })?;
-        for (k, &g) in bound.iter().enumerate() {
-            let in_contact = snapshot.pressure[k] > 0.0;
-            snapshot.stick[k] = in_contact && solution.traction.magnitude(k) < (1.0 - STICK_MARGIN) * g;
-            // Stick panels take the shift up elastically: their slip increment is zero up to the
-            // solver's residual, which is not accumulated.
-            let (sx, sy) = if in_contact && !snapshot.stick[k] {
-                (
-                    snapshot.slip.x[k] + solution.slip.x[k],
-                    snapshot.slip.y[k] + solution.slip.y[k],
-                )
-            } else if in_contact {
-                (snapshot.slip.x[k], snapshot.slip.y[k])
-            } else {
-                (0.0, 0.0)
-            };
-            snapshot.slip.x[k] = sx;
-            snapshot.slip.y[k] = sy;
-        }
-        let change =
-            |new: &[f64], old: &[f64]| -> Vec<f64> { new.iter().zip(old).map(|(a, b)| a - b).collect() };
-        self.last_change = Vector2Field {
-            x: change(&solution.traction.x, &snapshot.traction.x),
-            y: change(&solution.traction.y, &snapshot.traction.y),
-        };
-        self.last_shift = shift;
-        snapshot.traction = solution.traction;
-        Ok(solution.iterations)
     }
 }

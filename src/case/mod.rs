@@ -43,6 +43,9 @@
 //! reason = "why this tolerance"         # required unless informational = true
 //! ```
 //!
+//! A case may also define solvers of its own: a program run as a solver (`[[command_solvers]]`)
+//! and results computed elsewhere (`[[stored_results]]`); see [`case_solvers`].
+//!
 //! Every rule broken gives a [`CaseError`] naming the file, the field, its line and column where
 //! known, and the allowed range.
 //!
@@ -63,6 +66,7 @@
 //! | MDR bed | at most 1 000 000 springs |
 //! | mesh (`mesh --resolution`) | pole element ≥ c_max/320 (≥ R1/32 000 without contact): under a million triangles |
 
+pub mod case_solvers;
 mod check_rules;
 mod domain;
 mod error;
@@ -72,6 +76,7 @@ mod raw;
 pub mod reference;
 mod scene_rules;
 
+pub use case_solvers::CaseSolver;
 pub use error::CaseError;
 pub use limits::{MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 
@@ -85,6 +90,7 @@ use crate::number::Short;
 use crate::pair::ContactPair;
 use crate::registry;
 use crate::scene::Scene;
+use crate::solver::Solver;
 use raw::RawCase;
 
 /// A validated case.
@@ -102,6 +108,8 @@ pub struct Case {
     pub focus: usize,
     /// Its checks.
     pub checks: Vec<CheckSpec>,
+    /// The solvers the case defines itself (commands, stored results).
+    pub own_solvers: Vec<CaseSolver>,
 }
 
 impl Case {
@@ -125,12 +133,26 @@ impl Case {
                 message,
             )
         })?;
-        Validator { file, text }.case(raw)
+        Validator {
+            file,
+            text,
+            own: Vec::new(),
+        }
+        .case(raw)
     }
 
     /// The case's name (its scene's).
     pub fn name(&self) -> &str {
         &self.scene.name
+    }
+
+    /// The solver called `name`: one the case defines, else one of this build.
+    pub fn solver(&self, name: &str) -> Option<Box<dyn Solver>> {
+        self.own_solvers
+            .iter()
+            .find(|s| s.name() == name)
+            .map(CaseSolver::solver)
+            .or_else(|| registry::by_name(name))
     }
 
     /// Every solver the case needs: its own list, then those its checks refer to.
@@ -154,6 +176,8 @@ impl Case {
 struct Validator<'a> {
     file: &'a Path,
     text: &'a str,
+    /// The names of the solvers the case defines itself.
+    own: Vec<String>,
 }
 
 impl Validator<'_> {
@@ -186,7 +210,7 @@ impl Validator<'_> {
         }
     }
 
-    fn case(&self, raw: RawCase) -> Result<Case, CaseError> {
+    fn case(mut self, raw: RawCase) -> Result<Case, CaseError> {
         let name = self.name(raw.name.as_ref())?;
         let friction = self.number(
             &raw.friction,
@@ -197,6 +221,8 @@ impl Validator<'_> {
         let pair = self.pair(&raw)?;
         let path = self.path(&raw.path, &pair)?;
         self.derived(&raw, &pair, friction, &path)?;
+        let own_solvers = self.case_solvers(&raw.command_solvers, &raw.stored_results, &path)?;
+        self.own = own_solvers.iter().map(|s| s.name().to_owned()).collect();
         let solvers = self.solvers(&raw.solvers)?;
         let checks = raw
             .checks
@@ -224,6 +250,7 @@ impl Validator<'_> {
             scene,
             solvers,
             checks,
+            own_solvers,
         })
     }
 
@@ -263,10 +290,11 @@ impl Validator<'_> {
     }
 
     fn solver_name(&self, name: &Spanned<String>, field: &str) -> Result<String, CaseError> {
-        if registry::by_name(name.get_ref()).is_some() {
+        if self.own.contains(name.get_ref()) || registry::by_name(name.get_ref()).is_some() {
             return Ok(name.get_ref().clone());
         }
-        let known = registry::names();
+        let mut known = registry::names();
+        known.extend(self.own.iter().cloned());
         Err(self.error(
             name,
             field,

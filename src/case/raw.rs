@@ -23,6 +23,29 @@ pub struct RawCase {
     pub domain: Option<RawDomain>,
     #[serde(default)]
     pub checks: Vec<RawCheck>,
+    #[serde(default)]
+    pub command_solvers: Vec<RawCommandSolver>,
+    #[serde(default)]
+    pub stored_results: Vec<RawStoredResults>,
+}
+
+/// A program named as a solver, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCommandSolver {
+    pub name: Spanned<String>,
+    pub command: Spanned<Vec<String>>,
+    pub timeout: Option<Spanned<f64>>,
+    pub description: Option<String>,
+}
+
+/// Results computed elsewhere, named as a solver, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStoredResults {
+    pub name: Spanned<String>,
+    pub file: Spanned<String>,
+    pub description: Option<String>,
 }
 
 /// The `[domain]` table as written.

@@ -8,7 +8,7 @@
 //! | [`dense`] | [`DenseCompliance`]: C held as a faer `Mat` (a condensed FEM compliance) |
 //! | [`set`] | [`FrictionSet`]: an interval (1 tangential component) or a disc (2) |
 //! | [`normal`] | the normal problem: Polonsky–Keer CG (any operator), active set + dense Cholesky |
-//! | [`coulomb`] | one tangential increment: CG on the stick set (any operator), or dense Cholesky |
+//! | [`coulomb`] | one tangential increment: accelerated projected gradients (any operator), or active sets + dense Cholesky |
 //! | [`state`] | [`Contact`]: both problems advanced one increment at a time, with memory |
 //!
 //! # Using it
@@ -60,8 +60,9 @@
 //!   [`Contact::stick`] give the answer.
 //! - **Algorithms** ([`Method`]): an operator that holds its matrix ([`Compliance::matrix`]) of
 //!   at most [`state::DIRECT_LIMIT`] rows is solved by active sets with faer's dense Cholesky of
-//!   the active block (exact to round-off); any other by conjugate gradients merged with the set
-//!   changes (tolerances in [`Settings`]). A solver with a fast product (the BEM's FFT) implements
+//!   the active block (exact to round-off); any other iteratively: the normal problem by
+//!   Polonsky–Keer's constrained conjugate gradients, the tangential one by accelerated projected
+//!   gradients (tolerances in [`Settings`]). A solver with a fast product (the BEM's FFT) implements
 //!   [`Compliance`] itself; [`Compliance::add_columns`] lets it update a product after a few
 //!   points changed without a full product.
 //! - **Errors** are typed ([`ContactError`]): a problem that does not converge within the cap, a

@@ -1,41 +1,45 @@
-//! The axisymmetric normal-contact run shared by the external decks: check that the scene fits
-//! the model, mesh it, fill and run the deck once for all the path's approaches, read back, and
-//! give one `History` row per path step.
+//! The axisymmetric run shared by the external decks: check that the scene fits the model, mesh
+//! it, write the deck and its list of steps, run it once for the whole path, read back, and give
+//! one `History` row per path step ([`super::record`]).
 //!
-//! Model: two identical spheres are symmetric about their contact plane, which stays flat and
-//! frictionless under a normal load; so one sphere pressed by d = δn/2 against a rigid
-//! frictionless plane is exact (Johnson 1985, §4.2). Different spheres, or a sphere on a flat,
-//! are not modelled yet (`NotApplicable`). Linear elastic frictionless normal contact is path
-//! independent, so the deck solves only the distinct positive δn of the path positions, in one
-//! process; rows between positions are left empty (never interpolated), and an open contact
-//! (δn ≤ 0) gives P = c = p0 = 0 exactly without a solve.
+//! Model (docs/external-decks.md): two identical spheres (Dundurs β = 0) are symmetric about their
+//! contact plane; the pressure is even and the tangential displacement odd across it, so one
+//! sphere against the plane is exact, and the problem splits into the axisymmetric Fourier mode
+//! n = 0 (normal: approach δn/2, frictionless) and the mode n = 1 (tangential: far face shifted by
+//! δt/2, Coulomb with history on the contact line under the n = 0 pressure). The deck walks every
+//! step of the path with history. Different spheres, or a sphere on a flat, are not modelled
+//! (`NotApplicable`).
 
 use std::time::{Duration, Instant};
 
-use serde_json::json;
-
-use super::deck::{self, Deck, DeckInput, RunDir};
+use super::deck::{self, ComputedStep, Deck, DeckInput, Grip, RunDir, PATH_FILE};
 use super::geo::{self, MeshFiles};
-use super::readback::{self, DeckRow, Profile};
+use super::readback::{self, DeckRow};
+use super::record::{self, Run};
+use super::surface::{self, Surface};
 use super::toolchain::{Tool, Toolchain};
-use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::history::History;
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
-/// Penalty factor: k = KFAC · E / h. Reason (docs/toolchain.md): at 1e3 the penetration at the pole
-/// is below 1e-3 h and P moves by less than 0.01 % when kfac doubles.
+/// Penalty factor: k = KFAC · E / h, normal and tangential. Reason: at 1e3 the penetration at the
+/// pole is below 1e-3 h and P moves by less than 0.01 % when kfac doubles (docs/toolchain.md);
+/// a sticking node's displacement error q/k is below 1e-5 of the shift.
 pub const KFAC: f64 = 1e3;
 
-/// Cap on contact iterations per approach (active set or Newton); a row that hits it fails.
+/// Cap on contact iterations per step and mode; a step that hits it is flagged.
 pub const MAX_ITERATIONS: u32 = 30;
 
-/// Time allowed per solved approach (≈ 2–3 s each at the default mesh) and for start-up
-/// (imports, dolfinx's form compilation on a first run).
-const TIME_PER_APPROACH: Duration = Duration::from_secs(60);
-const TIME_TO_START: Duration = Duration::from_secs(120);
+/// Candidate contact zone, in units of the path's largest Hertz contact radius (as fem-axisym):
+/// the finite body's contact is 0.15–0.2 % wider than Hertz's, far inside it.
+pub const CANDIDATE_ZONE: f64 = 1.25;
 
-/// Pressure profiles are kept out to this multiple of the largest contact radius.
-const PROFILE_WINDOW: f64 = 1.5;
+/// Time allowed for start-up (imports, dolfinx's form compilation on a first run), for the set-up
+/// (assembly, factorisation and one solve per candidate DOF: 10–40 s at c/40, minutes at c/80),
+/// and per computed step (milliseconds at c/40).
+const TIME_TO_START: Duration = Duration::from_secs(120);
+const TIME_FOR_SETUP: Duration = Duration::from_secs(600);
+const TIME_PER_STEP: Duration = Duration::from_millis(500);
 
 /// How a deck is run.
 #[derive(Clone, Debug, Default)]
@@ -44,10 +48,12 @@ pub struct Options {
     pub toolchain: Toolchain,
     /// Pole element size [m]; default [`geo::default_resolution`].
     pub resolution: Option<f64>,
-    /// Time limit for the deck; default 120 s + 60 s per solved approach.
+    /// Time limit for the deck; default 12 min + 0.5 s per step.
     pub timeout: Option<Duration>,
     /// A replacement deck text (already filled), for fault tests and experiments.
     pub deck_text: Option<String>,
+    /// Cap on contact iterations per step; default [`MAX_ITERATIONS`].
+    pub max_iterations: Option<u32>,
 }
 
 /// Wall time of the three parts of an external run [s].
@@ -57,7 +63,7 @@ pub struct Timing {
     pub meshing_s: f64,
     /// The deck.
     pub solving_s: f64,
-    /// steps.csv and the field files through meshio.
+    /// steps.csv, surface.csv and the field files through meshio.
     pub reading_s: f64,
 }
 
@@ -71,6 +77,46 @@ pub struct AxisymSolver<D: Deck> {
 
 /// Pole element sizes of the external ladder, as fractions of the path's largest contact radius.
 pub const LADDER: [f64; 4] = [1.0 / 10.0, 1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0];
+
+/// What a scene asks of a deck: its steps, modes, grip and candidate zone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// Every step of the path, as the deck computes it.
+    pub steps: Vec<ComputedStep>,
+    /// Whether the tangential mode is solved (the path moves tangentially).
+    pub tangential: bool,
+    /// How the far face is held.
+    pub grip: Grip,
+    /// Candidate contact zone [m].
+    pub candidate_radius: f64,
+}
+
+impl Plan {
+    /// The plan of `scene` at pole size `resolution`.
+    ///
+    /// Grip: rigid where the path moves tangentially (the shift must be imposed on the whole far
+    /// face); axial for a normal-only path, the loading of fem-axisym, so that one normal case
+    /// means one model in every axisymmetric solver.
+    pub fn of(scene: &Scene, resolution: f64) -> Self {
+        let tangential = !scene.path.is_normal_only();
+        let steps = scene
+            .steps()
+            .iter()
+            .map(|s| ComputedStep {
+                step: s.index,
+                d: s.delta_n / 2.0,
+                t: s.delta_t / 2.0,
+                position: s.position,
+            })
+            .collect();
+        Self {
+            steps,
+            tangential,
+            grip: if tangential { Grip::Rigid } else { Grip::Axial },
+            candidate_radius: (CANDIDATE_ZONE * scene.max_contact_radius()).max(3.0 * resolution),
+        }
+    }
+}
 
 impl<D: Deck + 'static> Solver for AxisymSolver<D> {
     fn name(&self) -> &'static str {
@@ -106,13 +152,11 @@ impl<D: Deck + 'static> Solver for AxisymSolver<D> {
             .options
             .resolution
             .unwrap_or_else(|| geo::default_resolution(scene));
-        let approaches = distinct_approaches(scene);
+        let plan = Plan::of(scene, resolution);
         let mut dir = RunDir::new(&format!("spherecontact-{}-", self.deck.name()))
             .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
-        match self.run_in(scene, resolution, &approaches, &dir) {
-            Ok((rows, profiles, mesh, timing)) => {
-                Ok(self.history(scene, &version, &approaches, &rows, &profiles, &mesh, timing))
-            }
+        match self.run_in(scene, resolution, &plan, &dir) {
+            Ok(run) => Ok(record::history(&self.deck, scene, &version, &plan, &run)),
             Err(SolveError::Failed(message)) => Err(SolveError::Failed(format!(
                 "{message} (deck, mesh, stdout and stderr kept in {})",
                 dir.keep().display()
@@ -121,8 +165,6 @@ impl<D: Deck + 'static> Solver for AxisymSolver<D> {
         }
     }
 }
-
-type RunOutput = (Vec<DeckRow>, Vec<Profile>, MeshFiles, Timing);
 
 impl<D: Deck> AxisymSolver<D> {
     /// A deck with default options.
@@ -134,34 +176,33 @@ impl<D: Deck> AxisymSolver<D> {
     }
 
     /// Meshes, runs the deck and reads back, in `dir`.
-    fn run_in(
-        &self,
-        scene: &Scene,
-        resolution: f64,
-        approaches: &[f64],
-        dir: &RunDir,
-    ) -> Result<RunOutput, SolveError> {
+    fn run_in(&self, scene: &Scene, resolution: f64, plan: &Plan, dir: &RunDir) -> Result<Run, SolveError> {
         let toolchain = &self.options.toolchain;
         let mesh = geo::mesh(scene, resolution, dir.path(), toolchain)?;
         let mut timing = Timing {
             meshing_s: mesh.wall_s,
             ..Timing::default()
         };
-        if approaches.is_empty() {
-            return Ok((Vec::new(), Vec::new(), mesh, timing));
-        }
-        let input = self.input(scene, resolution, approaches, &mesh);
+        let input = self.input(scene, resolution, plan, &mesh);
         let text = self
             .options
             .deck_text
             .clone()
             .unwrap_or_else(|| deck::fill(self.deck.template(), &input));
-        let deck_file = dir.path().join(self.deck.file_name());
-        std::fs::write(&deck_file, text).map_err(|e| SolveError::Failed(format!("writing the deck: {e}")))?;
-        let timeout = self.options.timeout.unwrap_or(
-            TIME_TO_START + TIME_PER_APPROACH * u32::try_from(approaches.len()).unwrap_or(u32::MAX),
-        );
-        let job = self.deck.job(toolchain, &deck_file, timeout);
+        let write = |name: &str, text: &str| {
+            std::fs::write(dir.path().join(name), text)
+                .map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
+        };
+        write(self.deck.file_name(), &text)?;
+        write(PATH_FILE, &deck::path_file(&plan.steps))?;
+        let steps = u32::try_from(plan.steps.len()).unwrap_or(u32::MAX);
+        let timeout = self
+            .options
+            .timeout
+            .unwrap_or(TIME_TO_START + TIME_FOR_SETUP + TIME_PER_STEP * steps);
+        let job = self
+            .deck
+            .job(toolchain, &dir.path().join(self.deck.file_name()), timeout);
         let run = super::process::run(&job, dir.path(), "deck")
             .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", self.deck.tool().name())))?;
         timing.solving_s = run.wall_s;
@@ -172,32 +213,23 @@ impl<D: Deck> AxisymSolver<D> {
             )));
         }
         let start = Instant::now();
-        let d: Vec<f64> = approaches.iter().map(|dn| dn / 2.0).collect();
-        let rows = readback::read_steps(dir.path(), &d).map_err(SolveError::Failed)?;
-        if let Some(row) = rows.iter().find(|r| !r.converged) {
-            return Err(SolveError::Failed(format!(
-                "contact iteration did not converge in {} iterations at δn = {:e} m",
-                row.iterations,
-                2.0 * row.d
-            )));
-        }
-        let files: Vec<String> = rows.iter().map(|r| r.field_file.clone()).collect();
-        let window_mm = PROFILE_WINDOW * scene.max_contact_radius() * 1e3;
-        let profiles = readback::read_profiles(
-            dir.path(),
-            &files,
-            input.radius_mm,
-            window_mm,
-            toolchain,
-            TIME_TO_START,
-        )
-        .map_err(SolveError::Failed)?;
+        let (rows, surfaces) =
+            read_back(dir, plan, input.radius_mm, toolchain).map_err(SolveError::Failed)?;
         timing.reading_s = start.elapsed().as_secs_f64();
-        Ok((rows, profiles, mesh, timing))
+        let deck_clock = readback::read_output(dir.path(), "timing.csv")
+            .map(|t| readback::parse_timing(&t))
+            .unwrap_or((None, None));
+        Ok(Run {
+            rows,
+            surfaces,
+            mesh,
+            timing,
+            deck_clock,
+        })
     }
 
     /// The template's numbers, converted to mm, N, MPa.
-    fn input(&self, scene: &Scene, resolution: f64, approaches: &[f64], mesh: &MeshFiles) -> DeckInput {
+    fn input(&self, scene: &Scene, resolution: f64, plan: &Plan, mesh: &MeshFiles) -> DeckInput {
         let body = scene.pair.body1;
         let mesh_file = self.deck.mesh_file(mesh);
         DeckInput {
@@ -210,112 +242,53 @@ impl<D: Deck> AxisymSolver<D> {
             poisson: body.material.poisson,
             h_mm: resolution * 1e3,
             kfac: KFAC,
-            d_mm: approaches.iter().map(|dn| dn / 2.0 * 1e3).collect(),
-            max_iterations: MAX_ITERATIONS,
+            friction: scene.friction,
+            grip: plan.grip,
+            candidate_radius_mm: plan.candidate_radius * 1e3,
+            tangential: plan.tangential,
+            max_iterations: self.options.max_iterations.unwrap_or(MAX_ITERATIONS),
         }
     }
+}
 
-    /// One row per path step: deck rows at positions, exact zeros where the contact is open,
-    /// `None` between positions.
-    #[allow(clippy::too_many_arguments)]
-    fn history(
-        &self,
-        scene: &Scene,
-        version: &str,
-        approaches: &[f64],
-        rows: &[DeckRow],
-        profiles: &[Profile],
-        mesh: &MeshFiles,
-        timing: Timing,
-    ) -> History {
-        let index_of = |dn: f64| approaches.iter().position(|&a| a == dn);
-        let mut steps = Vec::new();
-        let mut fields = Vec::new();
-        let mut reaction = Vec::new();
-        let mut iterations = Vec::new();
-        let mut crossing = Vec::new();
-        for step in scene.steps() {
-            let mut row = StepResult::at(&step);
-            if let Some(position) = step.position {
-                match index_of(step.delta_n) {
-                    Some(i) => {
-                        let deck_row = &rows[i];
-                        row.normal_force = Some(deck_row.force_contact);
-                        row.contact_radius =
-                            Some(readback::contact_radius(&profiles[i]).unwrap_or(deck_row.contact_radius));
-                        crossing.push(json!([position, deck_row.contact_radius]));
-                        row.peak_pressure = Some(deck_row.p0);
-                        reaction.push(json!([position, deck_row.force_reaction]));
-                        iterations.push(json!([position, deck_row.iterations]));
-                        if scene.records_fields_at(position) {
-                            fields.push(SurfaceField {
-                                position,
-                                points: profiles[i].iter().map(|s| [s.r, 0.0]).collect(),
-                                pressure: profiles[i].iter().map(|s| s.pressure).collect(),
-                                traction: None,
-                                stick: None,
-                            });
-                        }
-                    }
-                    None => {
-                        // δn ≤ 0: the spheres do not touch.
-                        row.normal_force = Some(0.0);
-                        row.contact_radius = Some(0.0);
-                        row.peak_pressure = Some(0.0);
-                    }
-                }
-            }
-            steps.push(row);
-        }
-        let triangles = mesh.triangles;
-        let mut metadata = Metadata {
-            version: format!("{} {version}", self.deck.tool().name()),
-            model: format!(
-                "axisymmetric, one sphere ({}) pressed by δn/2 against its rigid frictionless symmetry plane; \
-                 P from the contact traction",
-                scene.domain.describe()
-            ),
-            resolution: format!(
-                "pole element {:.3} µm (c_max/{:.0}), {triangles} triangles",
-                mesh.resolution * 1e6,
-                scene.max_contact_radius() / mesh.resolution
-            ),
-            warnings: vec![
-                "a finite body, not a half-space: its offset from Hertz is the domain's (reference: mdr-domain)".into(),
-                "rows between path positions are not computed (empty): the deck solves the distinct δn of the positions".into(),
-            ],
-            ..Metadata::default()
-        };
-        if !scene.path.is_normal_only() {
-            metadata
-                .warnings
-                .push("normal contact only: tangential force and stick radius are not computed".into());
-        }
-        let extra = &mut metadata.extra;
-        extra.insert("domain".into(), json!(scene.domain));
-        extra.insert("p0_method".into(), json!(self.deck.p0_method()));
-        extra.insert("normal_force_from_reaction_by_position".into(), json!(reaction));
-        extra.insert("iterations_by_position".into(), json!(iterations));
-        extra.insert(
-            "contact_radius_method".into(),
-            json!("edge fit of the gap g ~ (r - c)^(3/2) to the first two surface nodes outside the contact"),
-        );
-        extra.insert(
-            "contact_radius_deck_linear_crossing_by_position".into(),
-            json!(crossing),
-        );
-        extra.insert("solved_delta_n_m".into(), json!(approaches));
-        extra.insert("penalty_factor".into(), json!(KFAC));
-        extra.insert("meshing_s".into(), json!(timing.meshing_s));
-        extra.insert("solving_s".into(), json!(timing.solving_s));
-        extra.insert("reading_back_s".into(), json!(timing.reading_s));
-        extra.insert("outcome".into(), json!("exited with code 0, output read back"));
-        History {
-            metadata,
-            steps,
-            fields,
-        }
+/// Reads steps.csv and surface.csv, and checks the field files through meshio against the nodal
+/// pressures (the same numbers, written twice: a field file that disagrees is garbage).
+fn read_back(
+    dir: &RunDir,
+    plan: &Plan,
+    radius_mm: f64,
+    toolchain: &Toolchain,
+) -> Result<(Vec<DeckRow>, Vec<Surface>), String> {
+    let rows = readback::parse_steps(&readback::read_output(dir.path(), "steps.csv")?, &plan.steps)?;
+    let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
+    let surfaces = surface::parse_surface(&readback::read_output(dir.path(), "surface.csv")?, &indices)?;
+    if let Some(s) = surfaces.iter().find(|s| s.edge_loaded()) {
+        return Err(format!(
+            "step {}: the contact reached the outermost candidate node (r = {:e} m): the candidate \
+             zone, {CANDIDATE_ZONE} × the largest Hertz contact radius, is too small for this model",
+            s.step,
+            s.nodes.last().map_or(0.0, |n| n.r)
+        ));
     }
+    let at_positions: Vec<(&DeckRow, &Surface)> = rows
+        .iter()
+        .zip(&surfaces)
+        .filter(|(r, _)| r.field_file.is_some())
+        .collect();
+    let files: Vec<String> = at_positions
+        .iter()
+        .filter_map(|(r, _)| r.field_file.clone())
+        .collect();
+    if files.len() != plan.steps.iter().filter(|s| s.position.is_some()).count() {
+        return Err("steps.csv: a path position has no field file".into());
+    }
+    let window_mm = plan.candidate_radius * 1e3;
+    let profiles =
+        readback::read_profiles(dir.path(), &files, radius_mm, window_mm, toolchain, TIME_TO_START)?;
+    for ((file, profile), (_, surface)) in files.iter().zip(&profiles).zip(&at_positions) {
+        record::check_field_file(file, profile, surface)?;
+    }
+    Ok((rows, surfaces))
 }
 
 /// `NotApplicable` unless the scene is two identical finite spheres (the symmetric model).
@@ -335,31 +308,23 @@ fn applicable(scene: &Scene) -> Result<(), SolveError> {
     Ok(())
 }
 
-/// The distinct positive δn of the path positions, ascending [m].
-pub fn distinct_approaches(scene: &Scene) -> Vec<f64> {
-    let mut approaches: Vec<f64> = scene
-        .path
-        .positions()
-        .iter()
-        .map(|p| p.delta_n)
-        .filter(|&dn| dn > 0.0)
-        .collect();
-    approaches.sort_by(f64::total_cmp);
-    approaches.dedup();
-    approaches
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::external::freefem::FreeFem;
 
     #[test]
-    fn approaches_are_the_distinct_positive_positions() {
-        let scene = crate::external::test_scene(&[0.0, 10.0, 17.0, 17.0, 20.0, 15.0, 0.0]);
-        let a = distinct_approaches(&scene);
-        let um: Vec<f64> = a.iter().map(|x| (x * 1e6).round()).collect();
-        assert_eq!(um, vec![10.0, 15.0, 17.0, 20.0]);
+    fn the_plan_walks_every_step_with_half_displacements() {
+        let scene = crate::external::test_scene(&[0.0, 10.0, 17.0]);
+        let plan = Plan::of(&scene, 2e-5);
+        assert_eq!(plan.steps.len(), scene.steps().len());
+        let last = plan.steps.last().unwrap();
+        assert_eq!((last.step, last.position), (8, Some(2)));
+        assert!((last.d - 8.5e-6).abs() < 1e-18 && last.t == 0.0);
+        assert!(plan.steps[3].position.is_none());
+        assert!(!plan.tangential && plan.grip == Grip::Axial);
+        let c = scene.max_contact_radius();
+        assert!((plan.candidate_radius - 1.25 * c).abs() < 1e-15);
     }
 
     #[test]

@@ -5,10 +5,31 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use super::geo::MeshFiles;
-use super::process::{self, Ending, Job};
+use super::process::{Ending, Job};
 use super::toolchain::{Tool, Toolchain};
 
-/// The numbers a deck template is filled with: mm, N, MPa (the decks' units).
+/// How the modelled sphere's far face is held (the `[domain]` grip).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Grip {
+    /// Every displacement component of the far face follows the imposed approach and shift.
+    Rigid,
+    /// Only the axial displacement is imposed; the face slides freely in r (frictionless only).
+    Axial,
+}
+
+impl Grip {
+    /// The grip's name in metadata.
+    pub fn name(self) -> &'static str {
+        match self {
+            Grip::Rigid => "rigid",
+            Grip::Axial => "axial",
+        }
+    }
+}
+
+/// The numbers a deck template is filled with: mm, N, MPa (the decks' units). The computed
+/// steps go into a separate file ([`PATH_FILE`]): a path has more steps than FreeFEM accepts in
+/// an array literal (1024).
 #[derive(Clone, Debug, PartialEq)]
 pub struct DeckInput {
     /// The scene's name (a comment in the deck).
@@ -23,23 +44,55 @@ pub struct DeckInput {
     pub poisson: f64,
     /// Pole element size [mm].
     pub h_mm: f64,
-    /// Penalty factor: k = kfac E / h.
+    /// Penalty factor: k = kfac E / h, normal and tangential.
     pub kfac: f64,
-    /// Approaches of the modelled sphere d = δn/2 [mm], ascending.
-    pub d_mm: Vec<f64>,
-    /// Cap on contact iterations per approach.
+    /// Coulomb friction coefficient μ.
+    pub friction: f64,
+    /// How the far face is held.
+    pub grip: Grip,
+    /// Contact-line nodes with r below this are contact candidates [mm].
+    pub candidate_radius_mm: f64,
+    /// Whether the tangential (Fourier n = 1) mode is solved.
+    pub tangential: bool,
+    /// Cap on contact iterations per step and mode.
     pub max_iterations: u32,
+}
+
+/// The file that lists a deck's computed steps: a count, then one line per step with its path
+/// index, d = δn/2 [mm], t = δt/2 [mm], and the path position it reaches or −1.
+pub const PATH_FILE: &str = "path.txt";
+
+/// One step a deck computes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ComputedStep {
+    /// The path step index.
+    pub step: usize,
+    /// The modelled sphere's approach d = δn/2 [m].
+    pub d: f64,
+    /// The modelled sphere's far-face shift t = δt/2 [m].
+    pub t: f64,
+    /// The path position this step reaches, if any (the deck writes a field file there).
+    pub position: Option<usize>,
+}
+
+/// The text of [`PATH_FILE`] for `steps` (lengths in mm, full precision).
+pub fn path_file(steps: &[ComputedStep]) -> String {
+    let mut text = format!("{}\n", steps.len());
+    for s in steps {
+        let position = s.position.map_or(-1, |p| i64::try_from(p).unwrap_or(-1));
+        text.push_str(&format!(
+            "{} {:e} {:e} {position}\n",
+            s.step,
+            s.d * 1e3,
+            s.t * 1e3
+        ));
+    }
+    text
 }
 
 impl DeckInput {
     /// The `@KEY@` substitutions of the templates.
     fn substitutions(&self) -> Vec<(&'static str, String)> {
-        let list = self
-            .d_mm
-            .iter()
-            .map(|d| format!("{d:e}"))
-            .collect::<Vec<_>>()
-            .join(", ");
         vec![
             ("@SCENE@", self.scene.replace(['"', '\n'], " ")),
             ("@MESH@", self.mesh.clone()),
@@ -48,7 +101,11 @@ impl DeckInput {
             ("@NU@", format!("{:e}", self.poisson)),
             ("@H_MM@", format!("{:e}", self.h_mm)),
             ("@KFAC@", format!("{:e}", self.kfac)),
-            ("@D_LIST_MM@", list),
+            ("@MU@", format!("{:e}", self.friction)),
+            ("@GRIP_RADIAL@", u8::from(self.grip == Grip::Rigid).to_string()),
+            ("@CANDIDATE_RADIUS_MM@", format!("{:e}", self.candidate_radius_mm)),
+            ("@TANGENTIAL@", u8::from(self.tangential).to_string()),
+            ("@PATH_FILE@", PATH_FILE.to_owned()),
             ("@MAX_ITERATIONS@", self.max_iterations.to_string()),
         ]
     }
@@ -78,8 +135,6 @@ pub trait Deck: Send + Sync + Clone {
     fn file_name(&self) -> &'static str;
     /// The mesh file it reads.
     fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path;
-    /// How `p0` is obtained (for the metadata).
-    fn p0_method(&self) -> &'static str;
     /// The job that runs the deck file `deck` in the run directory.
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job;
     /// What an exit code of this program means.
@@ -88,24 +143,7 @@ pub trait Deck: Send + Sync + Clone {
 
 /// The reason a finished run failed, in words, or `None` if it succeeded.
 pub fn failure(deck: &impl Deck, ending: &Ending, timeout: Duration) -> Option<String> {
-    match ending {
-        Ending::Exited(0) => None,
-        Ending::Exited(code) => Some(format!(
-            "{} exited with code {code}: {}",
-            deck.tool().name(),
-            deck.exit_code_meaning(*code)
-        )),
-        Ending::Signalled(signal) => Some(format!(
-            "{} crashed with {}",
-            deck.tool().name(),
-            process::signal_name(*signal)
-        )),
-        Ending::TimedOut => Some(format!(
-            "{} did not finish within {} s: killed with its children",
-            deck.tool().name(),
-            timeout.as_secs()
-        )),
-    }
+    ending.failure(deck.tool().name(), timeout, |code| deck.exit_code_meaning(code))
 }
 
 /// A run directory whose files are removed on success and kept on failure.
@@ -146,13 +184,49 @@ mod tests {
             poisson: 0.3,
             h_mm: 0.02,
             kfac: 1e3,
-            d_mm: vec![0.0085, 0.0125],
+            friction: 0.2,
+            grip: Grip::Rigid,
+            candidate_radius_mm: 1.25,
+            tangential: true,
             max_iterations: 30,
         };
         for template in [super::super::freefem::TEMPLATE, super::super::fenicsx::TEMPLATE] {
             let deck = fill(template, &input);
-            assert!(!deck.contains('@'), "unfilled key in {deck}");
-            assert!(deck.contains("8.5e-3, 1.25e-2"));
+            // A key is @ + capitals and underscores + @ (Python's matrix product `a @ b` is not).
+            let unfilled = deck.match_indices('@').any(|(i, _)| {
+                let key: String = deck[i + 1..]
+                    .chars()
+                    .take_while(|c| c.is_ascii_uppercase() || *c == '_')
+                    .collect();
+                !key.is_empty() && deck[i + 1 + key.len()..].starts_with('@')
+            });
+            assert!(!unfilled, "unfilled key in {deck}");
+            assert!(deck.contains("1.25e0") && deck.contains(PATH_FILE));
         }
+    }
+
+    #[test]
+    fn the_path_file_lists_steps_in_mm_with_positions() {
+        let steps = [
+            ComputedStep {
+                step: 0,
+                d: 0.0,
+                t: 0.0,
+                position: Some(0),
+            },
+            ComputedStep {
+                step: 1,
+                d: 8.5e-6,
+                t: -5e-7,
+                position: None,
+            },
+        ];
+        let text = path_file(&steps);
+        let lines: Vec<Vec<&str>> = text.lines().map(|l| l.split(' ').collect()).collect();
+        assert_eq!(lines[0], ["2"]);
+        assert_eq!(lines[1], ["0", "0e0", "0e0", "0"]);
+        assert_eq!((lines[2][0], lines[2][3]), ("1", "-1"));
+        let mm = |s: &str| s.parse::<f64>().unwrap();
+        assert!((mm(lines[2][1]) - 8.5e-3).abs() < 1e-18 && (mm(lines[2][2]) + 5e-4).abs() < 1e-18);
     }
 }

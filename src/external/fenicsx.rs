@@ -1,6 +1,7 @@
-//! The FEniCSx deck `fenicsx-axisym`: axisymmetric normal contact with dolfinx 0.5.2 (Debian),
-//! P2 on the quadratic mesh, penalty solved by semi-smooth Newton (template
-//! `templates/fenicsx_axisym.py`).
+//! The FEniCSx deck `fenicsx-axisym`: the axisymmetric Fourier modes n = 0 (normal) and n = 1
+//! (tangential, Coulomb with history) with dolfinx 0.5.2 (Debian), P2 on the quadratic mesh
+//! (MUMPS), penalty contact with Gauss–Lobatto nodal quadrature condensed onto the contact line
+//! (template `templates/fenicsx_axisym.py`; the model: [`super::axisym`]).
 
 use std::path::Path;
 use std::time::Duration;
@@ -23,7 +24,7 @@ impl Deck for Fenicsx {
     }
 
     fn description(&self) -> &'static str {
-        "FEniCSx (dolfinx) axisymmetric FEM, one sphere on its symmetry plane, P2, penalty + Newton (normal only)"
+        "FEniCSx (dolfinx) axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history"
     }
 
     fn tool(&self) -> Tool {
@@ -40,10 +41,6 @@ impl Deck for Fenicsx {
 
     fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
         &mesh.msh41
-    }
-
-    fn p0_method(&self) -> &'static str {
-        "penalty-nodal-pole: penalty pressure at the pole node"
     }
 
     /// Serial, no `mpirun` (faster than 2 ranks on 2 cores; mpirun as root needs extra flags).

@@ -1,5 +1,7 @@
-//! The FreeFEM deck `freefem-axisym`: axisymmetric normal contact, P2 displacements on the P1
-//! mesh, penalty with an active-set iteration (template `templates/freefem_axisym.edp`).
+//! The FreeFEM deck `freefem-axisym`: the axisymmetric Fourier modes n = 0 (normal) and n = 1
+//! (tangential, Coulomb with history), P2 displacements on the P1 mesh (MUMPS_seq), penalty contact
+//! with Simpson nodal quadrature condensed onto the contact line (template
+//! `templates/freefem_axisym.edp`; the model: [`super::axisym`]).
 
 use std::path::Path;
 use std::time::Duration;
@@ -22,7 +24,7 @@ impl Deck for FreeFem {
     }
 
     fn description(&self) -> &'static str {
-        "FreeFEM axisymmetric FEM, one sphere on its symmetry plane, P2, penalty + active set (normal only)"
+        "FreeFEM axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history"
     }
 
     fn tool(&self) -> Tool {
@@ -39,10 +41,6 @@ impl Deck for FreeFem {
 
     fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
         &mesh.msh22_mm
-    }
-
-    fn p0_method(&self) -> &'static str {
-        "minus-szz-pole: −σzz at the pole (the nodal penalty pressure there is 2–4 % high)"
     }
 
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
@@ -67,7 +65,7 @@ impl Deck for FreeFem {
         match code {
             1 => "compile error in the deck, or an input file (mesh) that cannot be opened",
             2 => {
-                "a plugin (gmsh, iovtk) failed to load: install libfreefem++, FF_LOADPATH=/usr/lib/freefem++"
+                "a plugin (gmsh, iovtk, lapack, MUMPS_seq) failed to load: install libfreefem++, FF_LOADPATH=/usr/lib/freefem++"
             }
             8 => "execution error (failed assertion, index out of range, solver error)",
             _ => "unexpected exit code",

@@ -5,20 +5,28 @@
 //! - [`toolchain`]: finding the tools, their versions, how to install them (`doctor`);
 //! - [`process`]: one run in its own directory and process group, with a timeout;
 //! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
+//! - [`solid_geo`]: the 3D geometry (half of a hemisphere or cap) and its quadratic tetrahedra;
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
-//! - [`axisym`]: the shared run (mesh → deck → read back → History);
-//! - [`readback`]: the decks' per-step CSV and the field files through meshio.
+//! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
+//! - [`readback`]: the decks' per-step CSV and the field files through meshio;
+//! - [`surface`]: the contact line's nodal state at every step, and what is measured from it.
 //!
 //! Install the tools with `scripts/setup.sh`. A missing tool makes the solver
 //! [`Unavailable`](crate::solver::SolveError::Unavailable), never a pass.
 
 pub mod axisym;
+pub mod command;
 pub mod deck;
 pub mod fenicsx;
 pub mod freefem;
 pub mod geo;
 pub mod process;
+pub mod program;
 pub mod readback;
+pub mod record;
+pub mod solid_geo;
+pub mod stored;
+pub mod surface;
 pub mod toolchain;
 
 use crate::solver::Solver;

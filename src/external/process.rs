@@ -49,6 +49,27 @@ pub struct Run {
     pub wall_s: f64,
 }
 
+impl Ending {
+    /// Why a run that ended this way failed, in words, or `None` for exit code 0. `program`
+    /// names the program; `meaning` puts its own exit codes into words.
+    pub fn failure(
+        &self,
+        program: &str,
+        timeout: Duration,
+        meaning: impl Fn(i32) -> &'static str,
+    ) -> Option<String> {
+        match self {
+            Ending::Exited(0) => None,
+            Ending::Exited(code) => Some(format!("{program} exited with code {code}: {}", meaning(*code))),
+            Ending::Signalled(signal) => Some(format!("{program} crashed with {}", signal_name(*signal))),
+            Ending::TimedOut => Some(format!(
+                "{program} did not finish within {} s: killed with its children",
+                timeout.as_secs_f64()
+            )),
+        }
+    }
+}
+
 impl Run {
     /// True when the program exited with code 0.
     pub fn succeeded(&self) -> bool {

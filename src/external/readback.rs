@@ -1,13 +1,15 @@
-//! Reading back what a deck wrote: its per-step CSV (`steps.csv`, one row per approach), and the
-//! surface pressure p(r) of its field files, extracted through meshio by `scripts/read_fields.py`
-//! run as a subprocess. Missing, truncated or non-finite output is an error with a message that
-//! names the file, the row and the column, never a panic.
+//! Reading back what a deck wrote: its per-step CSV (`steps.csv`, one row per computed step), its
+//! clock (`timing.csv`), and the surface pressure p(r) of its field files, extracted through meshio
+//! by `scripts/read_fields.py` run as a subprocess (the contact line's nodal state, `surface.csv`,
+//! is read by [`super::surface`]). Missing, truncated or non-finite output is an error with a
+//! message that names the file, the row and the column, never a panic.
 //!
 //! Units: the decks work in mm, N, MPa; the rows here are converted to SI.
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use super::deck::ComputedStep;
 use super::process::{self, Job};
 use super::toolchain::Toolchain;
 
@@ -16,121 +18,190 @@ pub const READ_FIELDS_PY: &str = include_str!("../../scripts/read_fields.py");
 
 /// The columns a deck's `steps.csv` has, in order.
 pub const STEP_COLUMNS: [&str; 10] = [
-    "index",
+    "step",
     "d_mm",
+    "t_mm",
     "P_contact_N",
     "P_top_N",
-    "p0_MPa",
-    "p0_method",
-    "contact_radius_mm",
-    "iterations",
-    "converged",
+    "Q_N",
+    "iterations_normal",
+    "iterations_tangential",
+    "outcome",
     "field_file",
 ];
 
-/// One row of a deck's per-step CSV, in SI.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DeckRow {
-    /// The approach of the modelled sphere d = δn/2 [m].
-    pub d: f64,
-    /// Normal force from the contact traction [N].
-    pub force_contact: f64,
-    /// Normal force from the reaction on the loaded face [N].
-    pub force_reaction: f64,
-    /// Peak pressure [Pa].
-    pub p0: f64,
-    /// How the deck obtained p0.
-    pub p0_method: String,
-    /// Contact radius [m].
-    pub contact_radius: f64,
-    /// Contact iterations (active-set or Newton).
-    pub iterations: u32,
-    /// Whether the iteration met its tolerance.
-    pub converged: bool,
-    /// The field file the deck wrote for this row.
-    pub field_file: String,
+/// How a deck's contact iteration ended at one step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Converged: the residual at round-off, or the contact state repeated after a full step.
+    Converged,
+    /// The tangential iteration cycled between two contact states (a node at the stick edge
+    /// has no consistent state); the iterate with the least residual was kept.
+    Cycle,
+    /// The iteration cap was hit: the step is flagged.
+    Capped,
 }
 
-/// Reads `steps.csv` from `text`, expecting the approaches `d` [m] in order.
+/// One row of a deck's `steps.csv`, in SI.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeckRow {
+    /// The path step.
+    pub step: usize,
+    /// The approach of the modelled sphere d = δn/2 [m].
+    pub d: f64,
+    /// The shift of the modelled sphere's far face t = δt/2 [m].
+    pub t: f64,
+    /// Normal force from the contact forces [N].
+    pub force_contact: f64,
+    /// Normal force from the reaction on the loaded face [N] (at path positions only).
+    pub force_reaction: Option<f64>,
+    /// Tangential force along δt [N] (0 when the tangential mode is not solved).
+    pub tangential_force: f64,
+    /// Contact iterations of the normal mode (0: the approach did not change).
+    pub iterations_normal: u32,
+    /// Contact iterations of the tangential mode.
+    pub iterations_tangential: u32,
+    /// How the iterations ended.
+    pub outcome: Outcome,
+    /// The field file written at this step (path positions), if any.
+    pub field_file: Option<String>,
+}
+
+/// Reads `steps.csv` from `text`, expecting the computed steps `expected` in order.
 ///
-/// Fails on a wrong header, fewer or more rows than expected (a truncated run), an approach that
-/// is not the one asked for, or a value that is not a finite number.
-pub fn parse_steps(text: &str, d: &[f64]) -> Result<Vec<DeckRow>, String> {
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .from_reader(text.as_bytes());
-    let header = reader.headers().map_err(|e| format!("steps.csv: {e}"))?;
-    if header.iter().ne(STEP_COLUMNS) {
-        return Err(format!(
-            "steps.csv: header is `{}`, expected `{}`",
-            header.iter().collect::<Vec<_>>().join(","),
-            STEP_COLUMNS.join(",")
-        ));
-    }
+/// Fails on a wrong header, fewer or more rows than expected (a truncated run), a step or
+/// displacement that is not the one asked for, or a value that is not a finite number.
+pub fn parse_steps(text: &str, expected: &[ComputedStep]) -> Result<Vec<DeckRow>, String> {
+    let records = records(text, "steps.csv", &STEP_COLUMNS)?;
     let mut rows = Vec::new();
-    for (k, record) in reader.records().enumerate() {
-        let record = record.map_err(|e| format!("steps.csv row {}: {e}", k + 1))?;
-        let row = parse_row(&record).map_err(|e| format!("steps.csv row {}: {e}", k + 1))?;
-        let expected = d.get(k).copied().unwrap_or(f64::NAN);
-        if (row.d - expected).abs() > 1e-9 * expected.abs() {
+    for (k, record) in records.iter().enumerate() {
+        let row = parse_row(record).map_err(|e| format!("steps.csv row {}: {e}", k + 1))?;
+        let Some(asked) = expected.get(k) else {
             return Err(format!(
-                "steps.csv row {}: approach {:e} m, expected {expected:e} m",
+                "steps.csv row {}: more rows than the {} steps asked for",
                 k + 1,
-                row.d
+                expected.len()
+            ));
+        };
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1e-12);
+        if row.step != asked.step || !close(row.d, asked.d) || !close(row.t, asked.t) {
+            return Err(format!(
+                "steps.csv row {}: step {} at d = {:e} m, t = {:e} m; expected step {} at d = {:e} m, t = {:e} m",
+                k + 1,
+                row.step,
+                row.d,
+                row.t,
+                asked.step,
+                asked.d,
+                asked.t
             ));
         }
         rows.push(row);
     }
-    if rows.len() != d.len() {
+    if rows.len() != expected.len() {
         return Err(format!(
             "steps.csv has {} rows, expected {} (truncated output: the deck stopped early)",
             rows.len(),
-            d.len()
+            expected.len()
         ));
     }
     Ok(rows)
 }
 
-fn parse_row(record: &csv::StringRecord) -> Result<DeckRow, String> {
-    if record.len() != STEP_COLUMNS.len() {
+/// The records of a deck's CSV `file` (text `text`), whose header must be `columns`: every
+/// record well-formed and with one field per column, else an error naming the row.
+pub fn records(text: &str, file: &str, columns: &[&str]) -> Result<Vec<csv::StringRecord>, String> {
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .from_reader(text.as_bytes());
+    let header = reader.headers().map_err(|e| format!("{file}: {e}"))?;
+    if header.iter().ne(columns.iter().copied()) {
         return Err(format!(
-            "{} fields, expected {} (truncated line?)",
-            record.len(),
-            STEP_COLUMNS.len()
+            "{file}: header is `{}`, expected `{}`",
+            header.iter().collect::<Vec<_>>().join(","),
+            columns.join(",")
         ));
     }
-    let number = |i: usize, scale: f64| -> Result<f64, String> {
-        let text = &record[i];
-        match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v * scale),
-            _ => Err(format!("{} = `{text}` is not a finite number", STEP_COLUMNS[i])),
-        }
-    };
-    let integer = |i: usize| -> Result<u32, String> {
+    reader
+        .records()
+        .enumerate()
+        .map(|(k, record)| {
+            let record = record.map_err(|e| format!("{file} row {}: {e}", k + 1))?;
+            if record.len() != columns.len() {
+                return Err(format!(
+                    "{file} row {}: {} fields, expected {} (truncated line?)",
+                    k + 1,
+                    record.len(),
+                    columns.len()
+                ));
+            }
+            Ok(record)
+        })
+        .collect()
+}
+
+/// Field `i` of `record` (columns `columns`) as a finite number, times `scale`.
+pub fn finite(record: &csv::StringRecord, columns: &[&str], i: usize, scale: f64) -> Result<f64, String> {
+    match record[i].parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v * scale),
+        _ => Err(format!(
+            "{} = `{}` is not a finite number",
+            columns[i], &record[i]
+        )),
+    }
+}
+
+fn parse_row(record: &csv::StringRecord) -> Result<DeckRow, String> {
+    let number = |i: usize, scale: f64| finite(record, &STEP_COLUMNS, i, scale);
+    let count = |i: usize| -> Result<u32, String> {
         record[i]
             .parse()
             .map_err(|_| format!("{} = `{}` is not a count", STEP_COLUMNS[i], &record[i]))
     };
+    let outcome = match &record[8] {
+        "1" => Outcome::Converged,
+        "2" => Outcome::Cycle,
+        "0" => Outcome::Capped,
+        other => return Err(format!("outcome = `{other}` is not 0, 1 or 2")),
+    };
     Ok(DeckRow {
+        step: record[0]
+            .parse()
+            .map_err(|_| format!("step = `{}` is not a step index", &record[0]))?,
         d: number(1, 1e-3)?,
-        force_contact: number(2, 1.0)?,
-        force_reaction: number(3, 1.0)?,
-        p0: number(4, 1e6)?,
-        p0_method: record[5].to_owned(),
-        contact_radius: number(6, 1e-3)?,
-        iterations: integer(7)?,
-        converged: integer(8)? == 1,
-        field_file: record[9].to_owned(),
+        t: number(2, 1e-3)?,
+        force_contact: number(3, 1.0)?,
+        force_reaction: if record[4].is_empty() {
+            None
+        } else {
+            Some(number(4, 1.0)?)
+        },
+        tangential_force: number(5, 1.0)?,
+        iterations_normal: count(6)?,
+        iterations_tangential: count(7)?,
+        outcome,
+        field_file: (&record[9] != "-").then(|| record[9].to_owned()),
     })
 }
 
-/// Reads `dir/steps.csv` (see [`parse_steps`]).
-pub fn read_steps(dir: &Path, d: &[f64]) -> Result<Vec<DeckRow>, String> {
-    let file = dir.join("steps.csv");
-    let text =
-        std::fs::read_to_string(&file).map_err(|e| format!("{}: output missing ({e})", file.display()))?;
-    parse_steps(&text, d)
+/// Reads the file `name` of the run directory `dir` ("output missing" when absent).
+pub fn read_output(dir: &Path, name: &str) -> Result<String, String> {
+    let file = dir.join(name);
+    std::fs::read_to_string(&file).map_err(|e| format!("{}: output missing ({e})", file.display()))
+}
+
+/// The deck's own clock of its set-up (assembly, factorisation, condensation) and of the path
+/// [s] from `timing.csv`; `None` where a value is missing (timings are reported, never judged).
+pub fn parse_timing(text: &str) -> (Option<f64>, Option<f64>) {
+    let value = |phase: &str| {
+        text.lines()
+            .filter_map(|l| l.split_once(','))
+            .find(|(p, _)| p.trim() == phase)
+            .and_then(|(_, v)| v.trim().parse::<f64>().ok())
+            .filter(|v| v.is_finite())
+    };
+    (value("setup"), value("path"))
 }
 
 /// One point of the spherical surface in a field file, SI.
@@ -147,37 +218,6 @@ pub struct SurfacePoint {
 
 /// The surface of one field file, sorted by r.
 pub type Profile = Vec<SurfacePoint>;
-
-/// Points up to this fraction of the contact radius beyond its edge enter the edge fit.
-pub const EDGE_FIT_BAND: f64 = 0.2;
-
-/// The contact radius from the gap just outside the contact.
-///
-/// At the edge of a smooth frictionless non-adhesive contact the pressure falls as √(c − r) and
-/// the gap opens as g ≈ A (r − c)^{3/2} (Johnson 1985, §4.2 and eq. 3.42 for Hertz; the same
-/// exponent holds for any smooth profile), so g^{2/3} is linear in r and vanishes at c. A least
-/// squares line through g^{2/3} of the open surface points within [`EDGE_FIT_BAND`]·r of the last
-/// point in contact gives c as its zero, kept within the band (the nodes just past the edge of a
-/// discrete solution may be open by a mere 1e-7 of the gap further out). On Hertz's
-/// exact gap this errs by ≤ 1.5e-4 c (unit test); on a finite element solution the edge itself
-/// is resolved only to about an element, and the fit averages the nodes' scatter there. Taking
-/// the last node in contact (or a linear zero crossing of g, which the penalty's tiny negative
-/// gap pins to that node) errs by up to one node spacing.
-///
-/// `None` when no point is in contact or fewer than two open points lie in the band.
-pub fn contact_radius(profile: &[SurfacePoint]) -> Option<f64> {
-    // After the last point in contact: a P2 gap may wiggle above zero inside the contact.
-    let last = profile.iter().rposition(|p| p.gap <= 0.0)?;
-    let last_closed = profile[last].r;
-    let band: Vec<(f64, f64)> = profile[last + 1..]
-        .iter()
-        .take_while(|p| p.r - last_closed <= EDGE_FIT_BAND * last_closed)
-        .map(|p| (p.r, p.gap.powf(2.0 / 3.0)))
-        .collect();
-    let line = crate::fit::Line::fit(&band)?;
-    let c = line.zero()?;
-    (line.slope > 0.0 && c.is_finite()).then(|| c.clamp(last_closed, band[band.len() - 1].0))
-}
 
 /// Extracts p(r) on the spherical surface (radius `radius_mm`, r ≤ `window_mm`) from each field
 /// file in `dir`, through meshio (`scripts/read_fields.py` run by the toolchain's Python).
@@ -261,53 +301,91 @@ mod tests {
     use super::*;
 
     const HEADER: &str =
-        "index,d_mm,P_contact_N,P_top_N,p0_MPa,p0_method,contact_radius_mm,iterations,converged,field_file";
+        "step,d_mm,t_mm,P_contact_N,P_top_N,Q_N,iterations_normal,iterations_tangential,outcome,field_file";
+
+    fn asked() -> Vec<ComputedStep> {
+        vec![
+            ComputedStep {
+                step: 4,
+                d: 8.5e-6,
+                t: 0.0,
+                position: None,
+            },
+            ComputedStep {
+                step: 5,
+                d: 8.5e-6,
+                t: 5e-7,
+                position: Some(2),
+            },
+        ]
+    }
 
     fn two_rows() -> String {
         format!(
-            "{HEADER}\n0,0.0085,806.56,806.77,448.1,minus-szz-pole,0.919,2,1,field_0.vtu\n\
-             1,0.0125,1439.7,1440.1,544.3,minus-szz-pole,1.118,1,1,field_1.vtu\n"
+            "{HEADER}\n4,0.0085,0,806.56,,0,3,2,1,-\n\
+             5,0.0085,0.0005,806.56,806.77,98.8,0,4,2,field_2.vtu\n"
         )
     }
 
     #[test]
     fn rows_are_read_and_converted_to_si() {
-        let rows = parse_steps(&two_rows(), &[8.5e-6, 12.5e-6]).unwrap();
+        let rows = parse_steps(&two_rows(), &asked()).unwrap();
         assert_eq!(rows.len(), 2);
-        assert!((rows[0].p0 - 448.1e6).abs() < 1.0);
-        assert!((rows[1].contact_radius - 1.118e-3).abs() < 1e-12);
-        assert_eq!(rows[0].iterations, 2);
-        assert!(rows[1].converged);
-        assert_eq!(rows[1].field_file, "field_1.vtu");
+        assert!((rows[1].t - 5e-7).abs() < 1e-18);
+        assert_eq!(rows[0].force_reaction, None);
+        assert_eq!(rows[1].force_reaction, Some(806.77));
+        assert_eq!(rows[1].tangential_force, 98.8);
+        assert_eq!((rows[0].iterations_normal, rows[1].iterations_tangential), (3, 4));
+        assert_eq!(
+            (rows[0].outcome, rows[1].outcome),
+            (Outcome::Converged, Outcome::Cycle)
+        );
+        assert_eq!(rows[0].field_file, None);
+        assert_eq!(rows[1].field_file.as_deref(), Some("field_2.vtu"));
     }
 
     #[test]
     fn truncated_output_is_an_error() {
         let text = two_rows();
         let cut = &text[..text.len() - 30];
-        let e = parse_steps(cut, &[8.5e-6, 12.5e-6]).unwrap_err();
+        let e = parse_steps(cut, &asked()).unwrap_err();
         assert!(e.contains("row 2"), "{e}");
         let one_row: String = text.lines().take(2).collect::<Vec<_>>().join("\n");
-        let e = parse_steps(&one_row, &[8.5e-6, 12.5e-6]).unwrap_err();
+        let e = parse_steps(&one_row, &asked()).unwrap_err();
         assert!(e.contains("truncated"), "{e}");
     }
 
     #[test]
-    fn nan_and_wrong_approach_are_errors() {
-        let text = two_rows().replace("806.56", "nan");
-        let e = parse_steps(&text, &[8.5e-6, 12.5e-6]).unwrap_err();
+    fn nan_wrong_step_and_bad_outcome_are_errors() {
+        let text = two_rows().replace("806.56,,", "nan,,");
+        let e = parse_steps(&text, &asked()).unwrap_err();
         assert!(e.contains("P_contact_N") && e.contains("finite"), "{e}");
-        let e = parse_steps(&two_rows(), &[8.5e-6, 13e-6]).unwrap_err();
-        assert!(e.contains("expected"), "{e}");
-        let e = parse_steps("a,b\n1,2\n", &[8.5e-6]).unwrap_err();
+        let mut other = asked();
+        other[1].t = 6e-7;
+        let e = parse_steps(&two_rows(), &other).unwrap_err();
+        assert!(e.contains("expected step 5"), "{e}");
+        let e = parse_steps(&two_rows().replace(",2,field", ",7,field"), &asked()).unwrap_err();
+        assert!(e.contains("outcome"), "{e}");
+        let e = parse_steps("a,b\n1,2\n", &asked()).unwrap_err();
         assert!(e.contains("header"), "{e}");
+        let e = parse_steps(&two_rows(), &asked()[..1]).unwrap_err();
+        assert!(e.contains("more rows"), "{e}");
     }
 
     #[test]
     fn missing_output_is_an_error() {
         let dir = tempfile::tempdir().unwrap();
-        let e = read_steps(dir.path(), &[1e-6]).unwrap_err();
+        let e = read_output(dir.path(), "steps.csv").unwrap_err();
         assert!(e.contains("output missing"), "{e}");
+    }
+
+    #[test]
+    fn timing_is_read_where_present() {
+        assert_eq!(
+            parse_timing("phase,seconds\nsetup,12.5\npath,3\n"),
+            (Some(12.5), Some(3.0))
+        );
+        assert_eq!(parse_timing("phase,seconds\nsetup,nan\n"), (None, None));
     }
 
     #[test]
@@ -322,38 +400,5 @@ mod tests {
         assert!(parse_profiles("file,r,pressure,gap\na.vtu,0.0,nan,0\n", &files).is_err());
         let e = parse_profiles("file,r,pressure,gap\na.vtu,0.0,1.0,0\n", &files).unwrap_err();
         assert!(e.contains("b.vtu"), "{e}");
-    }
-
-    /// Hertz's gap outside the contact (Johnson 1985, eq. 3.42 with 4.22), in units a = 1,
-    /// with the penalty's small negative gap inside: the edge fit recovers c = a to well below
-    /// the node spacing, where the last node in contact errs by up to one spacing.
-    #[test]
-    fn the_edge_fit_recovers_hertz_contact_radius() {
-        let hertz_gap = |r: f64| {
-            if r <= 1.0 {
-                -1e-6
-            } else {
-                ((2.0 - r * r) * (1.0 / r).asin() + (r * r - 1.0).sqrt()) / std::f64::consts::PI
-                    - (1.0 - r * r / 2.0) // gap = r²/2 + u(r) − δ in units a²/R = 1, δ = 1
-            }
-        };
-        for h in [0.05, 0.025, 0.0125] {
-            for offset in (1..20).map(|k| f64::from(k) / 20.0) {
-                let profile: Profile = (0..100)
-                    .map(|i| {
-                        let r = (i as f64 + offset) * h;
-                        SurfacePoint {
-                            r,
-                            pressure: 0.0,
-                            gap: hertz_gap(r),
-                        }
-                    })
-                    .collect();
-                let c = contact_radius(&profile).unwrap();
-                // Measured: |c − a| ≤ 1.5e-4 a at these spacings (the next term of the gap's
-                // expansion over the band); the last node in contact errs by up to h.
-                assert!((c - 1.0).abs() < 2e-4, "h {h} offset {offset}: c = {c}");
-            }
-        }
     }
 }

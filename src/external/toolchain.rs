@@ -29,11 +29,22 @@ pub enum Tool {
     Dolfinx,
     /// meshio and h5py, for `/usr/bin/python3`: reads field files back.
     Meshio,
+    /// LAMMPS (`lmp`) with its GRANULAR package: the `lammps-*` DEM solvers.
+    Lammps,
+    /// YADE (`yade`): the `yade-mindlin` DEM solver.
+    Yade,
 }
 
 impl Tool {
     /// Every tool, in the order `doctor` lists them.
-    pub const ALL: [Tool; 4] = [Tool::Gmsh, Tool::FreeFem, Tool::Dolfinx, Tool::Meshio];
+    pub const ALL: [Tool; 6] = [
+        Tool::Gmsh,
+        Tool::FreeFem,
+        Tool::Dolfinx,
+        Tool::Meshio,
+        Tool::Lammps,
+        Tool::Yade,
+    ];
 
     /// The tool's name in messages.
     pub fn name(self) -> &'static str {
@@ -42,6 +53,8 @@ impl Tool {
             Tool::FreeFem => "FreeFem++",
             Tool::Dolfinx => "dolfinx",
             Tool::Meshio => "meshio",
+            Tool::Lammps => "LAMMPS",
+            Tool::Yade => "YADE",
         }
     }
 
@@ -52,6 +65,8 @@ impl Tool {
             Tool::FreeFem => "apt-get install freefem++ libfreefem++",
             Tool::Dolfinx => "apt-get install python3-dolfinx-real python3-gmsh",
             Tool::Meshio => "apt-get install python3-meshio python3-h5py",
+            Tool::Lammps => "apt-get install lammps",
+            Tool::Yade => "apt-get install yade",
         }
     }
 }
@@ -65,15 +80,21 @@ pub struct Toolchain {
     pub freefem: PathBuf,
     /// The Python interpreter that has dolfinx, gmsh, meshio and h5py.
     pub python: PathBuf,
+    /// The LAMMPS executable.
+    pub lammps: PathBuf,
+    /// The YADE executable.
+    pub yade: PathBuf,
 }
 
 impl Default for Toolchain {
-    /// Debian's: `gmsh` and `FreeFem++` from PATH, `/usr/bin/python3`.
+    /// Debian's: `gmsh`, `FreeFem++`, `lmp` and `yade` from PATH, `/usr/bin/python3`.
     fn default() -> Self {
         Self {
             gmsh: "gmsh".into(),
             freefem: "FreeFem++".into(),
             python: "/usr/bin/python3".into(),
+            lammps: "lmp".into(),
+            yade: "yade".into(),
         }
     }
 }
@@ -119,6 +140,8 @@ impl Toolchain {
             Tool::Gmsh => &self.gmsh,
             Tool::FreeFem => &self.freefem,
             Tool::Dolfinx | Tool::Meshio => &self.python,
+            Tool::Lammps => &self.lammps,
+            Tool::Yade => &self.yade,
         }
     }
 
@@ -175,6 +198,20 @@ pub fn which(program: &Path) -> Option<PathBuf> {
         .find(|p| is_file(p))
 }
 
+/// The version line of `lmp -h` ("… Simulator - 29 Sep 2021 - Update 2"), if the GRANULAR
+/// package is built in (the `lammps-*` solvers need `pair_style granular`).
+fn lammps_version(help: &str) -> Result<Option<String>, String> {
+    if !help
+        .lines()
+        .any(|l| l.split_whitespace().any(|w| w == "GRANULAR"))
+    {
+        return Err("lmp is built without the GRANULAR package (pair_style granular)".into());
+    }
+    Ok(help
+        .lines()
+        .find_map(|l| l.split_once("Simulator - ").map(|(_, v)| v.trim().to_owned())))
+}
+
 /// Runs the tool's version query in a temporary directory.
 fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
     let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory: {e}"))?;
@@ -183,7 +220,8 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         Tool::FreeFem => {
             // The plugins the decks load must be there too: a FreeFEM without libfreefem++
             // fails on `load "gmsh"` with exit code 2.
-            let script = "load \"gmsh\"\nload \"iovtk\"\ncout << \"ffversion \" << version << endl;\n";
+            let script = "load \"gmsh\"\nload \"iovtk\"\nload \"lapack\"\nload \"MUMPS_seq\"\n\
+                          cout << \"ffversion \" << version << endl;\n";
             std::fs::write(dir.path().join("version.edp"), script).map_err(|e| e.to_string())?;
             (
                 vec![
@@ -210,6 +248,8 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
             ],
             vec![],
         ),
+        Tool::Lammps => (vec!["-h".into()], vec![]),
+        Tool::Yade => (vec!["--version".into()], vec![]),
     };
     let job = Job {
         program: path.to_path_buf(),
@@ -223,10 +263,15 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
     }
     let text = format!("{}\n{}", run.stdout, run.stderr);
     let version = match tool {
+        Tool::Lammps => lammps_version(&text)?,
         Tool::FreeFem => text
             .lines()
             .find_map(|l| l.trim().strip_prefix("ffversion "))
             .map(str::to_owned),
+        Tool::Yade => text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("Yade version:"))
+            .map(|v| v.trim().to_owned()),
         _ => text
             .lines()
             .map(str::trim)

@@ -2,15 +2,17 @@
 //!
 //! The fill-reducing ordering matters more than anything else for the factor's cost. Two are
 //! offered and measured by `examples/fem_timing.rs`: faer's approximate minimum degree, and
-//! reverse Cuthill–McKee, which makes the matrix of a graded 2D ring mesh banded.
+//! reverse Cuthill–McKee, which makes the matrix of a graded 2D ring mesh banded; any other
+//! (the 3D model's, with its contact unknowns last) is given as a permutation.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::SparseColMat;
-use faer::{Conj, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, Par, Side};
 use std::collections::VecDeque;
 
 /// The fill-reducing ordering of the factorisation.
@@ -31,19 +33,40 @@ pub struct Factor {
 impl Factor {
     /// Factors `lower` (the lower triangle of K) with `ordering`.
     pub fn new(lower: &SparseColMat<usize, f64>, ordering: Ordering) -> Result<Self, String> {
-        let (forward, inverse);
-        let ord = match ordering {
-            Ordering::Amd => SymmetricOrdering::Amd,
-            Ordering::ReverseCuthillMcKee => {
-                forward = reverse_cuthill_mckee(lower);
-                let mut inv = vec![0; forward.len()];
-                for (k, &i) in forward.iter().enumerate() {
-                    inv[i] = k;
-                }
-                inverse = inv;
-                SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, forward.len()))
+        match ordering {
+            Ordering::Amd => Self::factorize(lower, SymmetricOrdering::Amd),
+            Ordering::ReverseCuthillMcKee => Self::with_permutation(lower, &reverse_cuthill_mckee(lower)),
+        }
+    }
+
+    /// Factors `lower` with a given fill-reducing order: row `forward[k]` of K becomes row k of
+    /// P K Pᵀ (e.g. a nested dissection, or an order that puts chosen unknowns last so that
+    /// [`Factor::trailing_block`] is their Schur complement's factor).
+    pub fn with_permutation(lower: &SparseColMat<usize, f64>, forward: &[usize]) -> Result<Self, String> {
+        let n = lower.nrows();
+        if forward.len() != n {
+            return Err(format!(
+                "the ordering has {} entries for {n} unknowns",
+                forward.len()
+            ));
+        }
+        let mut inverse = vec![usize::MAX; n];
+        for (k, &i) in forward.iter().enumerate() {
+            if i >= n || inverse[i] != usize::MAX {
+                return Err(format!("the ordering is not a permutation of 0..{n}"));
             }
-        };
+            inverse[i] = k;
+        }
+        Self::factorize(
+            lower,
+            SymmetricOrdering::Custom(PermRef::new_checked(forward, &inverse, n)),
+        )
+    }
+
+    fn factorize(
+        lower: &SparseColMat<usize, f64>,
+        ord: SymmetricOrdering<'_, usize>,
+    ) -> Result<Self, String> {
         let symbolic = factorize_symbolic_cholesky(lower.symbolic(), Side::Lower, ord, Default::default())
             .map_err(|e| format!("symbolic Cholesky: {e:?}"))?;
         let mut values = vec![0.0; symbolic.len_val()];
@@ -63,6 +86,46 @@ impl Factor {
             )
             .map_err(|e| format!("the stiffness is not positive definite: {e:?}"))?;
         Ok(Self { symbolic, values })
+    }
+
+    /// The trailing m × m block L₂₂ of the factor (rows and columns n − m … n − 1 of P K Pᵀ).
+    ///
+    /// With P K Pᵀ = [K₁₁ K₁₂; K₂₁ K₂₂] and L = [L₁₁ 0; L₂₁ L₂₂], L₂₂ L₂₂ᵀ = K₂₂ − K₂₁ K₁₁⁻¹ K₁₂,
+    /// the Schur complement: the stiffness of the last m unknowns with all others condensed out,
+    /// so (L₂₂ L₂₂ᵀ)⁻¹ is the corresponding block of K⁻¹, read without a solve through the
+    /// whole factor.
+    pub fn trailing_block(&self, m: usize) -> Mat<f64> {
+        let n = self.symbolic.nrows();
+        let t = n - m.min(n);
+        let mut block = Mat::<f64>::zeros(n - t, n - t);
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let l = SupernodalLltRef::new(s, &self.values);
+                for k in 0..s.n_supernodes() {
+                    let (begin, end) = (s.supernode_begin()[k], s.supernode_end()[k]);
+                    if end <= t {
+                        continue;
+                    }
+                    let node = l.supernode(k);
+                    let val = node.val();
+                    let rows = (begin..end).chain(node.pattern().iter().copied());
+                    for (r, row) in rows.enumerate() {
+                        for c in begin.max(t)..end.min(row + 1) {
+                            block[(row - t, c - t)] = val[(r, c - begin)];
+                        }
+                    }
+                }
+            }
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                let (col_ptr, row_idx) = (s.col_ptr(), s.row_idx());
+                for c in t..n {
+                    for p in col_ptr[c]..col_ptr[c + 1] {
+                        block[(row_idx[p] - t, c - t)] = self.values[p];
+                    }
+                }
+            }
+        }
+        block
     }
 
     /// Entries of the factor L.

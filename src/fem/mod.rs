@@ -9,6 +9,7 @@
 //! | [`factor`] | sparse Cholesky with a fill-reducing ordering |
 //! | [`condense`] | the dense compliance of a factored body at its contact DOFs |
 //! | [`axisym`] | the axisymmetric contact model and the `fem-axisym` solver |
+//! | [`solid3d`] | the 3D contact model (10-node tetrahedra, condensed contact surface) and the `fem-3d` solver |
 //!
 //! The stiffness is assembled and factored once per mesh; the compliance of the candidate
 //! contact nodes is computed once by solves with the factor; each path step then re-solves only
@@ -23,5 +24,6 @@ pub mod element;
 pub mod factor;
 pub mod mesh;
 pub mod quadrature;
+pub mod solid3d;
 
 pub use axisym::{FemAxisym, MdrDomain};

@@ -1,4 +1,5 @@
-//! Gauss rules on the reference triangle {ξ ≥ 0, η ≥ 0, ξ + η ≤ 1} (area ½) and on [0, 1].
+//! Gauss rules on the reference triangle {ξ ≥ 0, η ≥ 0, ξ + η ≤ 1} (area ½), on [0, 1], and on
+//! the reference tetrahedron {ξ, η, ζ ≥ 0, ξ + η + ζ ≤ 1} (volume ⅙).
 //!
 //! The points are interior, so no quadrature point ever lies on the symmetry axis r = 0, where the
 //! hoop strain u_r / r of the axisymmetric element is 0/0 (docs/toolchain.md, pitfall 5).
@@ -78,6 +79,75 @@ pub fn line_gauss_legendre(n: usize) -> Vec<Point> {
         .collect()
 }
 
+/// A quadrature point of the reference tetrahedron.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point3 {
+    /// Reference coordinates (ξ, η, ζ).
+    pub at: [f64; 3],
+    /// Weight (they sum to ⅙, the reference volume).
+    pub weight: f64,
+}
+
+/// The points of the tetrahedron with barycentric coordinates every distinct permutation of
+/// `barycentric`, each with weight `weight`.
+fn tetrahedron_orbit(barycentric: [f64; 4], weight: f64) -> Vec<Point3> {
+    let mut points: Vec<Point3> = Vec::new();
+    for p in PERMUTATIONS_OF_4 {
+        let at = [barycentric[p[1]], barycentric[p[2]], barycentric[p[3]]];
+        let seen = points
+            .iter()
+            .any(|q| q.at.iter().zip(&at).all(|(a, b)| (a - b).abs() < 1e-15));
+        if !seen {
+            points.push(Point3 { at, weight });
+        }
+    }
+    points
+}
+
+/// The 24 permutations of (0, 1, 2, 3).
+const PERMUTATIONS_OF_4: [[usize; 4]; 24] = {
+    let mut all = [[0; 4]; 24];
+    let mut k = 0;
+    let mut a = 0;
+    while a < 4 {
+        let mut b = 0;
+        while b < 4 {
+            let mut c = 0;
+            while c < 4 {
+                if a != b && b != c && a != c {
+                    all[k] = [a, b, c, 6 - a - b - c];
+                    k += 1;
+                }
+                c += 1;
+            }
+            b += 1;
+        }
+        a += 1;
+    }
+    all
+};
+
+/// The 4-point rule exact for polynomials of degree 2 (Hammer, Marlowe & Stroud 1956): enough
+/// for the stiffness of a straight-sided 10-node tetrahedron, whose integrand ∇N·∇N is
+/// quadratic.
+pub fn tetrahedron_degree2() -> Vec<Point3> {
+    let a = 0.138_196_601_125_010_5; // (5 − √5)/20
+    tetrahedron_orbit([1.0 - 3.0 * a, a, a, a], 1.0 / 24.0)
+}
+
+/// The 14-point rule exact for polynomials of degree 5, all weights positive (Walkington 2000):
+/// for curved (isoparametric) tetrahedra, whose integrand is rational, and for errors against
+/// a smooth exact solution. Exactness is checked by the test below.
+pub fn tetrahedron_degree5() -> Vec<Point3> {
+    let (a, wa) = (0.092_735_250_310_891_2, 0.012_248_840_519_393_66);
+    let (b, wb) = (0.310_885_919_263_300_6, 0.018_781_320_953_002_64);
+    let (c, wc) = (0.454_496_295_874_350_4, 0.007_091_003_462_846_911);
+    let mut points = tetrahedron_orbit([1.0 - 3.0 * a, a, a, a], wa);
+    points.extend(tetrahedron_orbit([1.0 - 3.0 * b, b, b, b], wb));
+    points.extend(tetrahedron_orbit([c, c, 0.5 - c, 0.5 - c], wc));
+    points
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -125,6 +195,34 @@ mod tests {
         for k in 0..=5 {
             let sum: f64 = line_gauss3().iter().map(|p| p.weight * p.at[0].powi(k)).sum();
             assert!((sum - 1.0 / f64::from(k + 1)).abs() < 1e-15);
+        }
+    }
+
+    /// ∫ ξ^i η^j ζ^k over the reference tetrahedron = i! j! k! / (i + j + k + 3)!.
+    fn exact3(i: i32, j: i32, k: i32) -> f64 {
+        let f = |n: i32| (1..=n).map(f64::from).product::<f64>();
+        f(i) * f(j) * f(k) / f(i + j + k + 3)
+    }
+
+    #[test]
+    fn tetrahedron_rules_are_exact_to_their_degree() {
+        for (rule, degree, count) in [(tetrahedron_degree2(), 2, 4), (tetrahedron_degree5(), 5, 14)] {
+            assert_eq!(rule.len(), count);
+            assert!(rule
+                .iter()
+                .all(|p| p.weight > 0.0 && p.at.iter().sum::<f64>() < 1.0));
+            for i in 0..=degree {
+                for j in 0..=degree - i {
+                    for k in 0..=degree - i - j {
+                        let sum: f64 = rule
+                            .iter()
+                            .map(|p| p.weight * p.at[0].powi(i) * p.at[1].powi(j) * p.at[2].powi(k))
+                            .sum();
+                        let err = (sum - exact3(i, j, k)).abs();
+                        assert!(err < 1e-15, "degree {degree}: ξ^{i} η^{j} ζ^{k} off by {err}");
+                    }
+                }
+            }
         }
     }
 }

@@ -89,6 +89,7 @@ pub fn document(run: &CaseRun) -> Result<Document> {
         ),
         figure_section(&format!("Surface fields at position {focus}"), fields),
         figure_section("Errors against the references", figures::errors(run)?),
+        super::dem_scoreboard::section(run),
     ];
     Ok(Document {
         title: format!("spherecontact: {}", run.case.name()),

@@ -9,9 +9,7 @@ use crate::io::write_atomically;
 
 /// The CSV header: the path columns, then every quantity.
 pub fn csv_header() -> Vec<&'static str> {
-    let mut header = vec!["step", "position", "delta_n", "delta_t"];
-    header.extend(Quantity::ALL.iter().map(|q| q.name()));
-    header
+    crate::exchange::results_csv::columns()
 }
 
 /// The CSV text of a history.
@@ -33,7 +31,8 @@ pub fn to_csv(history: &History) -> anyhow::Result<String> {
 }
 
 /// The CSV text of a history's surface fields: one row per sample point, empty cells for what
-/// the solver does not resolve (`stick` is 1, 0, or empty outside the contact).
+/// the solver does not resolve (`stick` is 1, 0, or empty outside the contact; `slip_x`,
+/// `slip_y` the relative tangential displacement of the surfaces).
 pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
@@ -44,11 +43,14 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
         "traction_x",
         "traction_y",
         "stick",
+        "slip_x",
+        "slip_y",
     ])?;
     for field in FieldView::all(history) {
         for i in 0..field.len() {
             let [x, y] = field.point(i);
             let traction = field.traction(i);
+            let slip = field.slip(i);
             let stick = field
                 .stick(i)
                 .filter(|_| field.in_contact(i))
@@ -61,6 +63,8 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
                 traction.map_or_else(String::new, |t| format!("{:.10e}", t[0])),
                 traction.map_or_else(String::new, |t| format!("{:.10e}", t[1])),
                 stick.unwrap_or_default(),
+                slip.map_or_else(String::new, |s| format!("{:.10e}", s[0])),
+                slip.map_or_else(String::new, |s| format!("{:.10e}", s[1])),
             ])?;
         }
     }

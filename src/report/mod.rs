@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod claims;
 pub mod compare;
+pub mod dem_scoreboard;
 pub mod document;
 pub mod figures;
 pub mod history_files;

@@ -244,6 +244,7 @@ pub fn document(run: &CaseRun, study: &Study, reference_dir: &Path) -> Result<Do
         ),
         paper_numbers(run, &quoted)?,
         figure_section("Errors against the references", figures::errors(run)?),
+        super::dem_scoreboard::section(run),
         checks_section(run),
     ];
     Ok(Document {

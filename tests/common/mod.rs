@@ -1,7 +1,10 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod decks;
+
 use spherecontact::case::Case;
+use spherecontact::check::Reference;
 use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
 use spherecontact::path::{LoadingPath, Position};
@@ -132,13 +135,14 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
 /// tests/external.rs, would make report tests minutes long), and the checks that need no deck.
 pub fn paper_case_in_crate() -> Case {
     let mut case = case("cases/paper-fig7.toml");
-    let external: Vec<&str> = spherecontact::external::solvers()
-        .iter()
-        .map(|s| s.name())
-        .collect();
-    case.solvers.retain(|s| !external.contains(&s.as_str()));
+    // The decks and the DEM codes are tested in tests/external*.rs and tests/dem_codes.rs.
+    case.solvers.retain(|s| registry::is_in_crate(s));
     case.checks.retain(|c| {
-        !external.contains(&c.solver.as_str()) && !external.contains(&c.reference.to_string().as_str())
+        registry::is_in_crate(&c.solver)
+            && match &c.reference {
+                Reference::Solver(name) => registry::is_in_crate(name),
+                Reference::Value { .. } => true,
+            }
     });
     case
 }

@@ -269,6 +269,7 @@ impl Run {
                 pressure: profile.pressure.clone(),
                 traction: solved.then(|| self.traction(model)),
                 stick: solved.then(|| self.contact.stick()),
+                slip: None,
             });
             if let Some(dir) = vtu_dir {
                 let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));

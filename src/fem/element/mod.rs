@@ -2,12 +2,13 @@
 //!
 //! | module | element |
 //! |---|---|
-//! | [`tri6`] | 6-node triangle of the meridian plane: geometry, and the axisymmetric mode n = 0 (u_r, u_z) |
+//! | [`tri6`] | 6-node triangle of the meridian plane, axisymmetric (Fourier mode n = 0), r-weighted stiffness |
 //! | [`tri6_n1`] | the same triangle in the Fourier mode n = 1 (a shift along x of an axisymmetric body) |
-//!
-//! Both modes live on the same meridian mesh; [`Mode`] is what the shared assembly
-//! ([`crate::fem::assembly`]) needs of them.
+//! | [`tet10`] | 10-node tetrahedron of 3D elasticity (gmsh's node order), its stiffness and strain |
+//! | [`face6`] | the 6-node triangular face of a tetrahedron and its contact rule (sub-triangulated pressure) |
 
+pub mod face6;
+pub mod tet10;
 pub mod tri6;
 pub mod tri6_n1;
 

@@ -4,6 +4,8 @@
 //! |---|---|
 //! | [`meridian`] | the meridian (r, z) half-plane of an axisymmetric body: 6-node triangles, the in-crate graded generator |
 //! | [`msh`] | gmsh MSH 4.1 reader of meridian meshes |
+//! | [`solid`] | a 3D body of 10-node tetrahedra with its boundary groups, read from gmsh MSH 4.1 |
 
 pub mod meridian;
 pub mod msh;
+pub mod solid;

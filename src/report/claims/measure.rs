@@ -265,6 +265,7 @@ mod tests {
             pressure,
             traction: Some(traction),
             stick: Some(stick),
+            slip: None,
         };
         (field, a, h)
     }

@@ -121,52 +121,69 @@ pub fn section(run: &CaseRun, study: &Study, quoted: &Quoted) -> Section {
          solver or model a claim needs that this build does not have; no value stands in for it."
             .to_owned(),
     ];
-    paragraphs.extend(study_paragraphs(run, study));
+    let (notes, study_table) = study_notes(run, study);
+    paragraphs.extend(notes);
     Section {
         title: "The paper's claims put to the test".into(),
         paragraphs,
-        tables: vec![table],
+        tables: std::iter::once(table).chain(study_table).collect(),
         figures: vec![],
     }
 }
 
-/// How the surface-field claims were resolved: the study's rungs and their cost.
-fn study_paragraphs(run: &CaseRun, study: &Study) -> Vec<String> {
-    if study.solvers.is_empty() {
-        return match study::map_solvers(run).is_empty() {
-            true => Vec::new(),
-            false => vec![
-                "Surface-field claims are measured on this run's own fields only: the resolution study did not run."
-                    .into(),
-            ],
-        };
+/// How the surface-field claims were resolved: a sentence, and the study's rungs with their
+/// cost (a table, so that the timings are marked as such).
+fn study_notes(run: &CaseRun, study: &Study) -> (Vec<String>, Option<Table>) {
+    if study::map_solvers(run).is_empty() {
+        return (Vec::new(), None);
     }
-    study
+    let focus = run.case.focus;
+    let own = run.case.scene.path.substeps().first().copied().unwrap_or(0);
+    if study.solvers.is_empty() {
+        return (
+            vec![format!(
+                "The surface-field claims are measured on this run's own fields ({own} increments a segment): the \
+                 resolution study did not run."
+            )],
+            None,
+        );
+    }
+    let text = format!(
+        "The surface-field claims are measured again by each map solver at the two finest rungs of its resolution \
+         ladder, on the path cut at position {focus} (the table after the claims), beside this run's own fields ({own} increments a \
+         segment). h is the sample spacing over the contact radius c at position {focus}."
+    );
+    let rows = study
         .solvers
         .iter()
-        .map(|s| {
-            let rungs: Vec<String> = s
-                .rungs
-                .iter()
-                .map(|r| format!("{} ({:.1} s)", r.resolution, r.seconds))
-                .collect();
-            let mut text = format!(
-                "Resolution study of {} for the surface-field claims: the path cut at position {}, {} increments a \
-                 segment (the run itself: {}), at {}. Sizes h are the sample spacing over the contact radius c at \
-                 position {}.",
-                s.solver,
-                run.case.focus,
-                study::STUDY_INCREMENTS,
-                run.case.scene.path.substeps().first().copied().unwrap_or(0),
-                rungs.join("; "),
-                run.case.focus
-            );
-            if !s.problems.is_empty() {
-                text.push_str(&format!(" Problems: {}.", s.problems.join("; ")));
-            }
-            text
+        .flat_map(|s| {
+            let rungs = s.rungs.iter().map(|r| {
+                vec![
+                    Cell::plain(&s.solver),
+                    Cell::plain(&r.resolution),
+                    Cell::plain(r.increments.to_string()),
+                    Cell::with_class(format!("{:.3} ms", r.seconds * 1e3), "timing"),
+                ]
+            });
+            let problems = s.problems.iter().map(|p| {
+                vec![
+                    Cell::plain(&s.solver),
+                    Cell::with_class(format!("failed: {p}"), "nook"),
+                    Cell::plain("—"),
+                    Cell::plain("—"),
+                ]
+            });
+            rungs.chain(problems).collect::<Vec<_>>()
         })
-        .collect()
+        .collect();
+    let table = Table {
+        header: ["solver", "resolution", "increments a segment", "wall time"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+        rows,
+    };
+    (vec![text], Some(table))
 }
 
 /// A relative difference as a signed percentage, "+0.37 %".

@@ -138,6 +138,12 @@ fn surface_field_claims_are_measured_on_a_map_solver_with_its_resolution() {
             "the paper's own FE model is named as missing"
         );
     }
+    // The section lists the study's rungs, their wall time marked as a timing (masked when
+    // reports are compared).
+    let section = section(&run, &study, &quoted());
+    assert_eq!(section.tables.len(), 2);
+    assert_eq!(section.tables[1].rows.len(), 2);
+    assert!(section.tables[1].rows.iter().all(|r| r[3].class == "timing"));
     // Even on these coarse grids the transverse traction has its pattern and the stick zone is
     // a disc within its change under refinement.
     assert!(row(&claims, "The frictional stress")

@@ -148,6 +148,11 @@ impl<'a> FieldView<'a> {
         self.field.traction.as_ref().map(|q| q[i])
     }
 
+    /// The slip (relative tangential displacement of the surfaces) [m] at sample `i`, if resolved.
+    pub fn slip(&self, i: usize) -> Option<[f64; 2]> {
+        self.field.slip.as_ref().map(|s| s[i])
+    }
+
     /// Stick (true) or slip at sample `i`, if resolved.
     pub fn stick(&self, i: usize) -> Option<bool> {
         self.field.stick.as_ref().map(|s| s[i])
@@ -308,6 +313,7 @@ mod tests {
             pressure: points.iter().map(|p| 1.0 - p[0] * p[0] - p[1] * p[1]).collect(),
             traction: Some(points.iter().map(|p| [p[0], p[1]]).collect()),
             stick: None,
+            slip: None,
             points,
         }
     }
@@ -335,6 +341,7 @@ mod tests {
             pressure: vec![2.0, 1.0, 0.0],
             traction: None,
             stick: None,
+            slip: None,
         };
         let view = FieldView::of(&field);
         assert_eq!(view.layout, Layout::Profile);
@@ -351,6 +358,7 @@ mod tests {
             pressure: vec![1.0, 2.0, 3.0, 4.0],
             traction: None,
             stick: None,
+            slip: None,
         };
         let view = FieldView {
             field: &field,

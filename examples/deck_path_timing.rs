@@ -1,0 +1,94 @@
+//! Speed of the external decks along a whole loading path, side by side with the in-crate
+//! `fem-axisym` in one run: the paper's path (cases/paper-fig7.toml, 1101 steps) at the default
+//! pole size c_max/40 through FreeFEM, dolfinx and fem-axisym, interleaved, one warm-up run each
+//! then REPEATS timed runs (default 3); medians of wall and CPU time (CPU includes the external
+//! programs'), the decks' own split (set-up: assembly, factorisation, condensation; path), and the
+//! errors: P against Hertz, Q against MDR (worst over every step, relative to the peak |Q|), and
+//! each deck against fem-axisym (P, and Q when fem-axisym solves the tangential mode).
+//!
+//! Run: `cargo run --release --example deck_path_timing [CASE] [REPEATS]` (needs scripts/setup.sh).
+
+use std::path::Path;
+
+use spherecontact::bench::{self, worst_error};
+use spherecontact::case::Case;
+use spherecontact::history::{History, Quantity};
+use spherecontact::registry;
+use spherecontact::solver::{self, Solver};
+
+/// A column of seconds, or "—" where a solver does not report that part.
+fn seconds(history: &History, key: &str) -> String {
+    history
+        .metadata
+        .extra
+        .get(key)
+        .and_then(serde_json::Value::as_f64)
+        .map_or_else(|| "—".to_owned(), |s| format!("{s:.1}"))
+}
+
+/// A percentage, or "—".
+fn percent(value: Option<f64>) -> String {
+    value.map_or_else(|| "—".to_owned(), |v| format!("{:.3}", v * 100.0))
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let case = args.next().unwrap_or_else(|| "cases/paper-fig7.toml".into());
+    let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(3);
+    let scene = Case::load(Path::new(&case))
+        .expect("a valid case, run from the crate root")
+        .scene;
+    let solvers: Vec<Box<dyn Solver>> = ["freefem-axisym", "fenicsx-axisym", "fem-axisym"]
+        .iter()
+        .filter_map(|name| registry::by_name(name))
+        .collect();
+    let reference = |name: &str| registry::by_name(name).and_then(|s| solver::run(s.as_ref(), &scene).ok());
+    let (hertz, mdr) = (reference("hertz"), reference("mdr"));
+    println!(
+        "{case}: {} steps, c_max = {:.4} mm; medians of {repeats} runs after a warm-up, interleaved; errors in %",
+        scene.steps().len(),
+        scene.max_contact_radius() * 1e3
+    );
+    println!(
+        "{:<15} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>10} {:>10}",
+        "solver", "wall s", "CPU s", "setup s", "path s", "P-Hertz", "Q-MDR", "P-fem", "Q-fem"
+    );
+    let timings = bench::time_solvers(&solvers, &scene, repeats);
+    let fem = timings
+        .iter()
+        .flatten()
+        .find(|t| t.solver == "fem-axisym")
+        .map(|t| t.history.clone());
+    let fem_cpu = timings
+        .iter()
+        .flatten()
+        .find(|t| t.solver == "fem-axisym")
+        .map(|t| bench::median(&t.cpu_seconds));
+    for timing in &timings {
+        let timing = match timing {
+            Ok(t) => t,
+            Err((name, e)) => {
+                println!("{name:<15} {e}");
+                continue;
+            }
+        };
+        let h = &timing.history;
+        let against = |r: &Option<History>, q: Quantity, to_peak: bool| {
+            r.as_ref().and_then(|r| worst_error(h, r, q, to_peak))
+        };
+        let cpu = bench::median(&timing.cpu_seconds);
+        println!(
+            "{:<15} {:>8.1} {:>8.1} {:>8} {:>8} {:>9} {:>9} {:>10} {:>10}{}",
+            timing.solver,
+            bench::median(&timing.seconds),
+            cpu,
+            seconds(h, "deck_setup_s"),
+            seconds(h, "deck_path_s"),
+            percent(against(&hertz, Quantity::NormalForce, false)),
+            percent(against(&mdr, Quantity::TangentialForce, true)),
+            percent(against(&fem, Quantity::NormalForce, false)),
+            percent(against(&fem, Quantity::TangentialForce, true)),
+            fem_cpu.map_or_else(String::new, |f| format!("   CPU ×{:.0} fem-axisym", cpu / f)),
+        );
+    }
+}

@@ -1,0 +1,145 @@
+//! The half-space compliance of the panel grid as a [`Compliance`] of the contact engine: the
+//! Boussinesq (normal, one component) or Cerruti (tangential, two components) influence
+//! coefficients applied by zero-padded FFT ([`super::convolution`]).
+//!
+//! Points are the n² panels (index k = iy·n + ix), each of weight h² (the multipliers are panel
+//! pressures and tractions, their resultant Σ h² p). A product costs four (normal: two) real 2D
+//! transforms of the 2n × 2n padded grid; a column of the kernel costs n² multiply-adds, so a
+//! product after a few changed panels adds those columns instead.
+
+use crate::contact::Compliance;
+
+use super::convolution::{Convolver, Spectrum};
+use super::grid::Grid;
+use super::influence::{Kernels, PairCompliance};
+
+/// Kernel columns cheaper than one FFT product (measured at 64²–256²: a product costs about as
+/// much as 20–40 columns).
+const COLUMN_BUDGET: usize = 16;
+
+/// A half-space compliance on a panel grid, applied by FFT.
+pub struct FftCompliance {
+    grid: Grid,
+    convolver: Convolver,
+    /// The kernels in the circulant layout (row-major blocks: xx, xy, yx, yy, or zz alone).
+    kernels: Vec<Vec<f64>>,
+    spectra: Vec<Spectrum>,
+    /// Work spectra of the load's components and of a displacement component.
+    work: [Spectrum; 3],
+    weights: Vec<f64>,
+    largest: f64,
+}
+
+impl FftCompliance {
+    /// The Boussinesq compliance of `grid` (one component).
+    pub fn normal(grid: &Grid, compliance: &PairCompliance) -> Self {
+        Self::of(grid, vec![Kernels::normal(grid, compliance)])
+    }
+
+    /// The Cerruti compliance of `grid` (two components, x and y).
+    pub fn tangential(grid: &Grid, compliance: &PairCompliance) -> Self {
+        let t = Kernels::tangential(grid, compliance);
+        Self::of(grid, vec![t.xx, t.xy.clone(), t.xy, t.yy])
+    }
+
+    fn of(grid: &Grid, kernels: Vec<Vec<f64>>) -> Self {
+        let mut convolver = Convolver::new(grid.n);
+        let spectra: Vec<Spectrum> = kernels.iter().map(|k| convolver.kernel_spectrum(k)).collect();
+        // The kernels are even (xy odd in each offset, so its spectrum is real too): the symbol
+        // at each frequency is real, and the largest eigenvalue of C is the largest over the
+        // frequencies of the symbol's (1×1, or symmetric 2×2 [[a, b], [b, c]]) largest eigenvalue,
+        // (a+c)/2 + √(((a−c)/2)² + b²) — the padded circulant bounds the window's operator.
+        let largest = if spectra.len() == 1 {
+            spectra[0].values().iter().map(|v| v.re).fold(0.0, f64::max)
+        } else {
+            let v = |s: usize| spectra[s].values();
+            (0..v(0).len())
+                .map(|f| {
+                    let (a, b, c) = (v(0)[f].re, v(1)[f].re, v(3)[f].re);
+                    0.5 * (a + c) + (0.25 * (a - c).powi(2) + b * b).sqrt()
+                })
+                .fold(0.0, f64::max)
+        };
+        let work = [convolver.spectrum(), convolver.spectrum(), convolver.spectrum()];
+        Self {
+            grid: *grid,
+            work,
+            convolver,
+            kernels,
+            spectra,
+            weights: vec![grid.panel_area(); grid.len()],
+            largest,
+        }
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+}
+
+impl Compliance for FftCompliance {
+    fn points(&self) -> usize {
+        self.grid.len()
+    }
+
+    fn components(&self) -> usize {
+        if self.kernels.len() == 1 {
+            1
+        } else {
+            2
+        }
+    }
+
+    fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    fn apply(&mut self, load: &[f64], out: &mut [f64]) {
+        let len = self.grid.len();
+        let [qx, qy, u] = &mut self.work;
+        if self.kernels.len() == 1 {
+            self.convolver.field_spectrum_into(load, qx);
+            qx.times(&self.spectra[0]);
+            self.convolver.field_into(qx, out);
+            return;
+        }
+        self.convolver.field_spectrum_into(&load[..len], qx);
+        self.convolver.field_spectrum_into(&load[len..], qy);
+        let s = &self.spectra;
+        u.set_combination(&[(&s[0], qx), (&s[1], qy)]);
+        self.convolver.field_into(u, &mut out[..len]);
+        u.set_combination(&[(&s[2], qx), (&s[3], qy)]);
+        self.convolver.field_into(u, &mut out[len..]);
+    }
+
+    fn largest_eigenvalue(&self) -> f64 {
+        self.largest
+    }
+
+    fn column_budget(&self) -> usize {
+        COLUMN_BUDGET
+    }
+
+    fn add_columns(&mut self, changes: &[(usize, f64)], out: &mut [f64]) {
+        let (n, len) = (self.grid.n, self.grid.len());
+        let k = self.components();
+        let side = 2 * n;
+        for &(j, delta) in changes {
+            let (cj, panel) = (j / len, j % len);
+            let (jx, jy) = (panel % n, panel / n);
+            for ci in 0..k {
+                let kernel = &self.kernels[ci * k + cj];
+                let out = &mut out[ci * len..(ci + 1) * len];
+                for iy in 0..n {
+                    // Offset (ix − jx, iy − jy) wraps into the circulant layout.
+                    let row = (iy + side - jy) % side * side;
+                    let target = &mut out[iy * n..(iy + 1) * n];
+                    for (ix, o) in target.iter_mut().enumerate() {
+                        *o += kernel[row + (ix + side - jx) % side] * delta;
+                    }
+                }
+            }
+        }
+    }
+}

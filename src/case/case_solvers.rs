@@ -1,0 +1,175 @@
+//! Solvers a case defines itself: a program run as a solver (`[[command_solvers]]`) and results
+//! computed elsewhere (`[[stored_results]]`).
+//!
+//! ```toml
+//! [[command_solvers]]
+//! name = "hertz-python"                 # a plain name (letters, digits, . _ -), not a built-in's
+//! command = ["python3", "{case_dir}/../examples/hertz_command_solver.py", "{scene}"]
+//! timeout = 60                          # s, optional (default 600), 0 < t ≤ 86400
+//! description = "…"                     # optional
+//!
+//! [[stored_results]]
+//! name = "lab-rig"
+//! file = "data/lab-rig.csv"             # a History CSV, relative to the case file
+//! description = "…"                     # optional
+//! ```
+//! Both formats (the scene file a command reads, the History CSV it writes and a stored file
+//! holds) are in `crate::exchange` and the README ("Check your own solver"). A stored file is
+//! validated against the path here, when the case is read.
+
+use std::path::Path;
+use std::time::Duration;
+
+use toml::Spanned;
+
+use super::raw::{RawCommandSolver, RawStoredResults};
+use super::{CaseError, Validator};
+use crate::exchange::results_csv;
+use crate::external::command::CommandSolver;
+use crate::external::stored::StoredResults;
+use crate::path::LoadingPath;
+use crate::registry;
+use crate::solver::Solver;
+
+/// A command's time limit when the case gives none [s].
+pub const DEFAULT_TIMEOUT_S: f64 = 600.0;
+
+/// The longest time limit a case may give a command [s]: one day.
+pub const MAX_TIMEOUT_S: f64 = 86_400.0;
+
+/// The longest solver name (it names output files).
+const MAX_NAME: usize = 64;
+
+/// A solver defined by the case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CaseSolver {
+    /// A program run as a solver.
+    Command(CommandSolver),
+    /// Results stored in a file.
+    Stored(StoredResults),
+}
+
+impl CaseSolver {
+    /// The solver.
+    pub fn solver(&self) -> Box<dyn Solver> {
+        match self {
+            CaseSolver::Command(s) => Box::new(s.clone()),
+            CaseSolver::Stored(s) => Box::new(s.clone()),
+        }
+    }
+
+    /// Its name.
+    pub fn name(&self) -> &str {
+        match self {
+            CaseSolver::Command(s) => &s.name,
+            CaseSolver::Stored(s) => &s.name,
+        }
+    }
+}
+
+impl Validator<'_> {
+    /// The case's own solvers, their names checked against each other and the registry.
+    pub(super) fn case_solvers(
+        &self,
+        commands: &[RawCommandSolver],
+        stored: &[RawStoredResults],
+        path: &LoadingPath,
+    ) -> Result<Vec<CaseSolver>, CaseError> {
+        let mut solvers: Vec<CaseSolver> = Vec::new();
+        for (i, raw) in commands.iter().enumerate() {
+            let field = format!("command_solvers[{i}]");
+            self.new_name(&raw.name, &field, &solvers)?;
+            solvers.push(CaseSolver::Command(self.command_solver(raw, &field)?));
+        }
+        for (i, raw) in stored.iter().enumerate() {
+            let field = format!("stored_results[{i}]");
+            self.new_name(&raw.name, &field, &solvers)?;
+            solvers.push(CaseSolver::Stored(self.stored_results(raw, &field, path)?));
+        }
+        Ok(solvers)
+    }
+
+    /// Checks that `name` is a plain name that no built-in or earlier case solver has.
+    fn new_name(&self, name: &Spanned<String>, field: &str, earlier: &[CaseSolver]) -> Result<(), CaseError> {
+        let text = name.get_ref();
+        let plain = !text.is_empty()
+            && text.len() <= MAX_NAME
+            && text
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-'))
+            && text.starts_with(|c: char| c.is_ascii_alphanumeric());
+        let field = format!("{field}.name");
+        if !plain {
+            return Err(self.error(
+                name,
+                field,
+                format!("`{text}` is not a plain name (allowed: 1 to {MAX_NAME} ASCII letters, digits, . _ -, starting with a letter or digit)"),
+            ));
+        }
+        if registry::by_name(text).is_some() || earlier.iter().any(|s| s.name() == text) {
+            return Err(self.error(
+                name,
+                field,
+                format!("`{text}` is already a solver's name (allowed: a new name)"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn command_solver(&self, raw: &RawCommandSolver, field: &str) -> Result<CommandSolver, CaseError> {
+        let command = raw.command.get_ref();
+        if command.first().is_none_or(|p| p.trim().is_empty()) {
+            return Err(self.error(
+                &raw.command,
+                format!("{field}.command"),
+                "no program (allowed: [\"PROGRAM\", \"ARGUMENT\", …])",
+            ));
+        }
+        let timeout = match &raw.timeout {
+            Some(t) => self.number(
+                t,
+                &format!("{field}.timeout"),
+                |t| t > 0.0 && t <= MAX_TIMEOUT_S,
+                "0 < timeout ≤ 86400 s",
+            )?,
+            None => DEFAULT_TIMEOUT_S,
+        };
+        Ok(CommandSolver {
+            name: raw.name.get_ref().clone(),
+            command: command.clone(),
+            timeout: Duration::from_secs_f64(timeout),
+            case_dir: self.case_dir().to_path_buf(),
+            description: raw
+                .description
+                .clone()
+                .unwrap_or_else(|| format!("command: {}", command.join(" "))),
+        })
+    }
+
+    fn stored_results(
+        &self,
+        raw: &RawStoredResults,
+        field: &str,
+        path: &LoadingPath,
+    ) -> Result<StoredResults, CaseError> {
+        let file = self.case_dir().join(raw.file.get_ref());
+        results_csv::read(&file, &path.steps())
+            .map_err(|e| self.error(&raw.file, format!("{field}.file"), e.to_string()))?;
+        Ok(StoredResults {
+            name: raw.name.get_ref().clone(),
+            file,
+            description: raw
+                .description
+                .clone()
+                .unwrap_or_else(|| format!("stored results {}", raw.file.get_ref())),
+        })
+    }
+
+    /// The case file's folder, against which its relative paths resolve.
+    fn case_dir(&self) -> &Path {
+        match self.file.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        }
+    }
+}

@@ -1,0 +1,174 @@
+//! A command solver: any program named by a case, given the scene file and read back through the
+//! History CSV (README, "Check your own solver").
+//!
+//! The run: a fresh temporary folder; `scene.json` written there ([`crate::exchange::scene_file`]);
+//! the command run there with the decks' process handling ([`super::process`]: own process group,
+//! killed with its children at the timeout, stdout and stderr in `command.stdout` /
+//! `command.stderr`); `history.csv` read back and validated against the path
+//! ([`crate::exchange::results_csv`]); optionally `metadata.json` read for the version, model,
+//! resolution and warnings the program wants shown. On any failure the folder is kept and named
+//! in the message; on success it is removed.
+//!
+//! Placeholders in the command: `{case_dir}` (the case file's folder), `{scene}` and `{history}`
+//! (the absolute paths of the two files). A program given as a relative path with a `/` is
+//! resolved against the case file's folder; a bare name is looked up on PATH.
+//!
+//! A program that is not there is a failure of that solver, not "not available": the case names
+//! it explicitly, and a typo must not pass as a missing optional tool.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use serde::Deserialize;
+
+use super::process::Job;
+use super::program;
+use super::toolchain::which;
+use crate::exchange::{results_csv, scene_file};
+use crate::history::{History, Metadata, StepResult};
+use crate::scene::Scene;
+use crate::solver::{SolveError, Solver};
+
+/// The file a command may write beside its History CSV to describe itself.
+pub const METADATA_FILE: &str = "metadata.json";
+
+/// What a command may say about itself in [`METADATA_FILE`] (every key optional).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CommandMetadata {
+    /// The program's version.
+    pub version: Option<String>,
+    /// The model it solves.
+    pub model: Option<String>,
+    /// Its resolution, in words.
+    pub resolution: Option<String>,
+    /// Warnings a reader must see.
+    #[serde(default)]
+    pub warnings: Vec<String>,
+}
+
+/// A program named by a case as a solver.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CommandSolver {
+    /// The solver's name in the case (a plain name: it names output files).
+    pub name: String,
+    /// The program and its arguments, placeholders not yet filled.
+    pub command: Vec<String>,
+    /// Wall-clock limit; at the limit the program and its children are killed.
+    pub timeout: Duration,
+    /// The case file's folder: `{case_dir}`, and the anchor of relative program paths.
+    pub case_dir: PathBuf,
+    /// The description shown by `list` and in reports.
+    pub description: String,
+}
+
+impl Solver for CommandSolver {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn description(&self) -> &str {
+        &self.description
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        program::in_run_folder(&self.name, |dir| {
+            let job = self.job(dir)?;
+            let label = job.program.display().to_string();
+            let (steps, told, wall_s) = run_exchange(scene, dir, &job, &label)?;
+            let mut metadata = Metadata {
+                version: told.version.unwrap_or_else(|| "command".into()),
+                model: told
+                    .model
+                    .unwrap_or_else(|| format!("command: {}", self.command.join(" "))),
+                resolution: told.resolution.unwrap_or_default(),
+                warnings: told.warnings,
+                ..Metadata::default()
+            };
+            metadata
+                .extra
+                .insert("command".into(), serde_json::json!(self.command));
+            metadata
+                .extra
+                .insert("command_wall_s".into(), serde_json::json!(wall_s));
+            Ok(History {
+                metadata,
+                steps,
+                fields: Vec::new(),
+            })
+        })
+    }
+}
+
+impl CommandSolver {
+    /// The program and arguments with the placeholders filled, the program resolved.
+    pub fn job(&self, run_dir: &Path) -> Result<Job, SolveError> {
+        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        let case_dir = absolute(&self.case_dir);
+        let run_dir = absolute(run_dir);
+        let fill = |text: &str| {
+            text.replace("{case_dir}", &case_dir.to_string_lossy())
+                .replace("{scene}", &run_dir.join(scene_file::FILE_NAME).to_string_lossy())
+                .replace(
+                    "{history}",
+                    &run_dir.join(scene_file::HISTORY_FILE).to_string_lossy(),
+                )
+        };
+        let Some((program, args)) = self.command.split_first() else {
+            return Err(SolveError::Failed("empty command".into()));
+        };
+        let program = PathBuf::from(fill(program));
+        let program = if program.is_relative() && program.components().count() > 1 {
+            case_dir.join(program)
+        } else {
+            program
+        };
+        let resolved = which(&program).ok_or_else(|| {
+            SolveError::Failed(format!(
+                "program `{}` not found (a bare name is looked up on PATH, a relative path in the case file's folder {})",
+                program.display(),
+                case_dir.display()
+            ))
+        })?;
+        Ok(Job {
+            program: resolved,
+            args: args.iter().map(|a| fill(a)).collect(),
+            env: Vec::new(),
+            timeout: self.timeout,
+        })
+    }
+}
+
+/// Writes the scene file into `dir`, runs `job` there and reads back the History CSV it wrote
+/// (validated against the path) and its optional [`METADATA_FILE`]; also its wall time [s].
+pub fn run_exchange(
+    scene: &Scene,
+    dir: &Path,
+    job: &Job,
+    program: &str,
+) -> Result<(Vec<StepResult>, CommandMetadata, f64), SolveError> {
+    let failed = |what: &str, e: &dyn std::fmt::Display| SolveError::Failed(format!("{what}: {e}"));
+    std::fs::write(
+        dir.join(scene_file::FILE_NAME),
+        scene_file::SceneFile::of(scene).to_json(),
+    )
+    .map_err(|e| failed("writing the scene file", &e))?;
+    let run = program::run_to_success(job, dir, "command", program, |_| "the program's own failure")?;
+    let steps = results_csv::read(&dir.join(scene_file::HISTORY_FILE), &scene.steps())
+        .map_err(|e| failed("its results", &e))?;
+    Ok((steps, read_metadata(&dir.join(METADATA_FILE))?, run.wall_s))
+}
+
+/// The command's own description of itself, if it wrote one.
+fn read_metadata(file: &Path) -> Result<CommandMetadata, SolveError> {
+    match std::fs::read_to_string(file) {
+        Ok(text) => serde_json::from_str(&text).map_err(|e| {
+            SolveError::Failed(format!(
+                "{}: {e} (allowed keys: version, model, resolution, warnings)",
+                file.display()
+            ))
+        }),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(CommandMetadata::default()),
+        Err(e) => Err(SolveError::Failed(format!("{}: {e}", file.display()))),
+    }
+}

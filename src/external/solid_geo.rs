@@ -1,0 +1,273 @@
+//! The gmsh geometry of a 3D body and its quadratic tetrahedral mesh: half of a hemisphere (or
+//! of a cap), graded from the contact pole by the path's largest contact radius.
+//!
+//! Model: body 1, radius R, centre (0, 0, R), touching the plane z = 0 at the pole (the origin);
+//! the part 0 ≤ z ≤ H (H = R: the hemisphere; H < R: a cap cut at that distance from the pole)
+//! and y ≥ 0 (the plane y = 0 contains the shift along x and is a plane of symmetry). Physical
+//! groups, as `src/fem/mesh/solid.rs` reads them: surface 1 the spherical surface (contact
+//! candidate), surface 2 the flat far face z = H (gripped), surface 3 the symmetry plane y = 0,
+//! volume 10 the body.
+//!
+//! Grading: element size h (the resolution) within distance `tfine` of the disc of radius
+//! `rfine` around the pole on the contact plane, growing linearly with that distance at rate
+//! `growth` up to `hmax` (a MathEval distance field and a Threshold field). The disc covers the
+//! candidate contact zone, so the contact surface is uniformly fine there, while the size grows
+//! with depth below it: the stresses of a contact of radius c vary over depths of order c, and
+//! a fine ball instead of a fine layer would hold most of the mesh's nodes.
+//!
+//! Files (metres): `<stem>.geo`, and `<stem>.msh` in MSH 4.1 with 10-node tetrahedra and 6-node
+//! triangles whose midside nodes lie on the sphere (`-order 2`), for the in-crate `fem-3d` and a
+//! FEniCSx 3D deck on the same mesh.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use super::process::{self, Ending, Job};
+use super::toolchain::{Tool, Toolchain};
+use crate::solver::SolveError;
+
+/// What to mesh and how finely.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidGeometry {
+    /// Sphere radius R [m].
+    pub radius: f64,
+    /// Height H of the far face above the pole [m]: R for the hemisphere, less for a cap.
+    pub height: f64,
+    /// Element size h at the pole [m].
+    pub pole_size: f64,
+    /// Radius of the disc around the pole (on the contact plane) where the surface is fine [m].
+    pub fine_radius: f64,
+    /// Distance from that disc within which the size is h [m].
+    pub fine_depth: f64,
+    /// Growth of the element size per unit distance beyond it.
+    pub growth: f64,
+    /// The largest element size [m].
+    pub max_size: f64,
+}
+
+impl SolidGeometry {
+    /// Checks the parameters: a sphere, a far face between the fine zone and the equator, a
+    /// pole size below the fine distance.
+    pub fn check(&self) -> Result<(), String> {
+        let finite = [
+            self.radius,
+            self.height,
+            self.pole_size,
+            self.fine_radius,
+            self.fine_depth,
+            self.growth,
+            self.max_size,
+        ]
+        .iter()
+        .all(|v| v.is_finite() && *v > 0.0);
+        if !finite {
+            return Err(format!(
+                "every mesh parameter must be positive and finite: {self:?}"
+            ));
+        }
+        let fine = self.fine_radius + self.fine_depth;
+        if self.height > self.radius * (1.0 + 1e-12) || self.height < 2.0 * fine {
+            return Err(format!(
+                "the far face at {:e} m must lie between twice the fine zone ({:e} m) and the equator ({:e} m)",
+                self.height,
+                2.0 * fine,
+                self.radius
+            ));
+        }
+        if self.pole_size > 0.5 * self.fine_radius || self.max_size < self.pole_size {
+            return Err(format!(
+                "need pole size ≤ half the fine radius and ≤ the largest size: {self:?}"
+            ));
+        }
+        Ok(())
+    }
+
+    /// The distance from the fine disc at which the size reaches `max_size`.
+    fn coarse_distance(&self) -> f64 {
+        self.fine_depth + (self.max_size - self.pole_size) / self.growth
+    }
+
+    /// The gmsh `.geo` text (metres).
+    pub fn geo(&self) -> Result<String, String> {
+        self.check()?;
+        Ok(format!(
+            "// spherecontact: half body y >= 0 of a sphere cut at z = H (metres), for fem-3d.
+// Sphere radius R, centre (0,0,R), pole (0,0,0) on the contact plane z = 0.
+// Mesh: gmsh THIS.geo -3 -order 2 -format msh41
+SetFactory(\"OpenCASCADE\");
+R = {r:e};
+H = {h_far:e};        // far face z = H (H = R: the hemisphere)
+h = {h:e};        // element size at the pole (the resolution)
+rfine = {rfine:e};    // radius of the fine disc around the pole on the contact plane
+tfine = {tfine:e};    // size h up to this distance from the disc
+dcoarse = {dcoarse:e};  // size grows linearly to hmax at this distance (growth {growth})
+hmax = {hmax:e};
+
+Sphere(1) = {{0, 0, R, R}};
+Box(2) = {{-R, 0, 0, 2*R, R, H}};
+BooleanIntersection(3) = {{ Volume{{1}}; Delete; }}{{ Volume{{2}}; Delete; }};
+
+e = 1e-3 * R;
+far() = Surface In BoundingBox{{-R-e, -e, H-e, R+e, R+e, H+e}};
+sym() = Surface In BoundingBox{{-R-e, -e, -e, R+e, e, H+e}};
+contact() = Abs(Boundary{{ Volume{{3}}; }});
+contact() -= far();
+contact() -= sym();
+Physical Surface(\"contact\", 1) = contact();
+Physical Surface(\"far\", 2) = far();
+Physical Surface(\"symmetry\", 3) = sym();
+Physical Volume(\"body\", 10) = {{3}};
+
+// Distance from the disc {{z = 0, x² + y² <= rfine²}}.
+Field[1] = MathEval;
+Field[1].F = Sprintf(\"Sqrt(z*z + Max(0, Sqrt(x*x + y*y) - %g)^2)\", rfine);
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = h;
+Field[2].SizeMax = hmax;
+Field[2].DistMin = tfine;
+Field[2].DistMax = dcoarse;
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Mesh.Algorithm = 6;            // Frontal-Delaunay surfaces (algorithm 8 segfaults in gmsh 4.8.4)
+Mesh.Algorithm3D = 1;          // Delaunay
+Mesh.Optimize = 1;
+Mesh.ElementOrder = 2;
+Mesh.SecondOrderLinear = 0;    // midside nodes on the sphere
+",
+            r = self.radius,
+            h_far = self.height,
+            h = self.pole_size,
+            rfine = self.fine_radius,
+            tfine = self.fine_depth,
+            dcoarse = self.coarse_distance(),
+            growth = self.growth,
+            hmax = self.max_size,
+        ))
+    }
+}
+
+/// The time gmsh may take for one 3D mesh (the default mesh takes a few seconds; a mesh ten
+/// times finer about a minute).
+const GMSH_TIMEOUT: Duration = Duration::from_secs(600);
+
+/// The files of one mesh.
+#[derive(Clone, Debug)]
+pub struct SolidMeshFiles {
+    /// The geometry (metres).
+    pub geo: PathBuf,
+    /// MSH 4.1, quadratic, metres.
+    pub msh: PathBuf,
+    /// Wall time of gmsh [s].
+    pub wall_s: f64,
+}
+
+/// Writes `<dir>/<stem>.geo` and runs gmsh for `<dir>/<stem>.msh`.
+pub fn mesh(
+    geometry: &SolidGeometry,
+    dir: &Path,
+    stem: &str,
+    toolchain: &Toolchain,
+) -> Result<SolidMeshFiles, SolveError> {
+    toolchain.require(Tool::Gmsh).map_err(SolveError::Unavailable)?;
+    let geo = dir.join(format!("{stem}.geo"));
+    let text = geometry.geo().map_err(SolveError::NotApplicable)?;
+    std::fs::write(&geo, text).map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
+    let msh = dir.join(format!("{stem}.msh"));
+    let job = Job {
+        program: toolchain.gmsh.clone(),
+        args: vec![
+            geo.display().to_string(),
+            "-3".into(),
+            "-order".into(),
+            "2".into(),
+            "-format".into(),
+            "msh41".into(),
+            "-o".into(),
+            msh.display().to_string(),
+        ],
+        env: vec![],
+        timeout: GMSH_TIMEOUT,
+    };
+    let run = process::run(&job, dir, "gmsh")
+        .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
+    if !run.succeeded() || !msh.is_file() {
+        let how = match run.ending {
+            Ending::Exited(code) => format!("exited with code {code}"),
+            Ending::Signalled(s) => format!("crashed with {}", process::signal_name(s)),
+            Ending::TimedOut => format!("timed out after {} s and was killed", GMSH_TIMEOUT.as_secs()),
+        };
+        return Err(SolveError::Failed(format!(
+            "gmsh (3D mesh) {how}: {}",
+            run.tail(8)
+        )));
+    }
+    Ok(SolidMeshFiles {
+        geo,
+        msh,
+        wall_s: run.wall_s,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn geometry() -> SolidGeometry {
+        SolidGeometry {
+            radius: 0.1,
+            height: 0.1,
+            pole_size: 1e-4,
+            fine_radius: 1.2e-3,
+            fine_depth: 2e-4,
+            growth: 0.4,
+            max_size: 0.02,
+        }
+    }
+
+    #[test]
+    fn the_geo_names_the_groups_the_reader_needs() {
+        let g = geometry();
+        let geo = g.geo().unwrap();
+        for group in [
+            "Physical Surface(\"contact\", 1)",
+            "Physical Surface(\"far\", 2)",
+            "Physical Surface(\"symmetry\", 3)",
+            "Physical Volume(\"body\", 10)",
+        ] {
+            assert!(geo.contains(group), "{group}");
+        }
+        assert!(geo.contains(&format!("dcoarse = {:e};", 2e-4 + (0.02 - 1e-4) / 0.4)));
+    }
+
+    #[test]
+    fn parameters_out_of_range_are_refused() {
+        let cases = [
+            SolidGeometry {
+                height: 0.2,
+                ..geometry()
+            },
+            SolidGeometry {
+                height: 1e-3,
+                ..geometry()
+            },
+            SolidGeometry {
+                pole_size: 1e-3,
+                ..geometry()
+            },
+            SolidGeometry {
+                growth: f64::NAN,
+                ..geometry()
+            },
+            SolidGeometry {
+                max_size: 0.0,
+                ..geometry()
+            },
+        ];
+        for g in cases {
+            assert!(g.geo().is_err(), "{g:?}");
+        }
+    }
+}

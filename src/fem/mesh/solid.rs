@@ -1,0 +1,300 @@
+//! The 3D mesh of one body: 10-node tetrahedra and the 6-node faces of its boundary groups, read
+//! from a gmsh MSH 4.1 file (ASCII or binary) through `mshio`.
+//!
+//! Frame and conventions (those of the `.geo` that `src/external/solid_geo.rs` writes): the body
+//! touches the contact plane z = 0 at its pole (the origin) and lies in z ≥ 0; the shift is along
+//! x and the half body y ≥ 0 is meshed. Physical groups: surface [`CONTACT`] (the contact
+//! candidate surface), surface [`FAR`] (the gripped far face), surface [`SYMMETRY`] (the plane
+//! y = 0) and a volume [`BODY`]. Elements: 10-node tetrahedra (gmsh type 11) in the body,
+//! 6-node triangles (type 9) on the surfaces (`Mesh.ElementOrder = 2`).
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use mshio::mshfile::ElementType;
+
+use crate::fem::element::tet10;
+
+/// Physical surface tag of the contact candidate surface.
+pub const CONTACT: i32 = 1;
+/// Physical surface tag of the gripped far face.
+pub const FAR: i32 = 2;
+/// Physical surface tag of the symmetry plane y = 0.
+pub const SYMMETRY: i32 = 3;
+/// Physical volume tag of the body.
+pub const BODY: i32 = 10;
+
+/// A body's mesh of 10-node tetrahedra with its boundary groups.
+#[derive(Clone, Debug, Default)]
+pub struct SolidMesh {
+    /// Node coordinates [m].
+    pub nodes: Vec<[f64; 3]>,
+    /// Elements in gmsh's node order ([`tet10`]), positively oriented.
+    pub tetrahedra: Vec<[usize; 10]>,
+    /// The faces of the contact candidate surface (gmsh's 6-node triangle order).
+    pub contact: Vec<[usize; 6]>,
+    /// The faces of the gripped far face.
+    pub far: Vec<[usize; 6]>,
+    /// The faces on the symmetry plane y = 0.
+    pub symmetry: Vec<[usize; 6]>,
+}
+
+impl SolidMesh {
+    /// The distinct nodes of some faces, sorted.
+    pub fn nodes_of(faces: &[[usize; 6]]) -> Vec<usize> {
+        let mut nodes: Vec<usize> = faces.iter().flatten().copied().collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
+    /// The coordinates of element `e`.
+    pub fn coords(&self, e: usize) -> tet10::Coords {
+        self.tetrahedra[e].map(|n| self.nodes[n])
+    }
+
+    /// The coordinates of a face.
+    pub fn face_coords(&self, face: &[usize; 6]) -> [[f64; 3]; 6] {
+        face.map(|n| self.nodes[n])
+    }
+}
+
+/// Why a solid mesh cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum SolidMeshError {
+    /// A file that cannot be read or does not hold what this model needs.
+    #[error("mesh file {}: {problem}", path.display())]
+    File {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// An element with a non-positive Jacobian.
+    #[error("element {0} is inverted or degenerate")]
+    Inverted(usize),
+}
+
+/// Reads the MSH 4.1 file at `path`.
+pub fn read(path: &Path) -> Result<SolidMesh, SolidMeshError> {
+    let file_error = |problem: String| SolidMeshError::File {
+        path: path.to_path_buf(),
+        problem,
+    };
+    let bytes = std::fs::read(path).map_err(|e| file_error(format!("cannot be read: {e}")))?;
+    parse(&bytes).map_err(file_error)
+}
+
+/// Parses MSH 4.1 bytes; the error says what is missing or wrong.
+pub fn parse(bytes: &[u8]) -> Result<SolidMesh, String> {
+    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| format!("not MSH 4.1: {e}"))?;
+    let data = msh.data;
+    let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements) else {
+        return Err("needs $Entities, $Nodes and $Elements sections".into());
+    };
+    let mut index: HashMap<u64, usize> = HashMap::new();
+    let mut coords = Vec::new();
+    for block in &nodes.node_blocks {
+        let base = coords.len();
+        match &block.node_tags {
+            Some(tags) => index.extend(tags.iter().map(|(&t, &i)| (t, base + i))),
+            None => index
+                .extend((0..block.nodes.len()).map(|i| (nodes.min_node_tag + (base + i) as u64, base + i))),
+        }
+        coords.extend(block.nodes.iter().map(|n| [n.x, n.y, n.z]));
+    }
+    let surface_groups: HashMap<i32, Vec<i32>> = entities
+        .surfaces
+        .iter()
+        .map(|s| (s.tag, s.physical_tags.clone()))
+        .collect();
+    let volume_groups: HashMap<i32, Vec<i32>> = entities
+        .volumes
+        .iter()
+        .map(|v| (v.tag, v.physical_tags.clone()))
+        .collect();
+    let node = |tag: &u64| {
+        index
+            .get(tag)
+            .copied()
+            .ok_or_else(|| format!("unknown node tag {tag}"))
+    };
+    let mut mesh = SolidMesh {
+        nodes: coords,
+        ..SolidMesh::default()
+    };
+    let mut faces: HashMap<i32, Vec<[usize; 6]>> = HashMap::new();
+    let mut first_order = None;
+    for block in &elements.element_blocks {
+        match block.element_type {
+            ElementType::Tet10 => {
+                if !volume_groups
+                    .get(&block.entity_tag)
+                    .is_some_and(|g| g.contains(&BODY))
+                {
+                    continue;
+                }
+                for e in &block.elements {
+                    let t: Vec<usize> = e.nodes.iter().map(node).collect::<Result<_, _>>()?;
+                    mesh.tetrahedra.push(std::array::from_fn(|k| t[k]));
+                }
+            }
+            ElementType::Tri6 => {
+                for group in surface_groups.get(&block.entity_tag).into_iter().flatten() {
+                    for e in &block.elements {
+                        let f: Vec<usize> = e.nodes.iter().map(node).collect::<Result<_, _>>()?;
+                        faces
+                            .entry(*group)
+                            .or_default()
+                            .push(std::array::from_fn(|k| f[k]));
+                    }
+                }
+            }
+            ElementType::Tet4 | ElementType::Tri3 => first_order = Some(block.element_type),
+            ElementType::Pnt | ElementType::Lin2 | ElementType::Lin3 => {}
+            other => {
+                return Err(format!(
+                    "element type {other:?} is not supported (10-node tetrahedra and 6-node triangles)"
+                ))
+            }
+        }
+    }
+    if let (Some(kind), true) = (first_order, mesh.tetrahedra.is_empty()) {
+        return Err(format!(
+            "first-order elements ({kind:?}): the model needs quadratic ones (gmsh -order 2, or \
+             Mesh.ElementOrder = 2)"
+        ));
+    }
+    if mesh.tetrahedra.is_empty() {
+        return Err(format!(
+            "no 10-node tetrahedra in physical volume {BODY} (\"body\")"
+        ));
+    }
+    let mut group = |tag: i32, name: &str| {
+        faces
+            .remove(&tag)
+            .filter(|f| !f.is_empty())
+            .ok_or_else(|| format!("no 6-node triangles in physical surface {tag} (\"{name}\")"))
+    };
+    mesh.contact = group(CONTACT, "contact")?;
+    mesh.far = group(FAR, "far")?;
+    mesh.symmetry = group(SYMMETRY, "symmetry")?;
+    orient(&mut mesh).map_err(|e| e.to_string())?;
+    Ok(mesh)
+}
+
+/// Makes every element positively oriented (gmsh's may be either way round) and refuses
+/// degenerate ones.
+fn orient(mesh: &mut SolidMesh) -> Result<(), SolidMeshError> {
+    for e in 0..mesh.tetrahedra.len() {
+        let centroid = [0.25; 3];
+        if tet10::map(&mesh.coords(e), centroid).is_some() {
+            continue;
+        }
+        // Swap corners 1 and 2: edges 0–1 ↔ 2–0 and 3–1 ↔ 3–2 swap with them.
+        let t = &mut mesh.tetrahedra[e];
+        t.swap(1, 2);
+        t.swap(4, 6);
+        t.swap(8, 9);
+        if tet10::map(&mesh.coords(e), centroid).is_none() {
+            return Err(SolidMeshError::Inverted(e));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An ASCII MSH 4.1 text of the reference 10-node tetrahedron (or, with `first_order`, its
+    /// 4-node version) with a 6-node face in each of the physical surfaces `groups`.
+    fn msh(groups: &[i32], first_order: bool) -> String {
+        let mut s = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n");
+        s += &format!("0 0 {} 1\n", groups.len());
+        for (k, g) in groups.iter().enumerate() {
+            s += &format!("{} 0 0 0 1 1 1 1 {g} 0\n", k + 1);
+        }
+        s += "1 0 0 0 1 1 1 1 10 0\n$EndEntities\n$Nodes\n1 10 1 10\n3 1 0 10\n";
+        for tag in 1..=10 {
+            s += &format!("{tag}\n");
+        }
+        for p in tet10::NODES {
+            s += &format!("{} {} {}\n", p[0], p[1], p[2]);
+        }
+        s += &format!(
+            "$EndNodes\n$Elements\n{} {} 1 {}\n",
+            groups.len() + 1,
+            groups.len() + 1,
+            groups.len() + 1
+        );
+        let faces = [[1, 2, 3, 5, 6, 7], [1, 2, 4, 5, 10, 8], [1, 3, 4, 7, 9, 8]];
+        for (k, f) in faces.iter().take(groups.len()).enumerate() {
+            let f: &[usize] = if first_order { &f[..3] } else { f };
+            let nodes: Vec<String> = f.iter().map(ToString::to_string).collect();
+            s += &format!(
+                "2 {} {} 1\n{} {}\n",
+                k + 1,
+                if first_order { 2 } else { 9 },
+                k + 1,
+                nodes.join(" ")
+            );
+        }
+        let (kind, count) = if first_order { (4, 4) } else { (11, 10) };
+        let nodes: Vec<String> = (1..=count).map(|t: usize| t.to_string()).collect();
+        s += &format!(
+            "3 1 {kind} 1\n{} {}\n$EndElements\n",
+            groups.len() + 1,
+            nodes.join(" ")
+        );
+        s
+    }
+
+    #[test]
+    fn a_quadratic_mesh_with_its_groups_is_read() {
+        let mesh = parse(msh(&[CONTACT, FAR, SYMMETRY], false).as_bytes()).unwrap();
+        assert_eq!(mesh.tetrahedra, vec![[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]]);
+        assert_eq!(mesh.contact, vec![[0, 1, 2, 4, 5, 6]]);
+        assert_eq!(mesh.far.len(), 1);
+        assert_eq!(mesh.symmetry.len(), 1);
+    }
+
+    #[test]
+    fn missing_groups_and_first_order_elements_are_named() {
+        let missing = parse(msh(&[CONTACT, SYMMETRY], false).as_bytes()).unwrap_err();
+        assert!(missing.contains("physical surface 2 (\"far\")"), "{missing}");
+        let linear = parse(msh(&[CONTACT, FAR, SYMMETRY], true).as_bytes()).unwrap_err();
+        assert!(
+            linear.contains("first-order") && linear.contains("-order 2"),
+            "{linear}"
+        );
+    }
+
+    #[test]
+    fn the_error_names_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("body.msh");
+        std::fs::write(&path, msh(&[CONTACT, FAR], false)).unwrap();
+        let message = read(&path).unwrap_err().to_string();
+        assert!(
+            message.contains(&path.display().to_string()) && message.contains("symmetry"),
+            "{message}"
+        );
+        let absent = read(&dir.path().join("absent.msh")).unwrap_err().to_string();
+        assert!(
+            absent.contains("absent.msh") && absent.contains("cannot be read"),
+            "{absent}"
+        );
+    }
+
+    #[test]
+    fn an_inverted_element_is_turned_round() {
+        let mut mesh = SolidMesh {
+            nodes: tet10::NODES.to_vec(),
+            tetrahedra: vec![[0, 2, 1, 3, 6, 5, 4, 7, 9, 8]],
+            ..SolidMesh::default()
+        };
+        orient(&mut mesh).unwrap();
+        assert_eq!(mesh.tetrahedra[0], [0, 1, 2, 3, 4, 5, 6, 7, 8, 9]);
+    }
+}

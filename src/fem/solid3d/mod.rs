@@ -1,0 +1,19 @@
+//! The 3D finite element contact model (10-node tetrahedra) and its solver (`fem-3d`).
+//!
+//! | file | concept |
+//! |---|---|
+//! | [`system`] | DOFs (far face gripped, u_y = 0 on the symmetry plane) and the assembled stiffness |
+//! | [`ordering`] | the elimination order: minimum degree on the interior, contact DOFs last |
+//! | [`surface`] | the contact candidate surface and its sub-triangulated contact rule |
+//! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
+//! | [`model`] | the whole set-up of one body |
+//! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
+//! | [`output`] | displacement and stress of a contact state; VTU of the volume and the contact surface |
+
+pub mod condense;
+pub mod meshing;
+pub mod model;
+pub mod ordering;
+pub mod output;
+pub mod surface;
+pub mod system;

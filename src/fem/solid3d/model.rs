@@ -1,0 +1,134 @@
+//! The discrete model of one 3D body: assembled, factored and condensed once onto its contact
+//! candidate surface.
+//!
+//! Identical spheres (the only reduction built): the contact plane is a plane of symmetry of the
+//! pair, so one body is modelled; its far face is pushed by δn/2 towards the plane and shifted by
+//! δt/2 along x, and the mirror-image body's displacements are this one's reflected. The normal
+//! and tangential problems then decouple exactly (the cross compliances of the two bodies
+//! cancel), and only the half y ≥ 0 is meshed (the shift lies in the plane y = 0).
+
+use std::time::Instant;
+
+use super::condense::{self, Condensation, Condensed};
+use super::ordering::{self, ContactLast, NodeOrder};
+use super::surface::Surface;
+use super::system::{self, System};
+use crate::fem::assembly::Dofs;
+use crate::fem::element::tri6::Lame;
+use crate::fem::factor::{Factor, Ordering};
+use crate::fem::mesh::solid::SolidMesh;
+
+/// The elimination order of the factorisation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Elimination {
+    /// The interior's nodes ordered by `NodeOrder`, the contact DOFs last
+    /// ([`ordering::contact_last`]); needed by [`Condensation::TrailingBlock`].
+    ContactLast(NodeOrder),
+    /// faer's minimum degree on the whole DOF graph (contact DOFs wherever it puts them).
+    DofAmd,
+}
+
+/// How the model is built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Surface radius within which faces are contact candidates [m].
+    pub candidate_radius: f64,
+    /// The elimination order.
+    pub elimination: Elimination,
+    /// How the condensed compliance is computed.
+    pub condensation: Condensation,
+}
+
+impl Settings {
+    /// The fastest combination (measured by `examples/fem3d_timing.rs`).
+    pub fn fastest(candidate_radius: f64) -> Self {
+        Self {
+            candidate_radius,
+            elimination: Elimination::ContactLast(NodeOrder::MinimumDegree),
+            condensation: Condensation::TrailingBlock,
+        }
+    }
+}
+
+/// Wall times of the set-up [s].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Times {
+    /// Assembly of K.
+    pub assembly: f64,
+    /// The elimination order.
+    pub ordering: f64,
+    /// The sparse Cholesky factorisation.
+    pub factor: f64,
+    /// The condensed compliance.
+    pub condense: f64,
+}
+
+/// One meshed, assembled, factored and condensed body.
+pub struct Model {
+    /// The mesh.
+    pub mesh: SolidMesh,
+    /// Its material.
+    pub lame: Lame,
+    /// The assembled system.
+    pub system: System,
+    /// The factorisation of its stiffness.
+    pub factor: Factor,
+    /// The contact candidate surface and its rule.
+    pub surface: Surface,
+    /// The condensed compliances.
+    pub condensed: Condensed,
+    /// Set-up times.
+    pub times: Times,
+}
+
+impl Model {
+    /// Builds the model of `mesh` (already read or generated) for material `lame`.
+    pub fn build(mesh: SolidMesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
+        let t0 = Instant::now();
+        let surface = Surface::new(&mesh, settings.candidate_radius)?;
+        let fixed = system::fixed_dofs(&mesh);
+        if surface.nodes.iter().any(|&n| (0..3).all(|a| fixed[3 * n + a])) {
+            return Err(
+                "a contact candidate node lies on the gripped far face: the domain is too small".into(),
+            );
+        }
+        let system = system::assemble(&mesh, lame, Dofs::from_fixed(&fixed)).map_err(|e| e.to_string())?;
+        let t1 = Instant::now();
+        let how = match settings.elimination {
+            Elimination::ContactLast(how) => how,
+            Elimination::DofAmd if settings.condensation == Condensation::TrailingBlock => {
+                return Err("the trailing-block condensation needs the contact DOFs ordered last".into())
+            }
+            Elimination::DofAmd => NodeOrder::MinimumDegree,
+        };
+        let order: ContactLast =
+            ordering::contact_last(&system.graph, &mesh.nodes, &system.dofs, &surface.nodes, how)?;
+        let t2 = Instant::now();
+        let factor = match settings.elimination {
+            Elimination::ContactLast(_) => Factor::with_permutation(&system.stiffness, &order.forward)?,
+            Elimination::DofAmd => Factor::new(&system.stiffness, Ordering::Amd)?,
+        };
+        let t3 = Instant::now();
+        let condensed = condense::condense(&system, &factor, &order, &surface, settings.condensation);
+        let times = Times {
+            assembly: (t1 - t0).as_secs_f64(),
+            ordering: (t2 - t1).as_secs_f64(),
+            factor: (t3 - t2).as_secs_f64(),
+            condense: t3.elapsed().as_secs_f64(),
+        };
+        Ok(Self {
+            mesh,
+            lame,
+            system,
+            factor,
+            surface,
+            condensed,
+            times,
+        })
+    }
+
+    /// Free degrees of freedom.
+    pub fn dofs(&self) -> usize {
+        self.system.dofs.count()
+    }
+}

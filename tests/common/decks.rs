@@ -1,0 +1,70 @@
+//! Helpers of the external-deck tests: whether the tools are installed, the scenes, deck
+//! variants.
+
+use std::path::Path;
+use std::time::Duration;
+
+use spherecontact::case::Case;
+use spherecontact::external::axisym::AxisymSolver;
+use spherecontact::external::deck::Deck;
+use spherecontact::external::toolchain::Toolchain;
+use spherecontact::path::{LoadingPath, Position};
+use spherecontact::scene::Scene;
+use spherecontact::solver::Solver;
+
+/// True when every external tool works; otherwise prints why the calling test skips.
+pub fn tools_present(test: &str) -> bool {
+    let missing: Vec<String> = Toolchain::default()
+        .doctor()
+        .into_iter()
+        .filter(|p| !p.available())
+        .map(|p| p.line())
+        .collect();
+    if !missing.is_empty() {
+        eprintln!(
+            "{test}: skipped, external tools missing (run scripts/setup.sh):\n{}",
+            missing.join("\n")
+        );
+    }
+    missing.is_empty()
+}
+
+/// The hertz-normal case's scene with its path cut to δn 0 → 17 µm (one solve per deck).
+pub fn scene_17um() -> Scene {
+    let mut scene = Case::load(Path::new("cases/hertz-normal.toml")).unwrap().scene;
+    let position = |delta_n: f64| Position {
+        delta_n,
+        delta_t: 0.0,
+    };
+    scene.path = LoadingPath::try_new(vec![position(0.0), position(17e-6)], vec![17]).unwrap();
+    scene
+}
+
+pub fn with_deck_text<D: Deck>(deck: D, text: &str, timeout_s: u64) -> AxisymSolver<D> {
+    let mut solver = AxisymSolver::new(deck);
+    solver.options.deck_text = Some(text.to_owned());
+    solver.options.timeout = Some(Duration::from_secs(timeout_s));
+    solver
+}
+
+pub fn at_resolution<D: Deck + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
+    let mut solver = AxisymSolver::new(deck);
+    solver.options.resolution = Some(h);
+    Box::new(solver)
+}
+
+/// The paper's spheres pressed to δn = 17 µm (4 increments), sheared to δt = 3 µm (6) and back to
+/// −3 µm (12): partial slip, reversal, and gross sliding is not reached (δs = 4.13 µm).
+pub fn frictional_scene() -> Scene {
+    let mut scene = scene_17um();
+    let um = |delta_n: f64, delta_t: f64| Position {
+        delta_n: delta_n * 1e-6,
+        delta_t: delta_t * 1e-6,
+    };
+    scene.path = LoadingPath::try_new(
+        vec![um(0.0, 0.0), um(17.0, 0.0), um(17.0, 3.0), um(17.0, -3.0)],
+        vec![4, 6, 12],
+    )
+    .unwrap();
+    scene
+}

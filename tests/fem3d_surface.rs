@@ -1,0 +1,100 @@
+//! The 3D contact surface: the sub-triangulated contact rule passes the uniform-pressure patch
+//! test node by node (corners included), and the two ways of condensing the contact compliance
+//! agree. Run: `cargo test --test fem3d_surface`.
+
+mod solid_common;
+
+use spherecontact::contact::{Contact, DenseCompliance, Method, Settings};
+use spherecontact::fem::assembly::Dofs;
+use spherecontact::fem::element::tri6::Lame;
+use spherecontact::fem::factor::Factor;
+use spherecontact::fem::mesh::solid::SolidMesh;
+use spherecontact::fem::solid3d::condense::{self, Condensation, Condensed};
+use spherecontact::fem::solid3d::ordering::{self, NodeOrder};
+use spherecontact::fem::solid3d::surface::Surface;
+use spherecontact::fem::solid3d::system;
+use spherecontact::pair::Material;
+
+const YOUNG: f64 = 2.0;
+
+/// A bar on its contact face z = 0: u_z = 0 on the top z = 1, rollers on x = 0 and y = 0, the
+/// sides x = 1 and y = 1 free. Pressed by δ onto a frictionless rigid plane, its exact state is
+/// uniaxial: σ_zz = −E δ, a uniform contact pressure p = E δ.
+fn bar(distort: bool) -> (SolidMesh, Surface, Vec<Condensed>) {
+    let mesh = solid_common::block(3, [1.0; 3], distort);
+    let mut fixed = vec![false; 3 * mesh.nodes.len()];
+    for (n, x) in mesh.nodes.iter().enumerate() {
+        fixed[3 * n + 2] |= (x[2] - 1.0).abs() < 1e-12;
+        fixed[3 * n] |= x[0].abs() < 1e-12;
+        fixed[3 * n + 1] |= x[1].abs() < 1e-12;
+    }
+    let lame = Lame::of(&Material {
+        young: YOUNG,
+        poisson: 0.3,
+    });
+    let sys = system::assemble(&mesh, lame, Dofs::from_fixed(&fixed)).unwrap();
+    let surface = Surface::new(&mesh, 10.0).unwrap();
+    let order = ordering::contact_last(
+        &sys.graph,
+        &mesh.nodes,
+        &sys.dofs,
+        &surface.nodes,
+        NodeOrder::NestedDissection,
+    )
+    .unwrap();
+    let factor = Factor::with_permutation(&sys.stiffness, &order.forward).unwrap();
+    let condensed = [Condensation::TrailingBlock, Condensation::BlockedSolves]
+        .map(|how| condense::condense(&sys, &factor, &order, &surface, how))
+        .to_vec();
+    (mesh, surface, condensed)
+}
+
+#[test]
+fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
+    let delta = 1e-3;
+    for distort in [false, true] {
+        let (_, surface, condensed) = bar(distort);
+        let c = &condensed[0];
+        let m = surface.len();
+        let settings = Settings {
+            method: Method::Direct,
+            ..Settings::default()
+        };
+        let operator = DenseCompliance::scalar(c.normal.clone()).unwrap();
+        let mut contact: Contact<DenseCompliance, DenseCompliance> =
+            Contact::new(operator, surface.heights(), settings).unwrap();
+        contact.advance(delta, &[]).unwrap();
+        let forces = contact.pressure();
+        let p = YOUNG * delta;
+        for j in 0..m {
+            let pj = forces[j] / surface.weights[j];
+            // Round-off of the factorisation and the dense contact solve.
+            assert!(
+                (pj - p).abs() < 1e-9 * p,
+                "node {j} at {:?}: p = {pj}, uniform {p}",
+                surface.points[j]
+            );
+        }
+        // Equilibrium: the top carries Σλ, and Σλ = p × the face area (1).
+        let total: f64 = forces.iter().sum();
+        let reaction: f64 = c.reaction[1].iter().zip(forces).map(|(r, l)| r * l).sum();
+        assert!((total - p).abs() < 1e-9 * p && (reaction - total).abs() < 1e-9 * total);
+    }
+}
+
+#[test]
+fn the_trailing_block_and_the_blocked_solves_give_one_compliance() {
+    let (_, _, condensed) = bar(true);
+    let (a, b) = (&condensed[0], &condensed[1]);
+    for (x, y) in [(&a.normal, &b.normal), (&a.tangential, &b.tangential)] {
+        let scale = (0..x.nrows()).map(|i| x[(i, i)]).fold(0.0, f64::max);
+        for i in 0..x.nrows() {
+            for j in 0..x.ncols() {
+                // Two exact computations of the same matrix: round-off apart.
+                assert!((x[(i, j)] - y[(i, j)]).abs() < 1e-10 * scale, "({i}, {j})");
+                assert!((x[(i, j)] - x[(j, i)]).abs() < 1e-10 * scale);
+            }
+        }
+    }
+    assert_eq!(a.tangential_unknowns, b.tangential_unknowns);
+}
