@@ -208,7 +208,10 @@ impl SeriesMdr {
                 tangential_force: Some(local.tangential_force),
                 contact_radius: Some(hertz.contact_radius(local.approach)),
                 peak_pressure: Some(hertz.peak_pressure(local.approach)),
-                stick_radius: in_contact.then_some(local.stick_radius),
+                // The bed resolves the stick edge to one spring cell; the stick zone lies
+                // within Hertz's contact radius, which this model reports.
+                stick_radius: in_contact
+                    .then(|| local.stick_radius.min(hertz.contact_radius(local.approach))),
                 ..StepResult::at(step)
             });
         }
@@ -321,7 +324,9 @@ mod tests {
                     a.normal_force,
                     a.tangential_force,
                     a.contact_radius,
-                    a.stick_radius
+                    // This model keeps the bed's stick edge within Hertz's c (MDR's may lie one
+                    // spring cell beyond it at first touch).
+                    a.stick_radius.zip(a.contact_radius).map(|(s, c)| s.min(c))
                 ),
                 (
                     b.normal_force,
