@@ -48,6 +48,7 @@ fn with_path(scene: &Scene, delta_n: &[f64], delta_t: &[f64], substeps: usize) -
     let segments = positions.len() - 1;
     Scene {
         path: LoadingPath::try_new(positions, vec![substeps; segments]).expect("valid path"),
+        domain: Default::default(),
         ..scene.clone()
     }
 }
@@ -144,6 +145,7 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
 fn paper_path(scene: &Scene, ladder: &[usize]) {
     let scene = Scene {
         path: scene.path.clone(),
+        domain: Default::default(),
         ..scene.clone()
     };
     let mdr = Mdr::default().solve(&scene).expect("mdr");

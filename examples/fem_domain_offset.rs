@@ -33,6 +33,7 @@ fn main() {
             },
             friction: 0.2,
             path: LoadingPath::try_new(positions, vec![1]).unwrap(),
+            domain: Default::default(),
             fields: Default::default(),
         };
         let c = scene.max_contact_radius();

@@ -40,6 +40,7 @@ fn scene(positions_um: &[f64], substeps: Vec<usize>) -> Scene {
         },
         friction: 0.2,
         path: LoadingPath::try_new(positions, substeps).unwrap(),
+        domain: Default::default(),
         fields: Default::default(),
     }
 }

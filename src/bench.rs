@@ -247,6 +247,7 @@ mod tests {
                 vec![17, 30],
             )
             .unwrap(),
+            domain: Default::default(),
             fields: Default::default(),
         };
         let rungs = sweep(&[Box::new(Mdr::default())], &scene, 1).unwrap();

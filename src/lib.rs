@@ -34,6 +34,7 @@ pub mod case;
 pub mod check;
 pub mod contact;
 pub mod dem;
+pub mod domain;
 pub mod driver;
 pub mod exchange;
 pub mod external;

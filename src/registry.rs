@@ -25,6 +25,7 @@ pub fn in_crate() -> Vec<Box<dyn Solver>> {
     let mut solvers = analytic::solvers();
     solvers.push(Box::new(bem::Bem::default()));
     solvers.push(Box::new(fem::FemAxisym::default()));
+    solvers.push(Box::new(fem::MdrDomain::default()));
     solvers
 }
 

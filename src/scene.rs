@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::domain::Domain;
 use crate::hertz::Hertz;
 use crate::pair::ContactPair;
 use crate::path::{LoadingPath, Step};
@@ -30,6 +31,8 @@ pub struct Scene {
     pub friction: f64,
     /// The loading path.
     pub path: LoadingPath,
+    /// The finite body that finite element models mesh (`[domain]`).
+    pub domain: Domain,
     /// The path positions at which solvers keep surface fields.
     pub fields: FieldPositions,
 }
@@ -62,6 +65,11 @@ impl Scene {
     /// The Hertz solution of this pair.
     pub fn hertz(&self) -> Hertz {
         Hertz::of(&self.pair)
+    }
+
+    /// True when the tangential problem is void: μ = 0 or a path without tangential motion.
+    pub fn is_frictionless(&self) -> bool {
+        self.friction == 0.0 || self.path.is_normal_only()
     }
 
     /// Whether solvers keep surface fields at path position `position`: the one rule every

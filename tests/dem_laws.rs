@@ -47,6 +47,7 @@ fn scene(poisson: f64, friction: f64, positions: &[(f64, f64)], substeps: Vec<us
         pair: pair(poisson),
         friction,
         path: LoadingPath::try_new(positions, substeps).expect("valid test path"),
+        domain: Default::default(),
         fields: Default::default(),
     }
 }

@@ -42,6 +42,7 @@ const GMSH_SPHERE: &str = "tests/data/sphere_gmsh_h150um.msh";
 
 #[test]
 fn the_gmsh_mesh_of_the_decks_feeds_the_solver_and_agrees_with_the_generated_mesh() {
+    use spherecontact::domain::{Domain, Grip};
     use spherecontact::fem::FemAxisym;
     use spherecontact::pair::{Body, ContactPair, Material};
     use spherecontact::path::{LoadingPath, Position};
@@ -69,6 +70,11 @@ fn the_gmsh_mesh_of_the_decks_feeds_the_solver_and_agrees_with_the_generated_mes
         },
         friction: 0.2,
         path: LoadingPath::try_new(positions, vec![1]).unwrap(),
+        // The fixture's far face carries tag 2: it was made for the axial grip.
+        domain: Domain {
+            grip: Grip::Axial,
+            ..Domain::default()
+        },
         fields: Default::default(),
     };
     let mesh = msh::read(Path::new(GMSH_SPHERE)).unwrap();
@@ -91,6 +97,15 @@ fn the_gmsh_mesh_of_the_decks_feeds_the_solver_and_agrees_with_the_generated_mes
             .unwrap()
     };
     let (p_file, p_generated) = (p(&from_file), p(&generated));
+    // A mesh made for another grip, or another cut, is refused with the reason.
+    let mut rigid = scene.clone();
+    rigid.domain.grip = Grip::Rigid;
+    let e = run(&from_file, &rigid).unwrap_err().to_string();
+    assert!(e.contains("axial grip") && e.contains("rigid grip"), "{e}");
+    let mut cap = scene.clone();
+    cap.domain.kind = spherecontact::domain::DomainKind::Cap { height: 0.02 };
+    let e = run(&from_file, &cap).unwrap_err().to_string();
+    assert!(e.contains("cut at 2e-2 m"), "{e}");
     let hertz = scene.hertz().force(17e-6);
     println!(
         "P against Hertz: gmsh mesh {:+.3} %, generated mesh {:+.3} %",

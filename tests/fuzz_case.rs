@@ -380,7 +380,7 @@ fn broken_promise(case: &Case) -> Option<String> {
 fn cheap_solvers() -> Vec<Box<dyn Solver>> {
     let mut solvers: Vec<Box<dyn Solver>> = registry::in_crate()
         .into_iter()
-        .filter(|s| !["mdr", "bem", "fem-axisym"].contains(&s.name()))
+        .filter(|s| !["mdr", "bem", "fem-axisym", "mdr-domain"].contains(&s.name()))
         .collect();
     solvers.push(Box::new(Mdr { springs: 200 }));
     solvers

@@ -223,6 +223,7 @@ pub(crate) mod fixtures {
             pair: paper_pair(),
             friction: 0.2,
             path: LoadingPath::try_new(vec![origin], vec![]).expect("one position"),
+            domain: Default::default(),
             fields: Default::default(),
         }
     }

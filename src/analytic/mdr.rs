@@ -67,7 +67,7 @@ impl Default for Mdr {
 }
 
 /// The state of the spring bed along a path.
-struct SpringBed {
+pub(super) struct SpringBed {
     /// Profile g(x_i) = x_i²/R* [m].
     profile: Vec<f64>,
     /// Tangential displacement u_i of each spring [m].
@@ -87,14 +87,18 @@ struct SpringBed {
 }
 
 /// The bed's forces after one increment.
-struct BedState {
-    normal_force: f64,
-    tangential_force: f64,
-    stick_radius: f64,
+pub(super) struct BedState {
+    /// P [N].
+    pub(super) normal_force: f64,
+    /// Q [N].
+    pub(super) tangential_force: f64,
+    /// The stick radius [m].
+    pub(super) stick_radius: f64,
 }
 
 impl SpringBed {
-    fn new(scene: &Scene, springs: usize) -> Self {
+    /// A bed of `springs` springs for `scene`'s pair, friction and largest contact.
+    pub(super) fn new(scene: &Scene, springs: usize) -> Self {
         let half_width = (1.0 + WINDOW_MARGIN) * scene.max_contact_radius();
         let dx = half_width / springs as f64;
         let r_star = scene.pair.effective_radius();
@@ -120,8 +124,39 @@ impl SpringBed {
         }
     }
 
+    /// P at approach `delta_n` (no state changes: the normal bed has no memory) and its slope
+    /// dP/dδn = 2E* Δx k, k the springs in contact.
+    pub(super) fn normal_force(&self, delta_n: f64) -> (f64, f64) {
+        let in_contact = self.profile.partition_point(|&g| g < delta_n);
+        let normal = in_contact as f64 * delta_n - self.profile_sums[in_contact];
+        let scale = 2.0 * self.normal_modulus * self.dx;
+        (scale * normal, scale * in_contact as f64)
+    }
+
+    /// Q after a trial step to approach `delta_n` with shift increment `increment_t`, without
+    /// committing it, and its slope dQ/d(increment) = 2G̃ Δx (springs that stick). Springs beyond
+    /// those that touched before carry u = 0, as [`Self::advance`] leaves them.
+    pub(super) fn trial(&self, delta_n: f64, increment_t: f64) -> (f64, f64) {
+        let in_contact = self.profile.partition_point(|&g| g < delta_n);
+        let slip_ratio = self.friction * self.normal_modulus / self.tangential_modulus;
+        let (mut sum, mut sticking) = (0.0, 0usize);
+        for (&u, g) in self.u[..in_contact.min(self.touched)].iter().zip(&self.profile) {
+            let limit = slip_ratio * (delta_n - g);
+            let moved = u + increment_t;
+            sum += moved.clamp(-limit, limit);
+            sticking += usize::from(moved.abs() < limit);
+        }
+        for g in &self.profile[self.touched.min(in_contact)..in_contact] {
+            let limit = slip_ratio * (delta_n - g);
+            sum += increment_t.clamp(-limit, limit);
+            sticking += usize::from(increment_t.abs() < limit);
+        }
+        let scale = 2.0 * self.tangential_modulus * self.dx;
+        (scale * sum, scale * sticking as f64)
+    }
+
     /// Moves the rigid profile to approach `delta_n` and shifts it by `increment_t`.
-    fn advance(&mut self, delta_n: f64, increment_t: f64) -> BedState {
+    pub(super) fn advance(&mut self, delta_n: f64, increment_t: f64) -> BedState {
         // The springs in contact, w = δn − g(x) > 0, are a prefix of the bed (g grows with x);
         // those beyond it that touched before have left contact and forget their history.
         let in_contact = self.profile.partition_point(|&g| g < delta_n);
@@ -176,8 +211,12 @@ impl PathModel for Walker<'_> {
         let step = increment.step;
         let state = self.bed.advance(step.delta_n, increment.shift());
         if let Some(position) = step.position.filter(|&p| self.scene.records_fields_at(p)) {
-            self.fields
-                .push(self.bed.surface_field(position, step.delta_n, state.stick_radius));
+            self.fields.push(self.bed.surface_field(
+                position,
+                step.delta_n,
+                state.stick_radius,
+                FIELD_POINTS,
+            ));
         }
         Ok(StepResult {
             normal_force: Some(state.normal_force),
@@ -248,10 +287,16 @@ impl SpringBed {
             .unzip()
     }
 
-    /// The surface field at a path position.
-    fn surface_field(&self, position: usize, delta_n: f64, stick_radius: f64) -> SurfaceField {
-        let spacing = self.u.len() as f64 * self.dx / (FIELD_POINTS - 1) as f64;
-        let radii: Vec<f64> = (0..FIELD_POINTS).map(|k| k as f64 * spacing).collect();
+    /// The surface field at a path position, sampled at `points` radii.
+    pub(super) fn surface_field(
+        &self,
+        position: usize,
+        delta_n: f64,
+        stick_radius: f64,
+        points: usize,
+    ) -> SurfaceField {
+        let spacing = self.u.len() as f64 * self.dx / (points - 1) as f64;
+        let radii: Vec<f64> = (0..points).map(|k| k as f64 * spacing).collect();
         let (pressure, traction) = self.tractions(delta_n, &radii);
         SurfaceField {
             position,

@@ -6,6 +6,7 @@
 //! | `hertz` | Hertz normal contact | exact (frictionless normal part) |
 //! | `cattaneo-mindlin` | Cattaneo–Mindlin + Masing | only at constant normal load |
 //! | `mdr` | method of dimensionality reduction | exact Mindlin–Deresiewicz |
+//! | `mdr-domain` ([`mdr_series`], run by `fem::axisym`) | MDR in series with a finite body's compliances | exact MD for the modelled finite body, to first order |
 //! | `hertz-mindlin-spring` | no-slip spring with Coulomb cap | approximate (DEM) |
 //! | `thornton` | Thornton (1991): M–D increments, T*, T** | approximate (DEM) |
 //! | `md-incremental` | Mindlin–Deresiewicz incremental cases (the basis of Zhang & Vu-Quoc 2007), Masing memory | approximate (DEM) |
@@ -18,6 +19,7 @@ pub mod incremental;
 pub mod md_cases;
 pub mod md_incremental;
 pub mod mdr;
+pub mod mdr_series;
 pub mod thornton;
 pub mod walton_braun;
 

@@ -26,6 +26,12 @@
 //! delta_t = [0, 0, 2]                   # relative tangential displacement, |δt| ≤ R_min
 //! substeps = 20                         # per segment: one count, or one per segment
 //!
+//! [domain]                              # optional: the finite body FEM solvers and decks mesh
+//! kind = "hemisphere"                   # "hemisphere" (default) or "cap"
+//! height = 0.02                         # cap only: cut this far from the pole [m],
+//!                                       # 10 c_max ≤ height ≤ the smallest finite radius
+//! grip = "rigid"                        # "rigid" (default) or "axial" (frictionless scenes only)
+//!
 //! [[checks]]
 //! solver = "mdr"
 //! quantity = "normal_force"             # normal_force, tangential_force, contact_radius,
@@ -62,6 +68,7 @@
 
 pub mod case_solvers;
 mod check_rules;
+mod domain;
 mod error;
 pub mod input;
 pub mod limits;
@@ -78,6 +85,7 @@ use std::path::{Path, PathBuf};
 use toml::Spanned;
 
 use crate::check::{CheckSpec, Reference};
+use crate::domain::Domain;
 use crate::number::Short;
 use crate::pair::ContactPair;
 use crate::registry;
@@ -224,17 +232,22 @@ impl Validator<'_> {
             .collect::<Result<_, _>>()?;
         let focus = self.focus(raw.focus.as_ref(), &path)?;
         let fields = self.fields(raw.fields.as_ref(), path.positions().len(), focus)?;
+        let mut scene = Scene {
+            name,
+            pair,
+            friction,
+            path,
+            domain: Domain::default(),
+            fields,
+        };
+        if let Some(domain) = &raw.domain {
+            scene.domain = self.domain(domain, &scene)?;
+        }
         Ok(Case {
             file: self.file.to_path_buf(),
             focus,
             description: raw.description.unwrap_or_default(),
-            scene: Scene {
-                name,
-                pair,
-                friction,
-                path,
-                fields,
-            },
+            scene,
             solvers,
             checks,
             own_solvers,

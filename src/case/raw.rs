@@ -20,6 +20,7 @@ pub struct RawCase {
     pub body1: RawBody,
     pub body2: Option<RawBody>,
     pub path: RawPath,
+    pub domain: Option<RawDomain>,
     #[serde(default)]
     pub checks: Vec<RawCheck>,
     #[serde(default)]
@@ -45,6 +46,15 @@ pub struct RawStoredResults {
     pub name: Spanned<String>,
     pub file: Spanned<String>,
     pub description: Option<String>,
+}
+
+/// The `[domain]` table as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDomain {
+    pub kind: Option<Spanned<String>>,
+    pub height: Option<Spanned<f64>>,
+    pub grip: Option<Spanned<String>>,
 }
 
 /// A body as written.

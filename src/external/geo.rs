@@ -1,11 +1,13 @@
 //! The gmsh geometry of a scene and its meshes: the meridian of one sphere for an axisymmetric
 //! model, graded from the contact pole by the path's largest contact radius.
 //!
-//! Model (docs/toolchain.md, measured): the lower hemisphere of body 1, radius R, seen in
-//! its meridian plane (x = r ≥ 0, y = z), touching the plane y = 0 at the pole (0, 0); loaded
-//! through its flat equatorial face y = R. Physical tags: 1 the spherical surface (contact
-//! candidate), 2 the flat face (prescribed approach), 3 the symmetry axis, 10 the body. Against
-//! Hertz's half-space this finite hemisphere is ≈ 0.37 % stiffer in P(δn), on every mesh.
+//! Model: the scene's domain (`[domain]`) of body 1, radius R, seen in its meridian plane
+//! (x = r ≥ 0, y = z), touching the plane y = 0 at the pole (0, 0): the cap within H of the
+//! pole (H = R: the hemisphere), held on its flat cut face y = H. Physical tags: 1 the spherical
+//! surface (contact candidate), the cut face 2 under the axial grip (prescribed approach, free
+//! radially) or 4 under the rigid grip (every component prescribed), 3 the symmetry axis, 10 the
+//! body. The grip is thus carried by the mesh: a deck applies u_z on 2 and 4 and u_r = 0 on 3
+//! and 4. The finite body's offset from Hertz's half-space is computed by `mdr-domain`.
 //!
 //! Grading: element size h at the pole (the resolution) uniform over a disc of radius
 //! 1.5 c_max around it (c_max the largest Hertz contact radius of the path), growing linearly to
@@ -21,6 +23,7 @@ use std::time::Duration;
 
 use super::process::{self, Ending, Job};
 use super::toolchain::{Tool, Toolchain};
+use crate::domain::Grip;
 use crate::scene::Scene;
 use crate::solver::SolveError;
 
@@ -33,8 +36,10 @@ const GMSH_TIMEOUT: Duration = Duration::from_secs(120);
 
 /// Physical tag of the spherical (contact candidate) surface.
 pub const TAG_CONTACT: u32 = 1;
-/// Physical tag of the loaded flat face.
+/// Physical tag of the loaded flat face under the axial grip.
 pub const TAG_TOP: u32 = 2;
+/// Physical tag of the loaded flat face under the rigid grip.
+pub const TAG_TOP_RIGID: u32 = 4;
 /// Physical tag of the symmetry axis.
 pub const TAG_AXIS: u32 = 3;
 
@@ -86,16 +91,32 @@ pub fn geo_for_scene(scene: &Scene, resolution: f64) -> Result<String, SolveErro
         )));
     }
     let c_max = scene.max_contact_radius();
-    let h_max = radius / 20.0;
+    let height = scene.domain.height(radius);
+    // Far from the contact: R/20, and at most H/10 so that a shallow cap has elements across it.
+    let h_max = (radius / 20.0).min(height / 10.0).max(resolution);
     let d_fine = (1.5 * c_max).max(4.0 * resolution);
-    let d_coarse = (radius / 2.0).max(2.0 * d_fine);
+    let d_coarse = (height / 2.0).max(2.0 * d_fine);
+    let rim = (height * (2.0 * radius - height)).sqrt();
+    let (top_name, top_tag) = match scene.domain.grip {
+        Grip::Axial => ("top", TAG_TOP),
+        Grip::Rigid => ("top_rigid", TAG_TOP_RIGID),
+    };
+    // The hemisphere's cut passes through the centre: the axis point is the centre itself.
+    let axis_point = if height < radius {
+        "Point(4) = {0, H, 0, hmax};  // the axis on the cut face"
+    } else {
+        "// the hemisphere's cut face meets the axis at the centre, Point(2)"
+    };
+    let axis_end = if height < radius { 4 } else { 2 };
     Ok(format!(
         "// spherecontact: meridian of body 1 of scene `{name}` (metres).
-// x = r >= 0, y = z; pole (0,0) touches the plane y = 0; loaded through the face y = R.
+// x = r >= 0, y = z; pole (0,0) touches the plane y = 0; held on the cut face y = H.
+// Domain: {domain}.
 // Largest Hertz contact radius of the path c_max = {c_max:e} m.
 // Mesh: gmsh THIS.geo -2 -order 2 -format msh41   (FreeFEM: -order 1 -format msh22
 //       -setnumber Mesh.ScalingFactor 1000 for millimetres)
 R = {radius:e};
+H = {height:e};        // the cut face's distance from the pole (H = R: the hemisphere)
 h = {resolution:e};        // element size at the contact pole (the resolution)
 hmax = {h_max:e};     // element size far from the contact
 dfine = {d_fine:e};    // uniform size h up to this distance from the pole (1.5 c_max)
@@ -103,15 +124,16 @@ dcoarse = {d_coarse:e};  // size grows linearly to hmax at this distance
 
 Point(1) = {{0, 0, 0, hmax}};  // pole
 Point(2) = {{0, R, 0, hmax}};  // centre, on the axis
-Point(3) = {{R, R, 0, hmax}};  // equator
+Point(3) = {{{rim:e}, H, 0, hmax}};  // rim: the sphere meets the cut face
+{axis_point}
 Circle(1) = {{1, 2, 3}};       // spherical surface: contact candidate
-Line(2) = {{3, 2}};            // flat loaded face y = R
-Line(3) = {{2, 1}};            // symmetry axis r = 0
+Line(2) = {{3, {axis_end}}};            // flat gripped face y = H
+Line(3) = {{{axis_end}, 1}};            // symmetry axis r = 0
 Curve Loop(1) = {{1, 2, 3}};
 Plane Surface(1) = {{1}};
 
 Physical Curve(\"contact\", {TAG_CONTACT}) = {{1}};
-Physical Curve(\"top\", {TAG_TOP}) = {{2}};
+Physical Curve(\"{top_name}\", {top_tag}) = {{2}};   // {grip} grip
 Physical Curve(\"axis\", {TAG_AXIS}) = {{3}};
 Physical Surface(\"body\", 10) = {{1}};
 
@@ -131,6 +153,8 @@ Mesh.Algorithm = 6;            // Frontal-Delaunay (algorithm 8 segfaults in gms
 Mesh.SecondOrderLinear = 0;    // quadratic elements follow the arc
 ",
         name = scene.name,
+        domain = scene.domain.describe(),
+        grip = scene.domain.grip.name(),
     ))
 }
 
@@ -251,6 +275,33 @@ mod tests {
         assert!(geo.contains(&format!("h = {h:e};")));
         assert!(geo.contains(&format!("dfine = {:e};", 1.5 * c)));
         assert!(geo.contains("Physical Curve(\"contact\", 1)"));
+    }
+
+    #[test]
+    fn the_domain_and_its_grip_are_in_the_geometry() {
+        use crate::domain::{Domain, DomainKind};
+        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let h = default_resolution(&scene);
+        let geo = geo_for_scene(&scene, h).unwrap();
+        // The default: the hemisphere (cut at R, through the centre), gripped rigidly (tag 4).
+        assert!(
+            geo.contains("H = 1e-1;") && geo.contains("Line(3) = {2, 1};"),
+            "{geo}"
+        );
+        assert!(geo.contains("Physical Curve(\"top_rigid\", 4) = {2};"), "{geo}");
+        scene.domain = Domain {
+            kind: DomainKind::Cap { height: 0.02 },
+            grip: Grip::Axial,
+        };
+        let geo = geo_for_scene(&scene, h).unwrap();
+        // The cap's rim at √(H(2R − H)) = 0.06 m on the cut face y = H, its axis point on the face.
+        let rim = (0.02f64 * (2.0 * 0.1 - 0.02)).sqrt();
+        assert!(
+            geo.contains(&format!("Point(3) = {{{rim:e}, H, 0, hmax}};")),
+            "{geo}"
+        );
+        assert!(geo.contains("Point(4) = {0, H, 0, hmax};") && geo.contains("Line(3) = {4, 1};"));
+        assert!(geo.contains("Physical Curve(\"top\", 2) = {2};"), "{geo}");
     }
 
     #[test]

@@ -68,6 +68,7 @@ pub(crate) fn test_scene(delta_n_um: &[f64]) -> crate::scene::Scene {
         },
         friction: 0.2,
         path: LoadingPath::try_new(positions, substeps).expect("valid test path"),
+        domain: Default::default(),
         fields: Default::default(),
     }
 }

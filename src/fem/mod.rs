@@ -27,5 +27,5 @@ pub mod mesh;
 pub mod quadrature;
 pub mod solid3d;
 
-pub use axisym::FemAxisym;
+pub use axisym::{FemAxisym, MdrDomain};
 pub use solid3d::FemSolid3d;

@@ -45,6 +45,40 @@ pub fn line_gauss3() -> Vec<Point> {
         .collect()
 }
 
+/// n-point Gauss–Legendre on [0, 1], exact for polynomials of degree 2n − 1: the roots of the
+/// Legendre polynomial P_n by Newton's method from Tricomi's estimate cos(π(k − ¼)/(n + ½)),
+/// weights 2/((1 − x²) P_n'(x)²) on [−1, 1] (Abramowitz & Stegun 25.4.29), mapped to [0, 1].
+pub fn line_gauss_legendre(n: usize) -> Vec<Point> {
+    let legendre = |x: f64| {
+        // P_n(x) and P_n'(x) by the three-term recurrence.
+        let (mut p0, mut p1) = (1.0, x);
+        for k in 2..=n {
+            let k = k as f64;
+            (p0, p1) = (p1, ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k);
+        }
+        let derivative = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+        (p1, derivative)
+    };
+    (1..=n)
+        .map(|k| {
+            let mut x = (std::f64::consts::PI * (k as f64 - 0.25) / (n as f64 + 0.5)).cos();
+            for _ in 0..100 {
+                let (p, dp) = legendre(x);
+                let step = p / dp;
+                x -= step;
+                if step.abs() < 1e-16 {
+                    break;
+                }
+            }
+            let (_, dp) = legendre(x);
+            Point {
+                at: [0.5 * (1.0 - x), 0.0],
+                weight: 1.0 / ((1.0 - x * x) * dp * dp),
+            }
+        })
+        .collect()
+}
+
 /// A quadrature point of the reference tetrahedron.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Point3 {
@@ -138,6 +172,20 @@ mod tests {
                     let err = (integrate(&rule, i, j) - exact(i, j)).abs();
                     assert!(err < 1e-14, "degree {degree}: ξ^{i} η^{j} off by {err}");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn gauss_legendre_is_exact_to_degree_2n_minus_1() {
+        for n in [1, 2, 5, 8, 12] {
+            let rule = line_gauss_legendre(n);
+            for k in 0..2 * n {
+                let sum: f64 = rule.iter().map(|p| p.weight * p.at[0].powi(k as i32)).sum();
+                assert!(
+                    (sum - 1.0 / (k + 1) as f64).abs() < 1e-14,
+                    "n = {n}, degree {k}: {sum}"
+                );
             }
         }
     }

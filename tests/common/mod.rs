@@ -126,6 +126,7 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
         pair,
         friction: 0.2,
         path,
+        domain: Default::default(),
         fields: Default::default(),
     }
 }

@@ -3,13 +3,20 @@
 //! | file | concept |
 //! |---|---|
 //! | [`model`] | the scene's reduction (symmetric or two bodies), its discrete model and its contact (the shared engine, [`crate::contact`]) |
+//! | [`compliance`] | the modelled domain's far-field compliances relative to the half-space |
 //! | [`pressure`] | nodal pressure, p0 and c from the contact forces |
 //! | [`output`] | displacement and stress fields, VTU files |
 //! | [`solver`] | the `Solver` implementation |
+//! | [`tangential`] | the tangential problem: Fourier mode n = 1, condensed, Coulomb on the shared engine |
+//! | [`reference`] | `mdr-domain`: MDR in series with the domain's compliances, the finite-body reference |
 
+pub mod compliance;
 pub mod model;
 pub mod output;
 pub mod pressure;
+pub mod reference;
 pub mod solver;
+pub mod tangential;
 
+pub use reference::MdrDomain;
 pub use solver::FemAxisym;

@@ -11,12 +11,13 @@ use std::time::Instant;
 
 use faer::Mat;
 
-use crate::contact::{Contact, DenseCompliance, Settings as ContactSettings};
+use crate::contact::{Contact, DenseCompliance, FrictionSet, Settings as ContactSettings};
+use crate::domain::Domain;
 use crate::fem::assembly::{self, System};
 use crate::fem::condense::{condense, Condensed};
 use crate::fem::element::tri6::{edge_weights, Integration, Lame};
 use crate::fem::factor::{Factor, Ordering};
-use crate::fem::mesh::meridian::{self, Domain, Grading, Mesh};
+use crate::fem::mesh::meridian::{self, Grading, Mesh};
 use crate::pair::Body;
 use crate::scene::Scene;
 
@@ -69,12 +70,16 @@ pub struct Settings {
     pub ordering: Ordering,
     /// Element integration.
     pub integration: Integration,
+    /// The modelled finite body (cap height, grip).
+    pub domain: Domain,
+    /// Growth of the element size beyond the fine zone (default [`GROWTH`]).
+    pub growth: f64,
 }
 
 /// Uniformly fine zone: 5 % beyond the candidate zone, so the contact edge sits in it.
 const FINE_MARGIN: f64 = 1.05;
 /// Growth of the element size beyond the fine zone (h = h0 + g (r − r_f)).
-const GROWTH: f64 = 0.25;
+pub const GROWTH: f64 = 0.25;
 /// Domain of a flat, in units of the largest contact radius: the far-arc offset of a
 /// half-space region falls as c/D (Boussinesq), ≈ 1e-4 of P at 1000 c.
 pub(super) const FLAT_DOMAIN: f64 = 1000.0;
@@ -101,7 +106,8 @@ impl BodyModel {
     /// Builds the model of one body from its mesh.
     pub fn new(mesh: Mesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
         let t0 = Instant::now();
-        let system = assembly::assemble(&mesh, lame, settings.integration).map_err(|e| e.to_string())?;
+        let system = assembly::assemble(&mesh, lame, settings.integration, settings.domain.grip)
+            .map_err(|e| e.to_string())?;
         let t1 = Instant::now();
         let factor = Factor::new(&system.stiffness, settings.ordering)?;
         let t2 = Instant::now();
@@ -174,21 +180,25 @@ pub struct Model {
     pub radii: Vec<f64>,
     /// Ring weights of the candidates (body 1's surface) [m²].
     pub weights: Vec<f64>,
+    /// The pair's condensed Fourier n = 1 compliance at the candidates' A DOFs [m/N], when the
+    /// tangential problem is solved ([`Model::with_shear`]).
+    pub shear: Option<Mat<f64>>,
 }
 
-/// The generator's grading for `body` under `settings`.
+/// The generator's grading for `body` under `settings`: a sphere's cap (the hemisphere, or the
+/// case's cap), a flat's lens of [`FLAT_DOMAIN`] contact radii.
 pub fn grading(body: &Body, settings: &Settings, contact_radius: f64) -> Grading {
     let domain = if body.radius.is_finite() {
-        Domain::Hemisphere
+        meridian::Domain::Cap(settings.domain.height(body.radius))
     } else {
-        Domain::Lens(FLAT_DOMAIN * contact_radius.max(settings.candidate_radius))
+        meridian::Domain::Lens(FLAT_DOMAIN * contact_radius.max(settings.candidate_radius))
     };
     Grading {
         radius: body.radius,
         domain,
         pole_size: settings.pole_size,
         fine_radius: FINE_MARGIN * settings.candidate_radius,
-        growth: GROWTH,
+        growth: settings.growth,
     }
 }
 
@@ -245,18 +255,38 @@ impl Model {
             bodies,
             radii,
             weights,
+            shear: None,
         })
+    }
+
+    /// Adds the tangential compliance: the mode n = 1 assembled, factored and condensed on the
+    /// same meshes ([`super::tangential`]).
+    pub fn with_shear(mut self, settings: &Settings) -> Result<Self, String> {
+        self.shear = Some(super::tangential::pair_compliance(&self.bodies, settings)?);
+        Ok(self)
     }
 }
 
-/// The contact of a model: its condensed compliance on the shared engine, frictionless.
-pub type FrictionlessContact = Contact<DenseCompliance, DenseCompliance>;
+/// The contact of a model on the shared engine: normal (n = 0) and, when the model has its
+/// shear compliance, tangential (n = 1, an interval friction set).
+pub type AxisymContact = Contact<DenseCompliance, DenseCompliance>;
 
 impl Model {
     /// A fresh contact on the candidates (the engine picks the dense active-set solver for these
-    /// few hundred nodes); `Err` when the condensed compliance is not a valid one.
-    pub fn contact(&self) -> Result<FrictionlessContact, String> {
+    /// few hundred nodes), with Coulomb friction μ = `friction` when the model has its shear
+    /// compliance; `Err` when a condensed compliance is not a valid one.
+    pub fn contact(&self, friction: f64) -> Result<AxisymContact, String> {
         let compliance = DenseCompliance::scalar(self.compliance.clone()).map_err(|e| e.to_string())?;
-        Contact::new(compliance, self.heights.clone(), ContactSettings::default()).map_err(|e| e.to_string())
+        let contact = Contact::new(compliance, self.heights.clone(), ContactSettings::default())
+            .map_err(|e| e.to_string())?;
+        match &self.shear {
+            None => Ok(contact),
+            Some(shear) => {
+                let shear = DenseCompliance::scalar(shear.clone()).map_err(|e| e.to_string())?;
+                contact
+                    .with_friction(shear, FrictionSet::Interval, friction)
+                    .map_err(|e| e.to_string())
+            }
+        }
     }
 }

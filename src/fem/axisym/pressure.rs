@@ -97,7 +97,7 @@ fn nearest_root(a: f64, b: f64, d: f64) -> Option<f64> {
 }
 
 /// Least-squares coefficients of `N` basis functions sampled in `rows` against `values`.
-fn least_squares<const N: usize>(rows: &[[f64; N]], values: &[f64]) -> Option<[f64; N]> {
+pub(crate) fn least_squares<const N: usize>(rows: &[[f64; N]], values: &[f64]) -> Option<[f64; N]> {
     // The normal equations AᵀA x = Aᵀv: N ≤ 3 well-scaled columns, by faer's dense Cholesky.
     let normal = Mat::from_fn(N, N, |i, j| rows.iter().map(|r| r[i] * r[j]).sum::<f64>());
     let mut rhs = Col::from_fn(N, |i| rows.iter().zip(values).map(|(r, v)| r[i] * v).sum::<f64>());

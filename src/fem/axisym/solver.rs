@@ -1,21 +1,26 @@
-//! `fem-axisym`: the axisymmetric finite element solver of frictionless normal contact.
+//! `fem-axisym`: the axisymmetric finite element solver, normal contact (Fourier mode n = 0) and
+//! the tangential path with Coulomb friction and memory (mode n = 1, [`super::tangential`]).
 //!
-//! Per path step the contact is re-solved on the condensed system (the stiffness is factored
-//! once per mesh). It reports P from the multipliers (Σλ) and checks it against the reaction on
-//! each body's far boundary; c and p0 come from [`super::pressure`] (p0 is a fit to the nodal
-//! pressures near the axis, not the axis node's multiplier). Tangential quantities are `None`.
+//! Per path step the contact is re-solved on the condensed systems (each stiffness is factored
+//! once per mesh) by the shared engine. It reports P from the multipliers (Σλ) and checks it
+//! against the reaction on each body's far boundary; c and p0 come from [`super::pressure`] (p0
+//! is a fit to the nodal pressures near the axis, not the axis node's multiplier); Q is the sum
+//! of the n = 1 ring forces and the stick radius the outermost loaded node that sticks.
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use serde_json::json;
 
-use super::model::{FrictionlessContact, Model, Reduction, Settings};
+use super::model::{AxisymContact, Model, Reduction, Settings};
 use super::output;
 use super::pressure::{self, Profile};
+use super::tangential::{self, Mode};
+use crate::domain::Grip;
 use crate::driver;
 use crate::fem::element::tri6::{Integration, Lame};
 use crate::fem::factor::Ordering;
+use crate::fem::mesh::meridian::Mesh;
 use crate::fem::mesh::msh;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::scene::Scene;
@@ -49,6 +54,10 @@ pub struct FemAxisym {
     /// A gmsh MSH 4.1 mesh of the sphere to use instead of the generated one (symmetric
     /// reduction only; see [`crate::fem::mesh::msh`] for its conventions).
     pub mesh_file: Option<PathBuf>,
+    /// Growth of the element size away from the contact's fine zone (`None`:
+    /// [`super::model::GROWTH`]); smaller refines the far field, which the finite body's
+    /// compliance depends on.
+    pub growth: Option<f64>,
 }
 
 impl FemAxisym {
@@ -86,6 +95,8 @@ impl FemAxisym {
             candidate_radius: (CANDIDATE_ZONE * c).max(3.0 * pole_size),
             ordering: self.ordering.unwrap_or(Ordering::Amd),
             integration,
+            domain: scene.domain,
+            growth: self.growth.unwrap_or(super::model::GROWTH),
         })
     }
 }
@@ -102,9 +113,33 @@ impl FemAxisym {
             return Err("a mesh file is supported for identical spheres (one body) only".into());
         }
         let mesh = msh::read(file).map_err(|e| e.to_string())?;
+        matches_domain(&mesh, scene, file)?;
         let lame = Lame::of(&scene.pair.body1.material);
         Model::from_meshes(Reduction::Symmetric, vec![mesh], vec![lame], settings)
     }
+}
+
+/// Refuses a mesh file made for another grip or another cut than the scene's domain.
+fn matches_domain(mesh: &Mesh, scene: &Scene, file: &std::path::Path) -> Result<(), String> {
+    let grip = scene.domain.grip;
+    if mesh.grip != Some(grip) {
+        let declared = mesh.grip.map_or("none", Grip::name);
+        return Err(format!(
+            "{}: the mesh is made for the {declared} grip (far-face tag) but the case asks for the {} grip",
+            file.display(),
+            grip.name()
+        ));
+    }
+    let height = scene.domain.height(scene.pair.body1.radius);
+    let far_height = mesh.far.iter().map(|&n| mesh.nodes[n][1]).fold(0.0, f64::max);
+    // The cut face is flat at z = H: its nodes lie there to the file's rounding.
+    if (far_height - height).abs() > 1e-6 * height {
+        return Err(format!(
+            "{}: the far face lies {far_height:e} m from the pole but the case's domain is cut at {height:e} m",
+            file.display()
+        ));
+    }
+    Ok(())
 }
 
 impl Solver for FemAxisym {
@@ -162,7 +197,13 @@ impl Solver for FemAxisym {
             Some(file) => self.read_model(scene, file, &settings),
         }
         .map_err(SolveError::Failed)?;
-        let mut run = Run::new(&model).map_err(SolveError::Failed)?;
+        let mode = Mode::of(scene);
+        let model = if mode == Mode::Solved {
+            model.with_shear(&settings).map_err(SolveError::Failed)?
+        } else {
+            model
+        };
+        let mut run = Run::new(&model, scene, mode).map_err(SolveError::Failed)?;
         let t = Instant::now();
         for step in scene.steps() {
             run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
@@ -174,7 +215,10 @@ impl Solver for FemAxisym {
 
 /// The state carried along the path and the rows produced.
 struct Run {
-    contact: FrictionlessContact,
+    contact: AxisymContact,
+    /// The tangential problem's mode, and the relative shift δt of the last step.
+    mode: Mode,
+    previous_t: f64,
     steps: Vec<StepResult>,
     fields: Vec<SurfaceField>,
     iterations: (usize, usize),
@@ -185,9 +229,11 @@ struct Run {
 }
 
 impl Run {
-    fn new(model: &Model) -> Result<Self, String> {
+    fn new(model: &Model, scene: &Scene, mode: Mode) -> Result<Self, String> {
         Ok(Self {
-            contact: model.contact()?,
+            contact: model.contact(scene.friction)?,
+            mode,
+            previous_t: scene.path.positions()[0].delta_t,
             steps: Vec::new(),
             fields: Vec::new(),
             iterations: (0, 0),
@@ -206,9 +252,12 @@ impl Run {
         vtu_dir: Option<&std::path::Path>,
     ) -> Result<(), SolveError> {
         let approach = model.reduction.approach(step.delta_n);
+        let shift = [tangential::shift(model.reduction, step.delta_t - self.previous_t)];
+        self.previous_t = step.delta_t;
+        let shift: &[f64] = if self.mode == Mode::Solved { &shift } else { &[] };
         let cost = self
             .contact
-            .advance(approach, &[])
+            .advance(approach, shift)
             .map_err(|e| SolveError::Failed(format!("step {}: {e}", step.index)))?;
         let forces = self.contact.pressure().to_vec();
         if forces.last().is_some_and(|&f| f > 0.0) {
@@ -226,13 +275,14 @@ impl Run {
         self.check_balance(model, &forces, force);
         let profile = pressure::recover(&model.radii, &model.weights, &forces);
         self.judge_resolution(&profile, force, step.delta_n, scene);
+        let solved = self.mode == Mode::Solved;
         if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
             self.fields.push(SurfaceField {
                 position,
                 points: model.radii.iter().map(|&r| [r, 0.0]).collect(),
                 pressure: profile.pressure.clone(),
-                traction: None,
-                stick: None,
+                traction: solved.then(|| self.traction(model)),
+                stick: solved.then(|| self.contact.stick()),
                 slip: None,
                 triangles: None,
             });
@@ -244,13 +294,40 @@ impl Run {
                     .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
             }
         }
+        let (tangential_force, stick_radius) = match self.mode {
+            Mode::Solved => (
+                Some(self.contact.tangential_force(0)),
+                (force > 0.0).then(|| tangential::stick_radius(&model.radii, &forces, &self.contact.stick())),
+            ),
+            Mode::Zero => (Some(0.0), None),
+            Mode::Absent | Mode::NotApplicable(_) => (None, None),
+        };
         self.steps.push(StepResult {
             normal_force: Some(force),
+            tangential_force,
             contact_radius: profile.radius,
             peak_pressure: profile.peak,
+            stick_radius,
             ..StepResult::at(step)
         });
         Ok(())
+    }
+
+    /// The traction along x at the candidates, q_i = f_i / w_i (the axis node, of zero weight,
+    /// takes its neighbour's value), as (q_x, q_y = 0): the model has no q_y.
+    fn traction(&self, model: &Model) -> Vec<[f64; 2]> {
+        let (f, w) = (self.contact.traction(), &model.weights);
+        let nodal = |i: usize| (w[i] > 0.0).then(|| f[i] / w[i]);
+        (0..f.len())
+            .map(|i| {
+                [
+                    nodal(i)
+                        .or_else(|| (i + 1 < f.len()).then(|| nodal(i + 1)).flatten())
+                        .unwrap_or(0.0),
+                    0.0,
+                ]
+            })
+            .collect()
     }
 
     /// Σλ against each body's far-boundary reaction ρ·λ.
@@ -303,6 +380,9 @@ impl Run {
                 100.0 * self.max_strain
             ));
         }
+        if let Mode::NotApplicable(reason) = &self.mode {
+            warnings.push(reason.clone());
+        }
         if self.balance > BALANCE {
             warnings.push(format!(
                 "contact force and far-boundary reaction differ by {:.2e} (relative)",
@@ -312,6 +392,15 @@ impl Run {
         let dofs: usize = model.bodies.iter().map(|b| b.dofs()).sum();
         let extra = [
             ("reduction", json!(format!("{:?}", model.reduction))),
+            (
+                "fourier_modes",
+                json!(if self.mode == Mode::Solved {
+                    vec![0, 1]
+                } else {
+                    vec![0]
+                }),
+            ),
+            ("domain", json!(settings.domain)),
             ("dofs", json!(dofs)),
             (
                 "nodes",
@@ -364,10 +453,16 @@ impl Run {
         History {
             metadata: Metadata {
                 model: format!(
-                    "axisymmetric linear elasticity, frictionless, small strain; {}; far part of each body \
-                     displaced rigidly along the axis, free radially (a sphere: its hemisphere, loaded on the \
-                     equatorial face; a flat: the region within {} c_max of the pole, loaded on that arc)",
+                    "axisymmetric linear elasticity, small strain; {}; {}; each sphere modelled as a {} \
+                     (a flat: the region within {} c_max of the pole, held on that arc with the same grip)",
+                    match self.mode {
+                        Mode::Solved => "Fourier modes n = 0 (normal) and n = 1 (tangential: Coulomb with memory, \
+                                         traction along x as Mindlin–Deresiewicz assume; no q_y, circular stick zone)",
+                        Mode::Zero => "Fourier mode n = 0 (normal); μ = 0, so Q = 0 exactly",
+                        Mode::Absent | Mode::NotApplicable(_) => "Fourier mode n = 0 (normal contact only)",
+                    },
                     model.reduction.describe(),
+                    settings.domain.describe(),
                     super::model::FLAT_DOMAIN
                 ),
                 resolution: format!(

@@ -3,9 +3,23 @@
 //! | module | element |
 //! |---|---|
 //! | [`tri6`] | 6-node triangle of the meridian plane, axisymmetric (Fourier mode n = 0), r-weighted stiffness |
+//! | [`tri6_n1`] | the same triangle in the Fourier mode n = 1 (a shift along x of an axisymmetric body) |
 //! | [`tet10`] | 10-node tetrahedron of 3D elasticity (gmsh's node order), its stiffness and strain |
 //! | [`face6`] | the 6-node triangular face of a tetrahedron and its contact rule (sub-triangulated pressure) |
 
 pub mod face6;
 pub mod tet10;
 pub mod tri6;
+pub mod tri6_n1;
+
+use tri6::{Coords, Integration, Lame};
+
+/// A Fourier mode of the 6-node meridian triangle, as the assembly sees it.
+pub trait Mode {
+    /// Displacement components per node (their amplitudes are the DOFs, node-major).
+    const COMPONENTS: usize;
+
+    /// The element stiffness, (6 C)² row-major with DOFs node-major (node 0's components,
+    /// node 1's, …); `None` if the element is inverted or degenerate.
+    fn stiffness(x: &Coords, lame: Lame, integration: Integration) -> Option<Vec<f64>>;
+}

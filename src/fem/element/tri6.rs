@@ -52,13 +52,20 @@ impl Lame {
 
     /// Stress (σ_rr, σ_zz, σ_θθ, τ_rz) from strain (ε_rr, ε_zz, ε_θθ, γ_rz).
     pub fn stress(&self, strain: [f64; 4]) -> [f64; 4] {
+        self.stress_of(strain)
+    }
+
+    /// Stress from strain of any length S ≥ 3: three normal strains, then engineering shears
+    /// (σ_k = λ tr ε + 2μ ε_k for k < 3, τ = μ γ beyond).
+    pub fn stress_of<const S: usize>(&self, strain: [f64; S]) -> [f64; S] {
         let trace = strain[0] + strain[1] + strain[2];
-        let mut s = [0.0; 4];
-        for k in 0..3 {
-            s[k] = self.lambda * trace + 2.0 * self.mu * strain[k];
-        }
-        s[3] = self.mu * strain[3];
-        s
+        std::array::from_fn(|k| {
+            if k < 3 {
+                self.lambda * trace + 2.0 * self.mu * strain[k]
+            } else {
+                self.mu * strain[k]
+            }
+        })
     }
 }
 
@@ -130,20 +137,31 @@ fn b_rows(m: &Mapped, i: usize) -> [[f64; 2]; 4] {
     [[nr, 0.0], [0.0, nz], [m.n[i] / m.r, 0.0], [nz, nr]]
 }
 
-/// Adds 2π ∫ Bᵀ D B r dA over `rule` to `k`, with D = λ_part m mᵀ + μ_part diag(2, 2, 2, 1).
-fn add_stiffness(k: &mut [[f64; 12]; 12], x: &Coords, rule: &[Point], d: Lame) -> Option<()> {
+/// Adds `ring` ∫ Bᵀ D B r dA over `rule` to the element matrix `k` ((6C)², row-major, DOFs
+/// node-major), with D = λ_part m mᵀ + μ_part diag(2, 2, 2, 1, …) and B_i = `rows(m, i)`: S strains
+/// (three normal, then engineering shears) by C displacement components of node i. `ring` is the
+/// θ-integral of the mode's angular factors squared: 2π for n = 0, π for n = 1.
+pub(crate) fn add_stiffness<const C: usize, const S: usize>(
+    k: &mut [f64],
+    x: &Coords,
+    rule: &[Point],
+    d: Lame,
+    ring: f64,
+    rows: impl Fn(&Mapped, usize) -> [[f64; C]; S],
+) -> Option<()> {
+    let size = 6 * C;
     for p in rule {
         let m = map(x, p.at)?;
-        let scale = 2.0 * PI * m.r * m.det * p.weight;
-        let b: Vec<[[f64; 2]; 4]> = (0..6).map(|i| b_rows(&m, i)).collect();
+        let scale = ring * m.r * m.det * p.weight;
+        let b: [[[f64; C]; S]; 6] = std::array::from_fn(|i| rows(&m, i));
         for i in 0..6 {
-            for a in 0..2 {
-                let col_i: [f64; 4] = std::array::from_fn(|s| b[i][s][a]);
-                let db = d.stress(col_i);
-                for j in 0..6 {
-                    for c in 0..2 {
-                        let v: f64 = (0..4).map(|s| b[j][s][c] * db[s]).sum();
-                        k[2 * i + a][2 * j + c] += scale * v;
+            for a in 0..C {
+                let col_i: [f64; S] = std::array::from_fn(|s| b[i][s][a]);
+                let db = d.stress_of(col_i);
+                for (j, b_j) in b.iter().enumerate() {
+                    for c in 0..C {
+                        let v: f64 = (0..S).map(|s| b_j[s][c] * db[s]).sum();
+                        k[(C * i + a) * size + C * j + c] += scale * v;
                     }
                 }
             }
@@ -152,19 +170,43 @@ fn add_stiffness(k: &mut [[f64; 12]; 12], x: &Coords, rule: &[Point], d: Lame) -
     Some(())
 }
 
-/// The 12 × 12 element stiffness (DOFs u_r0, u_z0, u_r1, …); `None` if the element is inverted.
-pub fn stiffness(x: &Coords, lame: Lame, integration: Integration) -> Option<[[f64; 12]; 12]> {
-    let mut k = [[0.0; 12]; 12];
+/// Integrates an element matrix of any Fourier mode: everything with the 6-point rule, or the
+/// volumetric (λ) part with the 3-point rule only ([`Integration::SelectiveReduced`]).
+pub(crate) fn integrate<const C: usize, const S: usize>(
+    x: &Coords,
+    lame: Lame,
+    integration: Integration,
+    ring: f64,
+    rows: impl Fn(&Mapped, usize) -> [[f64; C]; S] + Copy,
+) -> Option<Vec<f64>> {
+    let mut k = vec![0.0; 36 * C * C];
     match integration {
-        Integration::Full => add_stiffness(&mut k, x, &quadrature::triangle_degree4(), lame)?,
+        Integration::Full => add_stiffness(&mut k, x, &quadrature::triangle_degree4(), lame, ring, rows)?,
         Integration::SelectiveReduced => {
             let shear = Lame { lambda: 0.0, ..lame };
             let volumetric = Lame { mu: 0.0, ..lame };
-            add_stiffness(&mut k, x, &quadrature::triangle_degree4(), shear)?;
-            add_stiffness(&mut k, x, &quadrature::triangle_degree2(), volumetric)?;
+            add_stiffness(&mut k, x, &quadrature::triangle_degree4(), shear, ring, rows)?;
+            add_stiffness(&mut k, x, &quadrature::triangle_degree2(), volumetric, ring, rows)?;
         }
     }
     Some(k)
+}
+
+/// The 12 × 12 element stiffness, row-major (DOFs u_r0, u_z0, u_r1, …); `None` if the element
+/// is inverted.
+pub fn stiffness(x: &Coords, lame: Lame, integration: Integration) -> Option<Vec<f64>> {
+    integrate(x, lame, integration, 2.0 * PI, b_rows)
+}
+
+/// The axisymmetric mode n = 0: u_r and u_z per node.
+pub struct Axisymmetric;
+
+impl super::Mode for Axisymmetric {
+    const COMPONENTS: usize = 2;
+
+    fn stiffness(x: &Coords, lame: Lame, integration: Integration) -> Option<Vec<f64>> {
+        stiffness(x, lame, integration)
+    }
 }
 
 /// Strain at reference point `at` from nodal displacements `u`. On the axis (r = 0) the hoop

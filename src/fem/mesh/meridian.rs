@@ -5,10 +5,10 @@
 //! in z ≥ 0. A sphere of radius R has its centre at (0, R) and surface z_s(r) = R − √(R² − r²);
 //! a flat (R = ∞) has z_s = 0.
 //!
-//! The generated domain is either a sphere's whole hemisphere, loaded through its flat
-//! equatorial face (the paper's loading: the far part displaced rigidly along the axis), or the
-//! part of the body within distance D of the pole, loaded through the arc |x| = D (for a flat,
-//! whose far field must be cut somewhere). Rings of
+//! The generated domain is either a sphere's cap of height H (the points within H of the
+//! contact plane; H = R is the hemisphere), held on its flat cut face z = H, or the part of the
+//! body within distance D of the pole, held on the arc |x| = D (for a flat, whose far field must
+//! be cut somewhere). Rings of
 //! nodes centred on the pole pass through surface points r_k; their spacing is the pole size h0
 //! up to the fine radius (the contact zone) and grows linearly beyond it, and each ring gets as
 //! many nodes as keep its arc spacing close to the radial one. Neighbouring rings are joined by
@@ -17,6 +17,8 @@
 
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
+
+use crate::domain::Grip;
 
 /// A body's meridian mesh of 6-node triangles with its boundary node sets.
 #[derive(Clone, Debug, Default)]
@@ -27,10 +29,13 @@ pub struct Mesh {
     pub triangles: Vec<[usize; 6]>,
     /// Nodes on the symmetry axis r = 0 (u_r = 0).
     pub axis: Vec<usize>,
-    /// Nodes of the far boundary, displaced rigidly.
+    /// Nodes of the far boundary (the gripped face), displaced rigidly.
     pub far: Vec<usize>,
     /// The contact surface: quadratic edges (start, middle, end), ordered by r from the pole.
     pub surface: Vec<[usize; 3]>,
+    /// The grip a mesh file was made for (its far face's physical tag); `None` for a generated
+    /// mesh, which serves any grip.
+    pub grip: Option<Grip>,
 }
 
 impl Mesh {
@@ -67,13 +72,14 @@ pub struct Grading {
     pub growth: f64,
 }
 
-/// The extent of the meshed body and its far (rigidly displaced) boundary.
+/// The extent of the meshed body and its far (gripped) boundary.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Domain {
     /// The points within distance D ≤ R of the pole; far boundary: the arc |x| = D.
     Lens(f64),
-    /// A sphere's hemisphere; far boundary: its flat equatorial face z = R.
-    Hemisphere,
+    /// A sphere's cap of height H ≤ R (H = R: the hemisphere); far boundary: the flat cut face
+    /// z = H.
+    Cap(f64),
 }
 
 /// Why a mesh cannot be built or read.
@@ -96,11 +102,12 @@ impl Grading {
         surface_height(self.radius, r)
     }
 
-    /// The largest distance from the pole: D, or √2 R for the hemisphere (its equator).
+    /// The largest distance from the pole: D, or √(2RH) for a cap (its rim; √2 R for the
+    /// hemisphere's equator).
     pub fn extent(&self) -> f64 {
         match self.domain {
             Domain::Lens(d) => d,
-            Domain::Hemisphere => std::f64::consts::SQRT_2 * self.radius,
+            Domain::Cap(height) => (2.0 * self.radius * height).sqrt(),
         }
     }
 
@@ -108,7 +115,9 @@ impl Grading {
         let extent = self.extent();
         let fits = match self.domain {
             Domain::Lens(d) => d <= self.radius,
-            Domain::Hemisphere => self.radius.is_finite(),
+            Domain::Cap(height) => {
+                self.radius.is_finite() && height > 2.0 * self.pole_size && height <= self.radius
+            }
         };
         let ok = self.pole_size > 0.0
             && extent > 2.0 * self.pole_size
@@ -120,7 +129,7 @@ impl Grading {
                 .all(|v| v.is_finite());
         ok.then_some(()).ok_or_else(|| {
             MeshError::Parameters(format!(
-                "need 0 < 2 h0 < D ≤ R (a hemisphere only of a sphere), finite, growth > 0; got {self:?}"
+                "need 0 < 2 h0 < D ≤ R (a cap only of a sphere, 2 h0 < H ≤ R), finite, growth > 0; got {self:?}"
             ))
         })
     }
@@ -141,11 +150,19 @@ impl Grading {
         }
     }
 
-    /// Angle from the r axis where the ring at distance d ends: on the axis (d ≤ R), or on the
-    /// equatorial face z = R beyond it.
+    /// The height of the cut face: H for a cap, none for a lens.
+    fn cut(&self) -> f64 {
+        match self.domain {
+            Domain::Cap(height) => height,
+            Domain::Lens(_) => f64::INFINITY,
+        }
+    }
+
+    /// Angle from the r axis where the ring at distance d ends: on the axis (d ≤ H), or on the
+    /// cut face z = H beyond it.
     fn end_angle(&self, d: f64) -> f64 {
-        if d > self.radius {
-            (self.radius / d).asin()
+        if d > self.cut() {
+            (self.cut() / d).asin()
         } else {
             FRAC_PI_2
         }
@@ -171,13 +188,14 @@ impl Grading {
     }
 
     /// The ring distances d_k from the pole: d_0 = 0 (the pole itself), last = the extent.
-    /// A hemisphere has a ring at exactly d = R (through the centre, where the axis meets the
-    /// equatorial face) and ends at its equator.
+    /// A cap has a ring at exactly d = H (where the axis meets the cut face) and ends at its rim.
     fn rings(&self) -> Vec<f64> {
         let extent = self.extent();
         let mut marks = vec![extent];
-        if self.domain == Domain::Hemisphere {
-            marks.insert(0, self.radius);
+        if let Domain::Cap(height) = self.domain {
+            if height < extent {
+                marks.insert(0, height);
+            }
         }
         let mut rings = vec![0.0];
         let mut r = 0.0;
@@ -247,11 +265,15 @@ impl Builder {
         let ids: Vec<usize> = (0..=segments)
             .map(|j| {
                 let phi = start + (end - start) * j as f64 / segments.max(1) as f64;
-                let point = if j == 0 {
+                let point = if let (0, Domain::Cap(height), true) = (j, g.domain, d >= g.extent()) {
+                    // The rim, exactly on the cut face (its surface height R − √(R² − r²) is
+                    // ill-conditioned there: at H = R the root of a difference near zero).
+                    [(height * (2.0 * g.radius - height)).sqrt(), height]
+                } else if j == 0 {
                     let r = g.ring_radius(d);
                     [r, g.surface_height(r)]
-                } else if j == segments && d > g.radius {
-                    [(d * d - g.radius * g.radius).sqrt(), g.radius]
+                } else if j == segments && d > g.cut() {
+                    [(d * d - g.cut() * g.cut()).sqrt(), g.cut()]
                 } else if j == segments {
                     [0.0, d]
                 } else {
@@ -267,13 +289,34 @@ impl Builder {
     }
 
     /// Joins two rings by triangles, advancing along whichever ring is behind in arc
-    /// parameter (the classic strip triangulation between two polylines).
+    /// parameter (the classic strip triangulation between two polylines), unless that triangle
+    /// would fold over its neighbours and the other would not: where the rings end on different
+    /// boundaries (the axis and a cap's cut face) their parameters no longer match in space.
     fn strip(&mut self, inner: &[usize], outer: &[usize]) {
         let t = |ring: &[usize], i: usize| i as f64 / (ring.len() - 1).max(1) as f64;
+        // Rings run from the surface towards the axis: an unfolded strip triangle, written
+        // (inner, outer, next), turns clockwise in (r, z).
+        let unfolded = |[a, b, c]: [usize; 3]| {
+            let (p, q, s) = (self.nodes[a], self.nodes[b], self.nodes[c]);
+            (q[0] - p[0]) * (s[1] - p[1]) - (s[0] - p[0]) * (q[1] - p[1]) > 0.0
+        };
         let (mut i, mut j) = (0, 0);
         while i + 1 < inner.len() || j + 1 < outer.len() {
-            let advance_inner =
-                j + 1 == outer.len() || (i + 1 < inner.len() && t(inner, i + 1) <= t(outer, j + 1));
+            let along_inner = (i + 1 < inner.len()).then(|| [inner[i], outer[j], inner[i + 1]]);
+            let along_outer = (j + 1 < outer.len()).then(|| [inner[i], outer[j], outer[j + 1]]);
+            let advance_inner = match (along_inner, along_outer) {
+                (Some(a), Some(b)) => {
+                    let behind = t(inner, i + 1) <= t(outer, j + 1);
+                    let (ok_a, ok_b) = (unfolded(a), unfolded(b));
+                    if behind {
+                        ok_a || !ok_b
+                    } else {
+                        !ok_b && ok_a
+                    }
+                }
+                (Some(_), None) => true,
+                _ => false,
+            };
             let tri = if advance_inner {
                 i += 1;
                 [inner[i - 1], outer[j], inner[i]]
@@ -339,8 +382,8 @@ impl Builder {
                 .copied()
                 .chain(far_ring.windows(2).map(|w| mid(w[0], w[1])))
                 .collect(),
-            Domain::Hemisphere => (0..nodes.len())
-                .filter(|&n| (nodes[n][1] - g.radius).abs() <= 1e-12 * g.radius)
+            Domain::Cap(height) => (0..nodes.len())
+                .filter(|&n| (nodes[n][1] - height).abs() <= 1e-12 * g.radius)
                 .collect(),
         };
         let axis = (0..nodes.len()).filter(|&n| nodes[n][0] == 0.0).collect();
@@ -350,6 +393,7 @@ impl Builder {
             axis,
             far: far_nodes,
             surface: surface_edges,
+            grip: None,
         };
         validate(&mesh)?;
         Ok(mesh)
@@ -422,7 +466,7 @@ mod tests {
     #[test]
     fn hemisphere_mesh_has_the_quarter_disc_area_and_a_flat_far_face() {
         let g = Grading {
-            domain: Domain::Hemisphere,
+            domain: Domain::Cap(0.1),
             ..sphere()
         };
         let mesh = graded(&g).unwrap();
@@ -437,6 +481,36 @@ mod tests {
     }
 
     #[test]
+    fn cap_mesh_has_the_segment_area_a_flat_cut_face_and_ends_at_the_rim() {
+        // Shallow to deep: where the rings end on the cut face and on the axis, the strip
+        // triangulation must not fold (a fold adds area).
+        for h in [0.01f64, 0.02, 0.05, 0.08] {
+            cap_is_exact(0.1, h);
+        }
+    }
+
+    fn cap_is_exact(r: f64, h: f64) {
+        let mesh = graded(&Grading {
+            domain: Domain::Cap(h),
+            ..sphere()
+        })
+        .unwrap();
+        // ∫₀^H √(R² − (z − R)²) dz, with t = z − R: [t √(R² − t²)/2 + R² asin(t/R)/2] from −R to H − R.
+        let primitive = |t: f64| 0.5 * t * (r * r - t * t).sqrt() + 0.5 * r * r * (t / r).asin();
+        let exact = primitive(h - r) - primitive(-r);
+        let err = (meridian_area(&mesh) - exact).abs() / exact;
+        // Quadratic arcs and a straight cut: geometric error O(h⁴) per unit length.
+        assert!(err < 1e-4, "H = {h}: area error {err}");
+        assert!(mesh.far.iter().all(|&n| (mesh.nodes[n][1] - h).abs() < 1e-15));
+        let rim = mesh.nodes[mesh.surface.last().unwrap()[2]];
+        assert!((rim[0] - (h * (2.0 * r - h)).sqrt()).abs() < 1e-12 && (rim[1] - h).abs() < 1e-15);
+        assert!(
+            mesh.far.iter().any(|&n| mesh.nodes[n][0] == 0.0),
+            "the axis meets the cut face"
+        );
+    }
+
+    #[test]
     fn rejects_a_domain_larger_than_the_body() {
         let g = Grading {
             domain: Domain::Lens(0.2),
@@ -445,9 +519,14 @@ mod tests {
         assert!(graded(&g).is_err());
         let g = Grading {
             radius: f64::INFINITY,
-            domain: Domain::Hemisphere,
+            domain: Domain::Cap(0.1),
             ..sphere()
         };
         assert!(graded(&g).is_err());
+        let g = Grading {
+            domain: Domain::Cap(0.15),
+            ..sphere()
+        };
+        assert!(graded(&g).is_err(), "a cap higher than the radius");
     }
 }

@@ -3,8 +3,10 @@
 //!
 //! Conventions (those of the `.geo` that `spherecontact mesh` writes, `src/external/geo.rs`): x = r, y = z, the body
 //! touching the plane z = 0 at its pole; 6-node triangles (gmsh type 9, `Mesh.ElementOrder = 2`);
-//! 3-node lines (type 8) in physical curves [`CONTACT`], [`FAR`] (displaced rigidly along z)
-//! and [`AXIS`] (r = 0).
+//! 3-node lines (type 8) in physical curves [`CONTACT`], [`AXIS`] (r = 0) and the far face:
+//! [`FAR`] under the axial grip (displaced along z, free radially) or [`FAR_RIGID`] under the
+//! rigid grip (every component follows the imposed motion). The tag records the grip the mesh
+//! was made for ([`Mesh::grip`]), so that a solver can refuse a mesh made for another.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -12,11 +14,14 @@ use std::path::Path;
 use mshio::mshfile::ElementType;
 
 use super::meridian::{self, Mesh, MeshError};
+use crate::domain::Grip;
 
 /// Physical curve tag of the contact surface.
 pub const CONTACT: i32 = 1;
-/// Physical curve tag of the far boundary (displaced rigidly along the axis).
+/// Physical curve tag of the far boundary under the axial grip (displaced along the axis).
 pub const FAR: i32 = 2;
+/// Physical curve tag of the far boundary under the rigid grip (every component imposed).
+pub const FAR_RIGID: i32 = 4;
 /// Physical curve tag of the symmetry axis.
 pub const AXIS: i32 = 3;
 
@@ -93,11 +98,23 @@ pub fn parse(bytes: &[u8]) -> Result<Mesh, MeshError> {
         }
     }
     mesh.surface = contact_surface(&mesh.nodes, edges.remove(&CONTACT).unwrap_or_default())?;
-    mesh.far = nodes_of(edges.remove(&FAR).unwrap_or_default());
+    let (axial, rigid) = (edges.remove(&FAR), edges.remove(&FAR_RIGID));
+    mesh.grip = match (&axial, &rigid) {
+        (Some(_), None) => Some(Grip::Axial),
+        (None, Some(_)) => Some(Grip::Rigid),
+        (Some(_), Some(_)) => {
+            return Err(MeshError::File(format!(
+            "the far face is tagged both {FAR} (axial grip) and {FAR_RIGID} (rigid grip): one grip per mesh"
+        )))
+        }
+        (None, None) => None,
+    };
+    mesh.far = nodes_of(axial.or(rigid).unwrap_or_default());
     mesh.axis = nodes_of(edges.remove(&AXIS).unwrap_or_default());
     if mesh.triangles.is_empty() || mesh.far.is_empty() || mesh.axis.is_empty() {
         return Err(MeshError::File(format!(
-            "needs 6-node triangles and 3-node lines in physical curves {CONTACT} (contact), {FAR} (far), {AXIS} (axis)"
+            "needs 6-node triangles and 3-node lines in physical curves {CONTACT} (contact), {FAR} or \
+             {FAR_RIGID} (far face, axial or rigid grip), {AXIS} (axis)"
         )));
     }
     meridian::validate(&mesh)?;

@@ -1,0 +1,128 @@
+//! fem-axisym's tangential problem: the Fourier mode n = 1 of the same meshes, condensed onto the
+//! contact candidates and solved by the shared contact engine with Coulomb's law and memory.
+//!
+//! A shift along x of a body of revolution is the mode n = 1 (`fem::element::tri6_n1`: DOFs A,
+//! B, W a node; u_x = A + B cos 2θ, u_y = B sin 2θ). Mindlin–Deresiewicz's model holds the
+//! traction along x everywhere on the contact: q_r = q cos θ, q_θ = −q sin θ, which loads the A
+//! DOFs alone with the ring force f_i = 2π ∫ q N_i r ds (the same ring weights as the pressure
+//! in the mode n = 0), and stick holds A, the θ-mean of u_x, to the shift. So the tangential
+//! compliance is the n = 1 stiffness, assembled and factored once with the far face gripped
+//! rigidly (all of A, B, W fixed: a rigid shift of the far face is a rigid translation of the
+//! whole body, A = const, which adds the shift itself to every surface A), condensed onto the
+//! candidates' A DOFs (`fem::condense`). The contact engine takes it with
+//! [`FrictionSet::Interval`] and the bound g_i = μ λ_i on the n = 0 nodal forces λ_i.
+//!
+//! Identical spheres (Dundurs β = 0) decouple exactly: p(r) from the n = 0 problem does not
+//! depend on the shift. By the same symmetry as the normal problem, one sphere shifts by δt/2
+//! against the contact plane's midline; two bodies add their compliances and shift by δt.
+//! Dissimilar bodies couple the normal and tangential problems: not solved here.
+//!
+//! What it cannot show: the transverse traction q_y and a non-circular stick zone (B is free
+//! and unloaded: the surface's u_y distortion is computed but no q_y resists it), which need
+//! a 3D model.
+
+use faer::Mat;
+
+use super::model::{BodyModel, Reduction, Settings};
+use crate::fem::assembly;
+use crate::fem::condense::condense;
+use crate::fem::element::tri6_n1;
+use crate::fem::factor::Factor;
+use crate::scene::{Scene, DISSIMILARITY_BETA};
+
+/// What fem-axisym does about the tangential problem of a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Mode {
+    /// The mode n = 1 is solved: Q, the stick radius and q(r) at every step.
+    Solved,
+    /// μ = 0 with tangential motion: Q = 0 exactly (|q| ≤ μp = 0), nothing to solve.
+    Zero,
+    /// A path without tangential motion: no tangential columns.
+    Absent,
+    /// Not solved, for this reason (dissimilar bodies): no tangential columns.
+    NotApplicable(String),
+}
+
+impl Mode {
+    /// The mode for `scene`.
+    pub fn of(scene: &Scene) -> Self {
+        if scene.path.is_normal_only() {
+            return Self::Absent;
+        }
+        if scene.friction == 0.0 {
+            return Self::Zero;
+        }
+        let beta = scene.pair.dundurs_beta();
+        if beta.abs() > DISSIMILARITY_BETA {
+            return Self::NotApplicable(format!(
+                "tangential path not solved: dissimilar bodies (Dundurs β = {beta:.4}) couple the normal and \
+                 tangential problems, which the uncoupled Fourier n = 1 model does not capture"
+            ));
+        }
+        Self::Solved
+    }
+}
+
+/// The condensed n = 1 compliance of `body` at its candidates' A DOFs [m/N]: the mean x
+/// displacement of ring i under a unit x ring force at ring j, far face held.
+pub fn body_compliance(body: &BodyModel, settings: &Settings) -> Result<Mat<f64>, String> {
+    let system = assembly::assemble_fourier_one(&body.mesh, body.lame, settings.integration)
+        .map_err(|e| e.to_string())?;
+    let factor = Factor::new(&system.stiffness, settings.ordering)?;
+    let dofs = body
+        .candidates
+        .iter()
+        .map(|&n| system.dofs.free(tri6_n1::COMPONENTS * n))
+        .collect::<Option<Vec<usize>>>()
+        .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
+    Ok(condense(&factor, system.dofs.count(), &dofs, &system.reaction).compliance)
+}
+
+/// The pair's n = 1 compliance: the bodies' added (one body for identical spheres).
+pub fn pair_compliance(bodies: &[BodyModel], settings: &Settings) -> Result<Mat<f64>, String> {
+    let mut sum: Option<Mat<f64>> = None;
+    for body in bodies {
+        let c = body_compliance(body, settings)?;
+        sum = Some(match sum {
+            None => c,
+            Some(s) => s + c,
+        });
+    }
+    sum.ok_or_else(|| "no body to condense".into())
+}
+
+/// The shift increment of the condensed problem for a relative shift increment `delta_t`: half
+/// of it for one sphere against the symmetry plane (as the approach, [`Reduction::approach`]).
+pub fn shift(reduction: Reduction, delta_t: f64) -> f64 {
+    reduction.approach(delta_t)
+}
+
+/// The stick radius: the largest radius of a loaded node that sticks (0 when every loaded node
+/// slips), from the engine's stick flags and the normal forces.
+pub fn stick_radius(radii: &[f64], normal: &[f64], stick: &[bool]) -> f64 {
+    radii
+        .iter()
+        .zip(normal)
+        .zip(stick)
+        .filter(|((_, &p), &s)| p > 0.0 && s)
+        .map(|((&r, _), _)| r)
+        .fold(0.0, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_stick_radius_is_the_outermost_loaded_sticking_node() {
+        let radii = [0.0, 1.0, 2.0, 3.0, 4.0];
+        let normal = [1.0, 1.0, 1.0, 1.0, 0.0];
+        assert_eq!(
+            stick_radius(&radii, &normal, &[true, true, false, false, true]),
+            1.0
+        );
+        assert_eq!(stick_radius(&radii, &normal, &[false; 5]), 0.0);
+        // A node out of contact (λ = 0) never counts, whatever its flag.
+        assert_eq!(stick_radius(&radii, &normal, &[true; 5]), 3.0);
+    }
+}
