@@ -35,25 +35,31 @@ fn the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_the_axisymmetric_deck
     .unwrap();
     let p_peak = axisym.peak(Quantity::NormalForce);
     let q_peak = axisym.peak(Quantity::TangentialForce);
+    let (mut worst_p, mut worst_q) = (0.0_f64, 0.0_f64);
     for (row, reference) in history.steps.iter().zip(&axisym.steps) {
         let p = row.normal_force.unwrap();
         let q = row.tangential_force.unwrap();
         // P: the same finite body and grip; the coarse 3D mesh (pole element c_max/5) against
-        // the axisymmetric c_max/20: measured 0.09 % at 17 µm; 0.5 % of the peak.
+        // the axisymmetric c_max/20: measured 1.2e-3 of the peak at worst; 3e-3 = 2.5 times that,
+        // a margin for the mesh's node placement, which the test does not pin.
         let p_error = (p - reference.normal_force.unwrap()).abs() / p_peak;
-        assert!(p_error < 5e-3, "step {}: P error {p_error}", row.step);
+        assert!(p_error < 3e-3, "step {}: P error {p_error}", row.step);
         // Coulomb's bound on the whole sphere (one rounding of the sums).
         assert!(q.abs() <= scene.friction * p * (1.0 + 1e-9), "step {}", row.step);
         // Q: the same model but for what the n = 1 mode cannot show (q_y), on a coarse 3D mesh
-        // whose nodal rings are c_max/5 apart: 3 % of the peak (measured: see the message).
+        // whose nodes are c_max/5 apart: measured 1.5e-3 of the peak at worst; 5e-3 for the same
+        // reason as P.
         let q_error = (q - reference.tangential_force.unwrap()).abs() / q_peak;
+        worst_p = worst_p.max(p_error);
+        worst_q = worst_q.max(q_error);
         assert!(
-            q_error < 3e-2,
+            q_error < 5e-3,
             "step {}: Q {q} against {} (error {q_error} of the peak)",
             row.step,
             reference.tangential_force.unwrap()
         );
     }
+    eprintln!("fenicsx-3d against fenicsx-axisym: worst P error {worst_p:.2e}, worst Q error {worst_q:.2e} of the peaks");
     let q: Vec<f64> = history
         .steps
         .iter()
@@ -80,6 +86,8 @@ fn the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_the_axisymmetric_deck
     let qy_sum: f64 = traction.iter().map(|t| t[1]).sum();
     let qy_max = traction.iter().map(|t| t[1].abs()).fold(0.0, f64::max);
     assert!(qy_max > 0.0 && qy_sum.abs() <= 1e-9 * qy_max * traction.len() as f64);
+    // Coulomb's bound node by node: one rounding of μp, and 1 mPa for the round-off of the
+    // tractions of nodes out of contact (p = 0, q = −T = 0 up to the sum's round-off).
     for (t, p) in traction.iter().zip(&field.pressure) {
         assert!(t[0].hypot(t[1]) <= scene.friction * p * (1.0 + 1e-9) + 1e-3);
     }
