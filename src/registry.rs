@@ -6,14 +6,27 @@
 use crate::solver::Solver;
 use crate::{analytic, bem, dem, external, fem};
 
-/// Every solver this build knows, in listing order.
+/// Every solver this build knows, in listing order: the in-crate ones, then the external decks,
+/// then the DEM codes.
 pub fn registry() -> Vec<Box<dyn Solver>> {
-    let mut solvers = analytic::solvers();
-    solvers.push(Box::new(bem::Bem::default()));
-    solvers.push(Box::new(fem::FemAxisym::default()));
+    let mut solvers = in_crate();
     solvers.extend(external::solvers());
     solvers.extend(dem::solvers());
     solvers
+}
+
+/// The solvers that run inside this process (no external program): the analytic models and
+/// laws, the BEM and the in-crate FEM. Tests that must stay fast and self-contained run these.
+pub fn in_crate() -> Vec<Box<dyn Solver>> {
+    let mut solvers = analytic::solvers();
+    solvers.push(Box::new(bem::Bem::default()));
+    solvers.push(Box::new(fem::FemAxisym::default()));
+    solvers
+}
+
+/// True when `name` is an in-crate solver of this build (see [`in_crate`]).
+pub fn is_in_crate(name: &str) -> bool {
+    in_crate().iter().any(|s| s.name() == name)
 }
 
 /// The solver called `name`, if this build has it.

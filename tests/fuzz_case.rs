@@ -378,14 +378,9 @@ fn broken_promise(case: &Case) -> Option<String> {
 
 /// The cheap in-crate solvers: closed forms, DEM laws, and MDR on a coarse bed.
 fn cheap_solvers() -> Vec<Box<dyn Solver>> {
-    let mut solvers: Vec<Box<dyn Solver>> = registry::registry()
+    let mut solvers: Vec<Box<dyn Solver>> = registry::in_crate()
         .into_iter()
         .filter(|s| !["mdr", "bem", "fem-axisym"].contains(&s.name()))
-        .filter(|s| {
-            !spherecontact::external::solvers()
-                .iter()
-                .any(|e| e.name() == s.name())
-        })
         .collect();
     solvers.push(Box::new(Mdr { springs: 200 }));
     solvers

@@ -23,15 +23,7 @@ fn folder() -> PathBuf {
 
 /// Every solver of this build that runs in-crate (not an external program: a deck or a DEM code).
 fn in_crate_solvers() -> Vec<String> {
-    let external: Vec<String> = spherecontact::external::solvers()
-        .iter()
-        .chain(&spherecontact::dem::solvers())
-        .map(|s| s.name().to_owned())
-        .collect();
-    registry::names()
-        .into_iter()
-        .filter(|n| !external.contains(n))
-        .collect()
+    registry::in_crate().iter().map(|s| s.name().to_owned()).collect()
 }
 
 /// The failures a case file's header expects: (solver, message fragment).

@@ -5,6 +5,11 @@
 //! - an open gap gives zero force and clears the history: a contact made again without tangential
 //!   motion carries no tangential force;
 //! - nothing panics or gives NaN on any shipped case (hard cases included).
+//!
+//! These run the in-crate solvers ([`registry::in_crate`]): the decks and the real DEM codes meet
+//! the same requirements in tests/external_friction.rs and tests/dem_codes.rs, and every shipped
+//! case with every solver runs in CI's `verify --require-external` step, which fails on any
+//! solver failure.
 
 mod common;
 
@@ -19,7 +24,7 @@ use spherecontact::solver::{self, SolveError, Solver};
 /// not apply to it (Cattaneo–Mindlin under a varying load) or are not installed, and the heavy
 /// ones (the 3D deck: tests/external_3d.rs runs it, ignored as heavy).
 fn tangential_histories(scene: &Scene) -> Vec<(String, History)> {
-    registry::registry()
+    registry::in_crate()
         .iter()
         .filter(|s| !spherecontact::external::HEAVY.contains(&s.name()))
         .filter_map(|s| match solver::run(s.as_ref(), scene) {
@@ -116,7 +121,7 @@ fn every_solver_runs_every_shipped_case_without_failure() {
     // solver::run rejects non-finite values, so this also asserts "no NaN anywhere".
     for file in all_case_files() {
         let case = Case::load(&file).unwrap_or_else(|e| panic!("{e}"));
-        for name in &case.solvers {
+        for name in case.solvers.iter().filter(|s| registry::is_in_crate(s)) {
             let solver: Box<dyn Solver> = case.solver(name).unwrap();
             match solver::run(solver.as_ref(), &case.scene) {
                 Ok(_) | Err(SolveError::Unavailable(_)) => {}

@@ -4,6 +4,7 @@
 pub mod decks;
 
 use spherecontact::case::Case;
+use spherecontact::check::Reference;
 use spherecontact::history::History;
 use spherecontact::pair::{Body, ContactPair, Material};
 use spherecontact::path::{LoadingPath, Position};
@@ -133,14 +134,14 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
 /// tests/external.rs, would make report tests minutes long), and the checks that need no deck.
 pub fn paper_case_in_crate() -> Case {
     let mut case = case("cases/paper-fig7.toml");
-    // The decks and the DEM codes (tested in tests/external*.rs and tests/dem_codes.rs).
-    let external: Vec<String> = spherecontact::external::solvers()
-        .iter()
-        .chain(&spherecontact::dem::solvers())
-        .map(|s| s.name().to_owned())
-        .collect();
-    case.solvers.retain(|s| !external.contains(s));
-    case.checks
-        .retain(|c| !external.contains(&c.solver) && !external.contains(&c.reference.to_string()));
+    // The decks and the DEM codes are tested in tests/external*.rs and tests/dem_codes.rs.
+    case.solvers.retain(|s| registry::is_in_crate(s));
+    case.checks.retain(|c| {
+        registry::is_in_crate(&c.solver)
+            && match &c.reference {
+                Reference::Solver(name) => registry::is_in_crate(name),
+                Reference::Value { .. } => true,
+            }
+    });
     case
 }
