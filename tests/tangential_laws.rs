@@ -21,12 +21,10 @@ use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
 
 /// Runs every registered solver that gives a tangential force on `scene`; skips those that do
-/// not apply to it (Cattaneo–Mindlin under a varying load) or are not installed, and the heavy
-/// ones (the 3D deck: tests/external_3d.rs runs it, ignored as heavy).
+/// not apply to it (Cattaneo–Mindlin under a varying load) or are not installed.
 fn tangential_histories(scene: &Scene) -> Vec<(String, History)> {
     registry::in_crate()
         .iter()
-        .filter(|s| !spherecontact::external::HEAVY.contains(&s.name()))
         .filter_map(|s| match solver::run(s.as_ref(), scene) {
             Ok(h) if h.steps.iter().any(|r| r.tangential_force.is_some()) => Some((s.name().to_owned(), h)),
             Ok(_) | Err(SolveError::NotApplicable(_)) | Err(SolveError::Unavailable(_)) => None,

@@ -44,10 +44,6 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
     ]
 }
 
-/// The solvers that take minutes to an hour on a path: run only when a case names them, never
-/// by a loop over every solver of the build.
-pub const HEAVY: [&str; 1] = [fenicsx3d::NAME];
-
 /// The paper's spheres (R 0.1 m, E 70 GPa, ν 0.3) along a normal path through `delta_n_um`.
 #[cfg(test)]
 pub(crate) fn test_scene(delta_n_um: &[f64]) -> crate::scene::Scene {
