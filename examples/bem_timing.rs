@@ -1,15 +1,17 @@
 //! Speed against error of the `bem` solver on grids from 32² to 512² (medians of repeated runs).
 //!
-//! Run in release: `cargo run --release --example bem_timing` (add `quick` to skip 512²).
+//! Run in release: `cargo run --release --example bem_timing` (add `quick` to skip 512²; name
+//! sections `normal`, `cattaneo`, `path` to run only those; `n=128,256` chooses the grids, e.g.
+//! `cargo run --release --example bem_timing -- cattaneo path n=128,256`).
 //! Times are the thread's CPU time (the machine is shared), medians of repeated runs.
 //!
 //! 1. Normal Hertz contact of the paper's spheres at δn = 17 µm: errors of P, p0, c.
 //! 2. One Cattaneo partial-slip increment at δn = 17 µm, δt = 0 → 2 µm (Q/μP ≈ 0.63): stick radius
 //!    (area-equivalent disc of the stick panels, and the mean of the semi-axes fitted to the stick
 //!    deficit on the axes) against c(1 − Q/μP)^{1/3} with BEM's own c, Q and P, and Q against
-//!    Cattaneo–Mindlin; the wall time
-//!    of the tangential solve alone and of the whole solve (grid set-up, normal, tangential).
-//! 3. The paper's path (cases/paper-fig7.toml) with 20 substeps a segment (220 increments): wall
+//!    Cattaneo–Mindlin; the time of the tangential solve alone and of the whole solve (grid
+//!    set-up, normal, tangential).
+//! 3. The paper's path (cases/paper-fig7.toml) with 20 substeps a segment (220 increments): the
 //!    time and the largest tangential-force error against MDR over the positions.
 
 use cpu::Instant;

@@ -1,24 +1,28 @@
 //! Set-up cost and normal-contact accuracy of the 3D model (`fem-3d`) on the paper's spheres
 //! (R 0.1 m, E 70 GPa, ν 0.3), half hemisphere gripped rigidly on its equatorial face.
 //!
-//! Run: `cargo run --release --example fem3d_timing -- [DIVISIONS…] [--variants]`
+//! Run: `cargo run --release --example fem3d_timing -- [DIVISIONS…] [--variants] [--cattaneo]`
 //! (DIVISIONS: pole size = c_max / DIVISIONS, c_max the contact radius at δn = 20 µm; default 10).
 //! For each mesh: gmsh's time, nodes, DOFs, candidates, the times of assembly, ordering,
 //! factorisation and condensation, the factor's entries, the peak resident memory, and P at
-//! δn = 17 µm against Hertz (the raw offset: finite body against half-space). With
+//! δn = 17 µm against Hertz (the raw offset: finite body against half-space), the median wall and
+//! CPU time of one frictionless increment of the engine (δn 1 … 25 µm); with `--cattaneo`, the
+//! Cattaneo shift at 17 µm (disc friction, 60 increments) against Cattaneo–Mindlin. With
 //! `--variants`, also the factorisation with faer's minimum degree on the whole DOF graph and the
 //! condensation by blocked solves, side by side.
 
 use std::time::Instant;
 
-use spherecontact::contact::{Contact, DenseCompliance, Settings as ContactSettings};
+use spherecontact::contact::Settings as ContactSettings;
 use spherecontact::external::toolchain::Toolchain;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::mesh::solid::SolidMesh;
 use spherecontact::fem::solid3d::condense::Condensation;
+use spherecontact::fem::solid3d::contact;
 use spherecontact::fem::solid3d::meshing::{self, Zones};
 use spherecontact::fem::solid3d::model::{Elimination, Model, Settings};
 use spherecontact::fem::solid3d::ordering::NodeOrder;
+use spherecontact::fem::solid3d::system::Grip;
 use spherecontact::pair::{Body, ContactPair, Material};
 
 /// Peak resident memory of this process so far [GB] (Linux VmHWM).
@@ -33,20 +37,55 @@ fn peak_memory_gb() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1048576.0)
 }
 
-fn report(label: &str, model: &Model, pair: &ContactPair) {
+/// CPU time of this process so far (every thread) [s].
+fn cpu_seconds() -> f64 {
+    let mut now = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `now` is a valid, writable timespec; CLOCK_PROCESS_CPUTIME_ID exists on Linux.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut now) };
+    now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9
+}
+
+/// Median of the values (sorted here).
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    spherecontact::bench::median(&values)
+}
+
+/// The frictionless engine along δn = 1 … 25 µm in 1 µm increments (the loading of
+/// cases/hertz-normal.toml): median wall and CPU time of one increment.
+fn normal_increments(model: &Model) {
+    let mut engine = contact::engine(model, 0.0, false, ContactSettings::default()).unwrap();
+    let (mut wall, mut cpu) = (Vec::new(), Vec::new());
+    for k in 1..=25 {
+        let (start, cpu0) = (Instant::now(), cpu_seconds());
+        engine.advance(0.5e-6 * f64::from(k), &[]).unwrap();
+        wall.push(start.elapsed().as_secs_f64());
+        cpu.push(cpu_seconds() - cpu0);
+    }
+    println!(
+        "    normal increments (δn 1 … 25 µm): median {:.4} s wall, {:.4} s CPU; max {:.4} s wall",
+        median(wall.clone()),
+        median(cpu),
+        wall.iter().copied().fold(0.0, f64::max)
+    );
+}
+
+fn report(label: &str, model: &Model, pair: &ContactPair, friction: bool) {
+    normal_increments(model);
     let t = model.times;
-    let operator = DenseCompliance::scalar(model.condensed.normal.clone()).unwrap();
     let hertz = spherecontact::hertz::Hertz::of(pair);
     let d = 17e-6;
     let start = Instant::now();
-    let mut contact: Contact<DenseCompliance, DenseCompliance> =
-        Contact::new(operator, model.surface.heights(), ContactSettings::default()).unwrap();
-    contact.advance(0.5 * d, &[]).unwrap();
+    let mut engine = contact::engine(model, 0.2, friction, ContactSettings::default()).unwrap();
+    engine.advance(0.5 * d, &[0.0, 0.0]).unwrap();
     let solve = start.elapsed().as_secs_f64();
-    let force = 2.0 * contact.normal_force();
+    let force = engine.normal_force();
     println!(
         "  {label}: assembly {:.2} s, ordering {:.2} s, factor {:.2} s ({:.1} M entries), condense {:.2} s; \
-         P(17 µm) {:+.3} % against Hertz (normal solve {:.3} s); peak memory {:.2} GB",
+         P(17 µm) {:+.3} % against Hertz (engine set-up + normal solve {:.3} s); peak memory {:.2} GB",
         t.assembly,
         t.ordering,
         t.factor,
@@ -56,11 +95,50 @@ fn report(label: &str, model: &Model, pair: &ContactPair) {
         solve,
         peak_memory_gb()
     );
+    if !friction {
+        return;
+    }
+    // Cattaneo: shift 0 → 6 µm at δn = 17 µm in 0.1 µm increments, against Cattaneo–Mindlin
+    // with this model's own P (the raw tangential offset of the finite body).
+    let mu = 0.2;
+    let c = hertz.contact_radius(d);
+    let shear = pair.mindlin_shear_modulus();
+    let slide = 3.0 * mu * force / (16.0 * c * shear);
+    let (mut times, mut cpu) = (Vec::new(), Vec::new());
+    for k in 1..=60 {
+        let dt = 0.1e-6 * k as f64;
+        let (start, cpu0) = (Instant::now(), cpu_seconds());
+        let cost = engine.advance(0.5 * d, &[0.05e-6, 0.0]).unwrap();
+        times.push(start.elapsed().as_secs_f64());
+        cpu.push(cpu_seconds() - cpu0);
+        if k % 10 == 0 {
+            let q = engine.tangential_force(0);
+            let reference = mu * force * (1.0 - (1.0 - (dt / slide).min(1.0)).powf(1.5));
+            let stick = engine.stick().iter().filter(|&&s| s).count();
+            println!(
+                "    δt {:.1} µm: Q {:.3} N, Cattaneo(FE P) {:.3} N ({:+.3} %), Qy {:.2e} N, {} stick nodes, {} iterations",
+                1e6 * dt,
+                q,
+                reference,
+                100.0 * (q / reference - 1.0),
+                engine.tangential_force(1),
+                stick,
+                cost.tangential.iterations
+            );
+        }
+    }
+    println!(
+        "    per increment: median {:.3} s wall, {:.3} s CPU, max {:.3} s wall",
+        median(times.clone()),
+        median(cpu),
+        times.iter().copied().fold(0.0, f64::max)
+    );
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let variants = args.iter().any(|a| a == "--variants");
+    let friction = args.iter().any(|a| a == "--cattaneo");
     let divisions: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();
     let divisions = if divisions.is_empty() {
         vec![10.0]
@@ -115,6 +193,7 @@ fn main() {
                 candidate_radius: zones.candidate_radius,
                 elimination,
                 condensation,
+                grip: Grip::Rigid,
             };
             let model = Model::build(mesh.clone(), lame, &settings).unwrap();
             println!(
@@ -123,7 +202,12 @@ fn main() {
                 model.surface.len(),
                 model.condensed.tangential_unknowns.len()
             );
-            report(&format!("{elimination:?} + {condensation:?}"), &model, &pair);
+            report(
+                &format!("{elimination:?} + {condensation:?}"),
+                &model,
+                &pair,
+                friction,
+            );
         }
     }
 }

@@ -14,6 +14,9 @@
 //!   properties) and [`path`] (the steps of the loading path);
 //! - [`solver`] is the one trait every model implements; [`analytic`] holds the closed forms
 //!   (Hertz, Cattaneo–Mindlin), the exact path reference (MDR) and the incremental DEM laws;
+//! - [`contact`] is the contact engine of the numerical solvers (normal and incremental Coulomb
+//!   problems over a compliance operator); [`driver`] walks a path for every incremental solver
+//!   with one rule for an open gap;
 //! - [`check`] judges a solver's [`history::History`] against a reference, with a tolerance and
 //!   its reason, as OK / NOOK / INFO;
 //! - [`verify`] runs cases and their checks; [`report`] prints and writes the results;
@@ -31,6 +34,7 @@ pub mod case;
 pub mod check;
 pub mod contact;
 pub mod dem;
+pub mod driver;
 pub mod exchange;
 pub mod external;
 pub mod fem;

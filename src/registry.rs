@@ -10,13 +10,17 @@ use crate::{analytic, bem, dem, external, fem};
 /// then the DEM codes.
 pub fn registry() -> Vec<Box<dyn Solver>> {
     let mut solvers = in_crate();
+    // fem-3d computes in this process but meshes with gmsh, and its set-up takes seconds: it
+    // runs where a case lists it (cases/fem-3d-normal.toml) and in tests/fem3d_hertz.rs.
+    solvers.push(Box::new(fem::FemSolid3d::default()));
     solvers.extend(external::solvers());
     solvers.extend(dem::solvers());
     solvers
 }
 
 /// The solvers that run inside this process (no external program): the analytic models and
-/// laws, the BEM and the in-crate FEM. Tests that must stay fast and self-contained run these.
+/// laws, the BEM and the axisymmetric FEM (not fem-3d, which meshes with gmsh). Tests that must
+/// stay fast and self-contained run these.
 pub fn in_crate() -> Vec<Box<dyn Solver>> {
     let mut solvers = analytic::solvers();
     solvers.push(Box::new(bem::Bem::default()));

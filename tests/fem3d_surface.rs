@@ -4,7 +4,8 @@
 
 mod solid_common;
 
-use spherecontact::contact::{Contact, DenseCompliance, Method, Settings};
+use faer::Mat;
+use spherecontact::contact::{Contact, DenseCompliance, Settings};
 use spherecontact::fem::assembly::Dofs;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::factor::Factor;
@@ -55,19 +56,15 @@ fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
     for distort in [false, true] {
         let (_, surface, condensed) = bar(distort);
         let c = &condensed[0];
-        let m = surface.len();
-        let settings = Settings {
-            method: Method::Direct,
-            ..Settings::default()
-        };
-        let operator = DenseCompliance::scalar(c.normal.clone()).unwrap();
+        let w = &surface.weights;
+        // Multipliers: nodal pressures, acting through the compliance C' W.
+        let compliance = Mat::from_fn(w.len(), w.len(), |i, k| c.normal[(i, k)] * w[k]);
+        let normal = DenseCompliance::try_new(compliance, w.clone(), 1).unwrap();
         let mut contact: Contact<DenseCompliance, DenseCompliance> =
-            Contact::new(operator, surface.heights(), settings).unwrap();
+            Contact::new(normal, surface.heights(), Settings::default()).unwrap();
         contact.advance(delta, &[]).unwrap();
-        let forces = contact.pressure();
         let p = YOUNG * delta;
-        for j in 0..m {
-            let pj = forces[j] / surface.weights[j];
+        for (j, pj) in contact.pressure().iter().enumerate() {
             // Round-off of the factorisation and the dense contact solve.
             assert!(
                 (pj - p).abs() < 1e-9 * p,
@@ -75,9 +72,10 @@ fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
                 surface.points[j]
             );
         }
-        // Equilibrium: the top carries Σλ, and Σλ = p × the face area (1).
-        let total: f64 = forces.iter().sum();
-        let reaction: f64 = c.reaction[1].iter().zip(forces).map(|(r, l)| r * l).sum();
+        // Equilibrium: P = p × the face area (1), and the top carries it.
+        let total = contact.normal_force();
+        let forces = contact.pressure().iter().zip(w).map(|(p, w)| p * w);
+        let reaction: f64 = c.reaction[1].iter().zip(forces).map(|(r, f)| r * f).sum();
         assert!((total - p).abs() < 1e-9 * p && (reaction - total).abs() < 1e-9 * total);
     }
 }

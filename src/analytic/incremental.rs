@@ -6,10 +6,14 @@
 //! that way for any [`TangentialLaw`], so every law sees exactly the same increments.
 //!
 //! Contact rules, the same for every law: while the gap is open the force is zero and the law's
-//! history is cleared; on the increment that closes the gap the contact starts with Q = 0 (the
-//! contact had zero radius, hence zero stiffness, at the increment's start).
+//! history is cleared (the path walker's rule, [`crate::driver`]); on the increment that closes
+//! the gap the contact starts with Q = 0 (the contact had zero radius, hence zero stiffness, at
+//! the increment's start).
 
+use crate::driver::{self, PathIncrement, PathModel};
+use crate::hertz::Hertz;
 use crate::history::{History, Metadata, StepResult};
+use crate::path::Step;
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -62,37 +66,12 @@ impl Solver for IncrementalSolver {
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
-        let hertz = scene.hertz();
-        let mut law = (self.make_law)(scene);
-        let normal_at = |delta_n: f64| NormalState {
-            force: hertz.force(delta_n),
-            radius: hertz.contact_radius(delta_n),
-        };
         let steps = scene.steps();
-        let mut rows = Vec::with_capacity(steps.len());
-        let mut previous: Option<(f64, f64)> = None; // (δn, δt) of the previous step
-        for step in &steps {
-            let after = normal_at(step.delta_n);
-            let tangential = match previous {
-                Some((delta_n, delta_t)) if delta_n > 0.0 && step.delta_n > 0.0 => law.advance(&Increment {
-                    before: normal_at(delta_n),
-                    after,
-                    delta_t: step.delta_t - delta_t,
-                }),
-                _ => {
-                    law.reset();
-                    0.0
-                }
-            };
-            previous = Some((step.delta_n, step.delta_t));
-            rows.push(StepResult {
-                normal_force: Some(after.force),
-                tangential_force: Some(tangential),
-                contact_radius: Some(after.radius),
-                peak_pressure: Some(hertz.peak_pressure(step.delta_n)),
-                ..StepResult::at(step)
-            });
-        }
+        let mut walker = Walker {
+            law: (self.make_law)(scene),
+            hertz: scene.hertz(),
+        };
+        let rows = driver::walk(scene, &mut walker)?;
         Ok(History {
             metadata: Metadata {
                 model: format!(
@@ -100,11 +79,60 @@ impl Solver for IncrementalSolver {
                     self.description
                 ),
                 resolution: format!("{} increments", steps.len().saturating_sub(1)),
+                warnings: driver::never_closed(scene, true)
+                    .map(|_| vec![driver::NEVER_CLOSES.to_string()])
+                    .unwrap_or_default(),
                 ..Metadata::default()
             },
             steps: rows,
             fields: Vec::new(),
         })
+    }
+}
+
+/// A law as the path walker drives it, with Hertz's normal force.
+struct Walker {
+    law: Box<dyn TangentialLaw>,
+    hertz: Hertz,
+}
+
+impl Walker {
+    fn normal_at(&self, delta_n: f64) -> NormalState {
+        NormalState {
+            force: self.hertz.force(delta_n),
+            radius: self.hertz.contact_radius(delta_n),
+        }
+    }
+}
+
+impl PathModel for Walker {
+    fn advance(&mut self, increment: &PathIncrement) -> Result<StepResult, SolveError> {
+        let step = increment.step;
+        let after = self.normal_at(step.delta_n);
+        let tangential = match increment.before {
+            Some(before) if !increment.closing() => self.law.advance(&Increment {
+                before: self.normal_at(before.delta_n),
+                after,
+                delta_t: increment.shift(),
+            }),
+            _ => {
+                // The contact starts with Q = 0: it had zero radius, hence zero stiffness, at the
+                // start of the increment that closes the gap.
+                self.law.reset();
+                0.0
+            }
+        };
+        Ok(StepResult {
+            normal_force: Some(after.force),
+            tangential_force: Some(tangential),
+            contact_radius: Some(after.radius),
+            peak_pressure: Some(self.hertz.peak_pressure(step.delta_n)),
+            ..StepResult::at(step)
+        })
+    }
+
+    fn release(&mut self, _step: &Step) {
+        self.law.reset();
     }
 }
 

@@ -34,7 +34,10 @@
 //! order (Δx/c)², from the one cell cut by the contact edge.
 
 use crate::case::limits::MAX_MDR_SPRINGS;
+use crate::driver::{self, PathIncrement, PathModel};
+use crate::hertz::Hertz;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::path::Step;
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -160,6 +163,43 @@ impl SpringBed {
     }
 }
 
+/// The bed as the path walker drives it, keeping the surface fields of the path positions.
+struct Walker<'a> {
+    scene: &'a Scene,
+    bed: SpringBed,
+    hertz: Hertz,
+    fields: Vec<SurfaceField>,
+}
+
+impl PathModel for Walker<'_> {
+    fn advance(&mut self, increment: &PathIncrement) -> Result<StepResult, SolveError> {
+        let step = increment.step;
+        let state = self.bed.advance(step.delta_n, increment.shift());
+        if let Some(position) = step.position.filter(|&p| self.scene.records_fields_at(p)) {
+            self.fields
+                .push(self.bed.surface_field(position, step.delta_n, state.stick_radius));
+        }
+        Ok(StepResult {
+            normal_force: Some(state.normal_force),
+            tangential_force: Some(state.tangential_force),
+            contact_radius: Some(self.hertz.contact_radius(step.delta_n)),
+            stick_radius: Some(state.stick_radius),
+            ..StepResult::at(step)
+        })
+    }
+
+    /// Every spring leaves contact and forgets its history.
+    fn release(&mut self, _step: &Step) {
+        self.bed.u[..self.bed.touched].fill(0.0);
+        self.bed.touched = 0;
+    }
+
+    /// The bed gives P and Q; p0 is not among its rows.
+    fn reports_peak_pressure(&self) -> bool {
+        false
+    }
+}
+
 impl SpringBed {
     /// p(r) and q(r) at the radii `radii` by the inverse transform, for approach `delta_n`.
     fn tractions(&self, delta_n: f64, radii: &[f64]) -> (Vec<f64>, Vec<f64>) {
@@ -245,39 +285,23 @@ impl Solver for Mdr {
             let message = format!("mdr needs 1 to {MAX_MDR_SPRINGS} springs (got {})", self.springs);
             return Err(SolveError::Failed(message));
         }
-        let hertz = scene.hertz();
-        let steps = scene.steps();
-        let mut rows = Vec::with_capacity(steps.len());
-        let mut fields = Vec::new();
-        if scene.max_contact_radius() > 0.0 {
-            let mut bed = SpringBed::new(scene, self.springs);
-            let mut previous_t = steps[0].delta_t;
-            for step in &steps {
-                let state = bed.advance(step.delta_n, step.delta_t - previous_t);
-                previous_t = step.delta_t;
-                let in_contact = step.delta_n > 0.0;
-                if let (Some(position), true) =
-                    (step.position.filter(|&p| scene.records_fields_at(p)), in_contact)
-                {
-                    fields.push(bed.surface_field(position, step.delta_n, state.stick_radius));
-                }
-                rows.push(StepResult {
-                    normal_force: Some(state.normal_force),
-                    tangential_force: Some(state.tangential_force),
-                    contact_radius: Some(hertz.contact_radius(step.delta_n)),
-                    stick_radius: in_contact.then_some(state.stick_radius),
-                    ..StepResult::at(step)
-                });
+        let mut warnings = Vec::new();
+        let (rows, fields) = match driver::never_closed(scene, false) {
+            Some(rows) => {
+                // No spring ever touches.
+                warnings.push(driver::NEVER_CLOSES.to_string());
+                (rows, Vec::new())
             }
-        } else {
-            // The gap never closes: no spring ever touches.
-            rows.extend(steps.iter().map(|step| StepResult {
-                normal_force: Some(0.0),
-                tangential_force: Some(0.0),
-                contact_radius: Some(0.0),
-                ..StepResult::at(step)
-            }));
-        }
+            None => {
+                let mut walker = Walker {
+                    scene,
+                    bed: SpringBed::new(scene, self.springs),
+                    hertz: scene.hertz(),
+                    fields: Vec::new(),
+                };
+                (driver::walk(scene, &mut walker)?, walker.fields)
+            }
+        };
         Ok(History {
             metadata: Metadata {
                 model: "MDR: 1D Winkler bed equivalent to elastically similar half-spaces".into(),
@@ -286,6 +310,7 @@ impl Solver for Mdr {
                     self.springs,
                     (1.0 + WINDOW_MARGIN) * scene.max_contact_radius()
                 ),
+                warnings,
                 // The stick radius is a cell edge: within one spacing of the true one.
                 extra: [(
                     "spring_spacing_m".to_owned(),

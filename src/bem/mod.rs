@@ -8,7 +8,7 @@
 //! [`convolution`] applies them by zero-padded FFT, and [`operator`] makes them the compliances of
 //! the shared contact engine ([`crate::contact`]: the normal problem with exact non-penetration,
 //! Kalker's incremental Coulomb problem with memory); [`state`] carries the fields from one
-//! increment to the next and [`solver`] runs the path.
+//! increment to the next and [`solver`] runs the path with the shared walker ([`crate::driver`]).
 //!
 //! Outputs: per step the History quantities (P, Q, contact radius from the pressure edge, peak
 //! pressure, stick radius as the area-equivalent disc of the stick panels); at every path

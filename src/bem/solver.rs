@@ -4,7 +4,9 @@
 use serde_json::json;
 
 use crate::case::limits::MAX_BEM_GRID;
+use crate::driver::{self, PathIncrement, PathModel};
 use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::path::Step;
 use crate::scene::{Scene, DISSIMILARITY_BETA};
 use crate::solver::{SolveError, Solver};
 
@@ -69,51 +71,27 @@ impl Bem {
                 self.grid
             )));
         }
-        let steps = scene.steps();
         let c_max = scene.max_contact_radius();
         let mut metadata = self.metadata(scene);
-        if c_max <= 0.0 {
-            // The gap never closes: nothing to discretise.
-            let rows = steps
-                .iter()
-                .map(|step| StepResult {
-                    normal_force: Some(0.0),
-                    tangential_force: Some(0.0),
-                    contact_radius: Some(0.0),
-                    peak_pressure: Some(0.0),
-                    ..StepResult::at(step)
-                })
-                .collect();
-            return Ok((
-                History {
-                    metadata,
-                    steps: rows,
-                    fields: Vec::new(),
-                },
-                Vec::new(),
-            ));
+        if let Some(steps) = driver::never_closed(scene, true) {
+            // Nothing to discretise.
+            metadata.warnings.push(driver::NEVER_CLOSES.into());
+            let history = History {
+                metadata,
+                steps,
+                fields: Vec::new(),
+            };
+            return Ok((history, Vec::new()));
         }
         let grid = Grid::covering(self.grid, self.window * c_max);
-        let mut state = ContactState::new(scene, grid, self.tolerances);
-        let (mut rows, mut fields) = (Vec::with_capacity(steps.len()), Vec::new());
-        let mut total = IncrementCost::default();
-        let mut previous_t = steps[0].delta_t;
-        for step in &steps {
-            let cost = state
-                .advance(step.delta_n, step.delta_t - previous_t)
-                .map_err(|e| increment_failure(e, step.index))?;
-            previous_t = step.delta_t;
-            total.normal_iterations += cost.normal_iterations;
-            total.tangential_iterations += cost.tangential_iterations;
-            let snapshot = state.snapshot();
-            rows.push(row(step, snapshot));
-            if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
-                fields.push(PositionFields {
-                    position,
-                    snapshot: snapshot.clone(),
-                });
-            }
-        }
+        let mut walker = Walker {
+            scene,
+            state: ContactState::new(scene, grid, self.tolerances),
+            fields: Vec::new(),
+            total: IncrementCost::default(),
+        };
+        let rows = driver::walk(scene, &mut walker)?;
+        let (fields, total) = (walker.fields, walker.total);
         metadata.resolution = format!(
             "{n}×{n} panels of {h:.3e} m ({across:.1} across the largest Hertz contact), window ±{w:.3e} m",
             n = grid.n,
@@ -167,8 +145,47 @@ impl Bem {
     }
 }
 
+/// The BEM contact as the path walker drives it, keeping the fields of every path position.
+struct Walker<'a> {
+    scene: &'a Scene,
+    state: ContactState,
+    fields: Vec<PositionFields>,
+    total: IncrementCost,
+}
+
+impl Walker<'_> {
+    /// Keeps the fields at `step` if it is a position the scene records.
+    fn keep(&mut self, step: &Step) {
+        if let Some(position) = step.position.filter(|&p| self.scene.records_fields_at(p)) {
+            self.fields.push(PositionFields {
+                position,
+                snapshot: self.state.snapshot().clone(),
+            });
+        }
+    }
+}
+
+impl PathModel for Walker<'_> {
+    fn advance(&mut self, increment: &PathIncrement) -> Result<StepResult, SolveError> {
+        let step = increment.step;
+        let cost = self
+            .state
+            .advance(step.delta_n, increment.shift())
+            .map_err(|e| increment_failure(e, step.index))?;
+        self.total.normal_iterations += cost.normal_iterations;
+        self.total.tangential_iterations += cost.tangential_iterations;
+        self.keep(step);
+        Ok(row(step, self.state.snapshot()))
+    }
+
+    fn release(&mut self, step: &Step) {
+        self.state.release();
+        self.keep(step);
+    }
+}
+
 /// A path step's History row from the fields.
-fn row(step: &crate::path::Step, snapshot: &Snapshot) -> StepResult {
+fn row(step: &Step, snapshot: &Snapshot) -> StepResult {
     let in_contact = snapshot.normal_force() > 0.0;
     StepResult {
         normal_force: Some(snapshot.normal_force()),

@@ -237,6 +237,17 @@ impl ContactState {
         &self.snapshot
     }
 
+    /// The gap opened: the engine forgets the contact and the fields are zero.
+    pub fn release(&mut self) {
+        self.contact.release();
+        let s = &mut self.snapshot;
+        let len = s.pressure.len();
+        s.pressure.fill(0.0);
+        s.traction = Vector2Field::zeros(len);
+        s.slip = Vector2Field::zeros(len);
+        s.stick.fill(false);
+    }
+
     /// Moves to approach `delta_n` with a tangential shift increment `shift` along x.
     pub fn advance(&mut self, delta_n: f64, shift: f64) -> Result<IncrementCost, IncrementError> {
         let cost = self

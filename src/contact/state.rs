@@ -325,6 +325,24 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
         Ok(cost)
     }
 
+    /// The gap opened: forgets everything (multipliers, tractions, slip, the predictor's last
+    /// change); the next [`Contact::advance`] starts a contact from rest.
+    pub fn release(&mut self) {
+        self.state.multipliers.fill(0.0);
+        self.state.displacement.fill(0.0);
+        self.change.fill(0.0);
+        self.displacement_change.fill(0.0);
+        self.last_step = 0.0;
+        if let Some(t) = &mut self.tangential {
+            let (m, k) = (self.separation.len(), t.set.components());
+            t.state = CoulombState::zeros(m, k);
+            t.slip.fill(0.0);
+            t.change.fill(0.0);
+            t.displacement_change.fill(0.0);
+            t.last_shift.fill(0.0);
+        }
+    }
+
     /// The multipliers λ (pressures or nodal forces).
     pub fn pressure(&self) -> &[f64] {
         &self.state.multipliers

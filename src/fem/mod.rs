@@ -15,7 +15,8 @@
 //! contact nodes is computed once by solves with the factor; each path step then re-solves only
 //! the small condensed contact problem, on the shared engine ([`crate::contact`]). Verification: `tests/fem_element.rs` (patch test,
 //! manufactured-solution rates), `tests/fem_hertz.rs` (Hertz, convergence), `tests/fem_msh.rs`,
-//! `tests/fem_hard_cases.rs`; speed: `examples/fem_timing.rs`.
+//! `tests/fem_hard_cases.rs`; the 3D model: `tests/fem3d_element.rs`, `tests/fem3d_surface.rs`,
+//! `tests/fem3d_mesh.rs`, `tests/fem3d_hertz.rs`; speed: `examples/fem_timing.rs`, `examples/fem3d_timing.rs`.
 
 pub mod assembly;
 pub mod axisym;
@@ -27,3 +28,4 @@ pub mod quadrature;
 pub mod solid3d;
 
 pub use axisym::FemAxisym;
+pub use solid3d::FemSolid3d;

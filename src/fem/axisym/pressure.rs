@@ -107,7 +107,7 @@ fn least_squares<const N: usize>(rows: &[[f64; N]], values: &[f64]) -> Option<[f
 
 /// p0 = a₀ of the least-squares fit a₀ + a₁ x + a₂ x², x = (r/c)², over loaded nodes with
 /// 0 < r ≤ c/2 (fewer terms when fewer nodes).
-fn peak_pressure(radii: &[f64], pressure: &[f64], forces: &[f64], c: f64) -> Option<f64> {
+pub fn peak_pressure(radii: &[f64], pressure: &[f64], forces: &[f64], c: f64) -> Option<f64> {
     let samples: Vec<(f64, f64)> = radii
         .iter()
         .zip(pressure)

@@ -13,6 +13,7 @@ use serde_json::json;
 use super::model::{FrictionlessContact, Model, Reduction, Settings};
 use super::output;
 use super::pressure::{self, Profile};
+use crate::driver;
 use crate::fem::element::tri6::{Integration, Lame};
 use crate::fem::factor::Ordering;
 use crate::fem::mesh::msh;
@@ -141,6 +142,19 @@ impl Solver for FemAxisym {
             return Err(SolveError::NotApplicable(
                 "two flats have no Hertz contact".into(),
             ));
+        }
+        if let Some(steps) = driver::never_closed(scene, true) {
+            // Nothing to size the mesh by and nothing to solve: the walker's rule.
+            let metadata = Metadata {
+                model: "axisymmetric finite elements, frictionless".into(),
+                warnings: vec![driver::NEVER_CLOSES.into()],
+                ..Metadata::default()
+            };
+            return Ok(History {
+                metadata,
+                steps,
+                fields: Vec::new(),
+            });
         }
         let settings = self.settings(scene)?;
         let model = match &self.mesh_file {

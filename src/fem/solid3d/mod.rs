@@ -6,14 +6,22 @@
 //! | [`ordering`] | the elimination order: minimum degree on the interior, contact DOFs last |
 //! | [`surface`] | the contact candidate surface and its sub-triangulated contact rule |
 //! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
+//! | [`contact`] | the contact problem on the shared engine: pressure multipliers, symmetric weights |
 //! | [`model`] | the whole set-up of one body |
 //! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
+//! | [`measures`] | the contact radius and peak pressure from the nodal pressures |
+//! | [`solver`] | `fem-3d`: the path walked on the engine, P, c, p0, fields, VTU |
 //! | [`output`] | displacement and stress of a contact state; VTU of the volume and the contact surface |
 
 pub mod condense;
+pub mod contact;
+pub mod measures;
 pub mod meshing;
 pub mod model;
 pub mod ordering;
 pub mod output;
+pub mod solver;
 pub mod surface;
 pub mod system;
+
+pub use solver::FemSolid3d;

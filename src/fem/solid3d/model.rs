@@ -12,7 +12,7 @@ use std::time::Instant;
 use super::condense::{self, Condensation, Condensed};
 use super::ordering::{self, ContactLast, NodeOrder};
 use super::surface::Surface;
-use super::system::{self, System};
+use super::system::{self, Grip, System};
 use crate::fem::assembly::Dofs;
 use crate::fem::element::tri6::Lame;
 use crate::fem::factor::{Factor, Ordering};
@@ -37,13 +37,16 @@ pub struct Settings {
     pub elimination: Elimination,
     /// How the condensed compliance is computed.
     pub condensation: Condensation,
+    /// How the far face is held.
+    pub grip: Grip,
 }
 
 impl Settings {
-    /// The fastest combination (measured by `examples/fem3d_timing.rs`).
-    pub fn fastest(candidate_radius: f64) -> Self {
+    /// The fastest combination (measured by `examples/fem3d_timing.rs`), for `grip`.
+    pub fn fastest(candidate_radius: f64, grip: Grip) -> Self {
         Self {
             candidate_radius,
+            grip,
             elimination: Elimination::ContactLast(NodeOrder::MinimumDegree),
             condensation: Condensation::TrailingBlock,
         }
@@ -86,8 +89,8 @@ impl Model {
     pub fn build(mesh: SolidMesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
         let t0 = Instant::now();
         let surface = Surface::new(&mesh, settings.candidate_radius)?;
-        let fixed = system::fixed_dofs(&mesh);
-        if surface.nodes.iter().any(|&n| (0..3).all(|a| fixed[3 * n + a])) {
+        let fixed = system::fixed_dofs(&mesh, settings.grip);
+        if surface.nodes.iter().any(|&n| fixed[3 * n + 2]) {
             return Err(
                 "a contact candidate node lies on the gripped far face: the domain is too small".into(),
             );

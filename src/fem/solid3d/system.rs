@@ -1,8 +1,8 @@
 //! The stiffness of one 3D body, assembled once on its free DOFs, with the far face gripped.
 //!
 //! DOFs: u_x, u_y, u_z of every node (full index 3 n + a). Fixed: every component of the far
-//! face's nodes (the rigid grip: they follow the imposed approach and shift exactly), and u_y on
-//! the symmetry plane y = 0. A rigid translation of the whole body is an exact, stress-free
+//! face's nodes (the rigid grip: they follow the imposed approach and shift exactly; or u_z only,
+//! [`Grip::Axial`]), and u_y on the symmetry plane y = 0. A rigid translation of the whole body is an exact, stress-free
 //! solution that satisfies the grip and, for translations in x and z, the symmetry condition;
 //! so u = t + u₀ with t the far face's translation and u₀ zero on the far face, driven by the
 //! contact forces alone. Only u₀ needs the stiffness; t enters the contact problem as a shift of
@@ -32,12 +32,32 @@ pub struct System {
     pub graph: Vec<Vec<usize>>,
 }
 
-/// The fixed DOFs of the gripped body: every component on the far face, u_y on the symmetry
+/// How the far face is held.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Grip {
+    /// Every displacement component of the far face follows the imposed approach and shift.
+    #[default]
+    Rigid,
+    /// Only u_z of the far face is imposed; it is free in its plane (frictionless scenes only).
+    /// u_x is held at one far-face node against the rigid translation along x, which u_z and the
+    /// symmetry plane leave free; no force along x acts on a frictionless body, so that node
+    /// carries no reaction.
+    Axial,
+}
+
+/// The fixed DOFs of the gripped body: the far face's gripped components, u_y on the symmetry
 /// plane.
-pub fn fixed_dofs(mesh: &SolidMesh) -> Vec<bool> {
+pub fn fixed_dofs(mesh: &SolidMesh, grip: Grip) -> Vec<bool> {
     let mut fixed = vec![false; 3 * mesh.nodes.len()];
-    for n in SolidMesh::nodes_of(&mesh.far) {
-        fixed[3 * n..3 * n + 3].fill(true);
+    let far = SolidMesh::nodes_of(&mesh.far);
+    for &n in &far {
+        match grip {
+            Grip::Rigid => fixed[3 * n..3 * n + 3].fill(true),
+            Grip::Axial => fixed[3 * n + 2] = true,
+        }
+    }
+    if let (Grip::Axial, Some(&n)) = (grip, far.first()) {
+        fixed[3 * n] = true;
     }
     for n in SolidMesh::nodes_of(&mesh.symmetry) {
         fixed[3 * n + 1] = true;
