@@ -40,6 +40,9 @@ enum Command {
         /// Also write VTU fields (ParaView) into DIR/<solver>-vtu/ for solvers that have them.
         #[arg(long)]
         vtu: bool,
+        /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: the case's `ranks`.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        ranks: Option<u32>,
     },
     /// Run cases and judge their checks; exit 1 on any NOOK.
     Verify {
@@ -51,6 +54,9 @@ enum Command {
         /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
         #[arg(long)]
         require_external: bool,
+        /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        ranks: Option<u32>,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -123,12 +129,14 @@ fn main() -> ExitCode {
             solvers,
             out,
             vtu,
-        } => run(&case, &solvers, &out, vtu),
+            ranks,
+        } => run(&case, &solvers, &out, vtu, ranks),
         Command::Verify {
             cases,
             junit,
             require_external,
-        } => verify_cases(cases, junit.as_deref(), require_external),
+            ranks,
+        } => verify_cases(cases, junit.as_deref(), require_external, ranks),
         Command::Mesh {
             case,
             resolution,
@@ -201,9 +209,16 @@ fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::
         .collect()
 }
 
-fn run(case: &Path, solvers: &[String], out: &Path, vtu: bool) -> Result<ExitCode, InputError> {
+fn run(
+    case: &Path,
+    solvers: &[String],
+    out: &Path,
+    vtu: bool,
+    ranks: Option<u32>,
+) -> Result<ExitCode, InputError> {
     // Plan: the case and every solver named must be valid before anything is written.
-    let case = Case::load(case)?;
+    let mut case = Case::load(case)?;
+    case.ranks = ranks.unwrap_or(case.ranks);
     let mut plan = planned_solvers(&case, solvers)?;
     output_folder("--out", out)?;
     if vtu {
@@ -255,6 +270,7 @@ fn verify_cases(
     files: Vec<PathBuf>,
     junit_file: Option<&Path>,
     require_external: bool,
+    ranks: Option<u32>,
 ) -> Result<ExitCode, InputError> {
     let files = if files.is_empty() {
         case_files(Path::new("cases"))?
@@ -266,7 +282,12 @@ fn verify_cases(
     }
     let cases = files
         .iter()
-        .map(|f| Case::load(f))
+        .map(|f| {
+            Case::load(f).map(|mut case| {
+                case.ranks = ranks.unwrap_or(case.ranks);
+                case
+            })
+        })
         .collect::<Result<Vec<_>, _>>()?;
     if let Some(file) = junit_file {
         io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;

@@ -383,3 +383,17 @@ fn run_writes_the_bem_maps_as_vtu_grids() {
         );
     }
 }
+
+#[test]
+fn ranks_must_be_a_rank_count() {
+    for bad in ["ranks = 0", "ranks = -2", "ranks = 1025"] {
+        assert_rejected(
+            "friction = 0.2",
+            &format!("friction = 0.2\n{bad}"),
+            "ranks",
+            "1 ≤ ranks ≤ 1024",
+        );
+    }
+    let (code, stderr) = run_case_text(&valid().replacen("friction = 0.2", "friction = 0.2\nranks = 2", 1));
+    assert_eq!(code, 0, "{stderr}");
+}

@@ -102,3 +102,8 @@ mod tests {
         }
     }
 }
+
+/// The most MPI ranks a case or the command line may ask of a deck that runs under MPI
+/// (`fenicsx-3d`): a cluster node's worth; beyond, run the deck by hand as
+/// docs/external-decks.md shows.
+pub const MAX_RANKS: u32 = 1024;

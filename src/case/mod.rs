@@ -13,6 +13,7 @@
 //!                                       # "every-position", "focus", or [1, 5, 7] (the focus is
 //!                                       # always added); at most 16 positions. Default: every
 //!                                       # position for a path of at most 16, else the focus only
+//! ranks = 2                             # optional: MPI ranks of fenicsx-3d, 1 ≤ ranks ≤ 1024
 //!
 //! [body1]                               # SI: m, Pa
 //! radius = 0.1                          # 1e-9 ≤ R ≤ 1e3; `inf` for a flat
@@ -86,6 +87,7 @@ use toml::Spanned;
 
 use crate::check::{CheckSpec, Reference};
 use crate::domain::Domain;
+use crate::external::fenicsx3d;
 use crate::number::Short;
 use crate::pair::ContactPair;
 use crate::registry;
@@ -110,6 +112,8 @@ pub struct Case {
     pub checks: Vec<CheckSpec>,
     /// The solvers the case defines itself (commands, stored results).
     pub own_solvers: Vec<CaseSolver>,
+    /// MPI ranks of the solvers that run under MPI (`fenicsx-3d`); 1 by default.
+    pub ranks: u32,
 }
 
 impl Case {
@@ -152,6 +156,10 @@ impl Case {
             .iter()
             .find(|s| s.name() == name)
             .map(CaseSolver::solver)
+            .or_else(|| {
+                (name == fenicsx3d::NAME)
+                    .then(|| Box::new(fenicsx3d::Solid3dDeck::new(self.ranks)) as Box<dyn Solver>)
+            })
             .or_else(|| registry::by_name(name))
     }
 
@@ -243,6 +251,23 @@ impl Validator<'_> {
         if let Some(domain) = &raw.domain {
             scene.domain = self.domain(domain, &scene)?;
         }
+        let ranks = match &raw.ranks {
+            None => 1,
+            Some(value) => {
+                let max = i64::from(limits::MAX_RANKS);
+                let n = *value.get_ref();
+                u32::try_from(n)
+                    .ok()
+                    .filter(|_| (1..=max).contains(&n))
+                    .ok_or_else(|| {
+                        self.error(
+                            value,
+                            "ranks",
+                            format!("{n} is out of range (allowed: 1 ≤ ranks ≤ {max})"),
+                        )
+                    })?
+            }
+        };
         Ok(Case {
             file: self.file.to_path_buf(),
             focus,
@@ -251,6 +276,7 @@ impl Validator<'_> {
             solvers,
             checks,
             own_solvers,
+            ranks,
         })
     }
 

@@ -16,6 +16,7 @@ pub struct RawCase {
     pub friction: Spanned<f64>,
     pub solvers: Spanned<Vec<Spanned<String>>>,
     pub focus: Option<Spanned<i64>>,
+    pub ranks: Option<Spanned<i64>>,
     pub fields: Option<Spanned<toml::Value>>,
     pub body1: RawBody,
     pub body2: Option<RawBody>,

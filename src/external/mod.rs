@@ -9,7 +9,8 @@
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
 //! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
 //! - [`readback`]: the decks' per-step CSV and the field files through meshio;
-//! - [`surface`]: the contact line's nodal state at every step, and what is measured from it.
+//! - [`surface`]: the contact line's nodal state at every step, and what is measured from it;
+//! - [`fenicsx3d`]: the 3D deck under MPI (heavy), [`surface3d`]: its contact surface read back.
 //!
 //! Install the tools with `scripts/setup.sh`. A missing tool makes the solver
 //! [`Unavailable`](crate::solver::SolveError::Unavailable), never a pass.
@@ -18,6 +19,7 @@ pub mod axisym;
 pub mod command;
 pub mod deck;
 pub mod fenicsx;
+pub mod fenicsx3d;
 pub mod freefem;
 pub mod geo;
 pub mod process;
@@ -27,16 +29,18 @@ pub mod record;
 pub mod solid_geo;
 pub mod stored;
 pub mod surface;
+pub mod surface3d;
 pub mod toolchain;
 
 use crate::solver::Solver;
 use axisym::AxisymSolver;
 
-/// The external solvers, with default options.
+/// The external solvers, with default options (the 3D deck on one rank).
 pub fn solvers() -> Vec<Box<dyn Solver>> {
     vec![
         Box::new(AxisymSolver::new(freefem::FreeFem)),
         Box::new(AxisymSolver::new(fenicsx::Fenicsx)),
+        Box::new(fenicsx3d::Solid3dDeck::new(1)),
     ]
 }
 

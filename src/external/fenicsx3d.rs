@@ -1,0 +1,466 @@
+//! The FEniCSx 3D deck `fenicsx-3d`: dolfinx 0.5.2 (Debian) on the quadratic-tetrahedron mesh of
+//! `fem-3d` (half of the hemisphere or cap, [`super::solid_geo`]), one sphere against its symmetry
+//! plane, normal penalty contact and Coulomb friction with history on the contact surface (the
+//! disc), condensed onto the candidate nodes; under `mpirun` with a chosen rank count (template
+//! `templates/fenicsx_3d.py`; the model and the cluster how-to: docs/external-decks.md).
+//!
+//! Heavy: not in the shipped cases' default solver lists; `cases/heavy/paper-fig7-3d.toml` names it.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use serde_json::json;
+
+use super::axisym::{Plan, KFAC, MAX_ITERATIONS};
+use super::deck::{self, Deck, DeckInput, Grip, RunDir, PATH_FILE};
+use super::geo::MeshFiles;
+use super::process::Job;
+use super::readback::{self, DeckRow, Outcome};
+use super::solid_geo::{self, SolidMeshFiles};
+use super::surface3d::{self, Surface3};
+use super::toolchain::{Tool, Toolchain};
+use crate::fem::solid3d::meshing::{self, Zones};
+use crate::history::{History, Metadata, StepResult};
+use crate::scene::Scene;
+use crate::solver::{SolveError, Solver};
+
+/// The solver name.
+pub const NAME: &str = "fenicsx-3d";
+
+/// The deck template.
+pub const TEMPLATE: &str = include_str!("templates/fenicsx_3d.py");
+
+/// Default pole element size, as a fraction of the path's largest contact radius: a coarse mesh,
+/// c_max/5 (measured on the paper's spheres: 32.6k DOFs, 319 candidate nodes, a set-up of 7 s
+/// CPU on one core; docs/external-decks.md). Finer meshes through [`Options3d::resolution`].
+pub const DEFAULT_POLE_FRACTION: f64 = 1.0 / 5.0;
+
+pub use crate::case::limits::MAX_RANKS;
+
+/// Time allowed for start-up (imports, form compilation on a first run), for the set-up
+/// (assembly, factorisation, one solve per candidate DOF: minutes at c_max/8) and per computed
+/// step (a dense semi-smooth Newton on the candidates: below a second at c_max/8).
+const TIME_TO_START: Duration = Duration::from_secs(180);
+const TIME_FOR_SETUP: Duration = Duration::from_secs(1800);
+const TIME_PER_STEP: Duration = Duration::from_secs(3);
+
+/// The 3D deck run by dolfinx on `ranks` MPI processes (1: plain python, no mpirun).
+#[derive(Clone, Copy, Debug)]
+pub struct Fenicsx3d {
+    /// MPI ranks.
+    pub ranks: u32,
+}
+
+impl Deck for Fenicsx3d {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn description(&self) -> &'static str {
+        "FEniCSx (dolfinx) 3D FEM on quadratic tetrahedra, half of one sphere on its symmetry plane, penalty, Coulomb with history on the disc, MPI (heavy)"
+    }
+
+    fn tool(&self) -> Tool {
+        Tool::Dolfinx
+    }
+
+    fn template(&self) -> &'static str {
+        TEMPLATE
+    }
+
+    fn file_name(&self) -> &'static str {
+        "deck3d.py"
+    }
+
+    /// Unused: the 3D mesh is [`SolidMeshFiles`], not the meridian's [`MeshFiles`].
+    fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
+        &mesh.msh41
+    }
+
+    /// `python3 deck3d.py` on one rank; `mpirun -np N python3 deck3d.py` on more, with the two
+    /// variables OpenMPI needs to run as root, and `--oversubscribe` beyond the machine's cores.
+    fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
+        let python = toolchain.python.display().to_string();
+        let deck = deck.display().to_string();
+        if self.ranks <= 1 {
+            return Job {
+                program: toolchain.python.clone(),
+                args: vec![deck],
+                env: vec![],
+                timeout,
+            };
+        }
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let mut args = vec!["-np".to_owned(), self.ranks.to_string()];
+        if usize::try_from(self.ranks).unwrap_or(usize::MAX) > cores {
+            args.push("--oversubscribe".into());
+        }
+        args.extend([python, deck]);
+        Job {
+            program: "mpirun".into(),
+            args,
+            env: vec![
+                ("OMPI_ALLOW_RUN_AS_ROOT".into(), "1".into()),
+                ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM".into(), "1".into()),
+            ],
+            timeout,
+        }
+    }
+
+    fn exit_code_meaning(&self, code: i32) -> &'static str {
+        match code {
+            1 => "uncaught Python exception on a rank (traceback in stderr)",
+            2 => "Python or mpirun could not open the deck or its arguments were wrong",
+            _ => "unexpected exit code (mpirun reports a rank that died)",
+        }
+    }
+}
+
+/// How the 3D deck is run.
+#[derive(Clone, Debug, Default)]
+pub struct Options3d {
+    /// The executables.
+    pub toolchain: Toolchain,
+    /// Pole element size [m]; default [`DEFAULT_POLE_FRACTION`] of the largest contact radius.
+    pub resolution: Option<f64>,
+    /// Time limit for the deck; default 33 min + 3 s per step.
+    pub timeout: Option<Duration>,
+    /// Cap on contact iterations per step; default [`MAX_ITERATIONS`].
+    pub max_iterations: Option<u32>,
+}
+
+/// The 3D deck as a [`Solver`].
+pub struct Solid3dDeck {
+    /// The deck (its rank count).
+    pub deck: Fenicsx3d,
+    /// How it is run.
+    pub options: Options3d,
+}
+
+/// What a finished 3D run left, read back.
+struct Run3 {
+    rows: Vec<DeckRow>,
+    surfaces: Vec<Surface3>,
+    mesh: SolidMeshFiles,
+    resolution: f64,
+    solving_s: f64,
+    reading_s: f64,
+    timing: Vec<(String, f64)>,
+}
+
+impl Solid3dDeck {
+    /// The deck on `ranks` MPI ranks (1: serial), default options.
+    pub fn new(ranks: u32) -> Self {
+        Self {
+            deck: Fenicsx3d { ranks },
+            options: Options3d::default(),
+        }
+    }
+
+    /// Meshes, runs the deck and reads back, in `dir`.
+    fn run_in(&self, scene: &Scene, plan: &Plan, resolution: f64, dir: &RunDir) -> Result<Run3, SolveError> {
+        let toolchain = &self.options.toolchain;
+        let c_max = scene.max_contact_radius();
+        let zones = Zones::new(c_max, resolution);
+        let r = scene.pair.body1.radius;
+        let geometry = meshing::geometry(r, r, resolution, zones);
+        let mesh = solid_geo::mesh(&geometry, dir.path(), "body", toolchain)?;
+        let input = DeckInput {
+            scene: scene.name.clone(),
+            mesh: "body.msh".into(),
+            radius_mm: r * 1e3,
+            young_mpa: scene.pair.body1.material.young * 1e-6,
+            poisson: scene.pair.body1.material.poisson,
+            h_mm: resolution * 1e3,
+            kfac: KFAC,
+            friction: scene.friction,
+            grip: Grip::Rigid,
+            candidate_radius_mm: plan.candidate_radius * 1e3,
+            tangential: plan.tangential,
+            max_iterations: self.options.max_iterations.unwrap_or(MAX_ITERATIONS),
+        };
+        let write = |name: &str, text: &str| {
+            std::fs::write(dir.path().join(name), text)
+                .map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
+        };
+        write(self.deck.file_name(), &deck::fill(TEMPLATE, &input))?;
+        write(PATH_FILE, &deck::path_file(&plan.steps))?;
+        let steps = u32::try_from(plan.steps.len()).unwrap_or(u32::MAX);
+        let timeout = self
+            .options
+            .timeout
+            .unwrap_or(TIME_TO_START + TIME_FOR_SETUP + TIME_PER_STEP * steps);
+        let job = self
+            .deck
+            .job(toolchain, &dir.path().join(self.deck.file_name()), timeout);
+        let run = super::process::run(&job, dir.path(), "deck")
+            .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
+        if let Some(why) = deck::failure(&self.deck, &run.ending, timeout) {
+            return Err(SolveError::Failed(format!(
+                "{why}; last output:\n{}",
+                run.tail(12)
+            )));
+        }
+        let start = Instant::now();
+        let read = |name: &str| readback::read_output(dir.path(), name).map_err(SolveError::Failed);
+        let rows = readback::parse_steps(&read("steps.csv")?, &plan.steps).map_err(SolveError::Failed)?;
+        let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
+        let surfaces =
+            surface3d::parse_surface3(&read("surface.csv")?, &indices).map_err(SolveError::Failed)?;
+        check_consistency(&rows, &surfaces, resolution)?;
+        let timing = read("timing.csv").map(|t| parse_phases(&t)).unwrap_or_default();
+        Ok(Run3 {
+            rows,
+            surfaces,
+            mesh,
+            resolution,
+            solving_s: run.wall_s,
+            reading_s: start.elapsed().as_secs_f64(),
+            timing,
+        })
+    }
+}
+
+/// Largest disagreement between the deck's P and the nodal sum of surface.csv, relative to the
+/// larger of P and 1 N: both are the same sum written with 17 digits, so 1e-9 separates
+/// round-off from a file that belongs to another step or run.
+const SUM_AGREEMENT: f64 = 1e-9;
+
+/// The two files agree (P = 2 Σ ω p at every step) and no step's contact reaches the outermost
+/// candidate ring (within one element of it).
+fn check_consistency(rows: &[DeckRow], surfaces: &[Surface3], resolution: f64) -> Result<(), SolveError> {
+    for (row, surface) in rows.iter().zip(surfaces) {
+        let sum = surface.normal_force();
+        if (sum - row.force_contact).abs() > SUM_AGREEMENT * row.force_contact.abs().max(1.0) {
+            return Err(SolveError::Failed(format!(
+                "step {}: P = {:e} N in steps.csv but 2 Σ ω p = {sum:e} N in surface.csv",
+                row.step, row.force_contact
+            )));
+        }
+        if surface.edge_loaded(resolution) {
+            return Err(SolveError::Failed(format!(
+                "step {}: the contact reached the outermost candidate ring: the candidate zone is \
+                 too small for this model",
+                row.step
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The `phase,seconds` lines of the deck's timing.csv.
+fn parse_phases(text: &str) -> Vec<(String, f64)> {
+    text.lines()
+        .skip(1)
+        .filter_map(|l| l.split_once(','))
+        .filter_map(|(p, v)| Some((p.trim().to_owned(), v.trim().parse::<f64>().ok()?)))
+        .filter(|(_, v)| v.is_finite())
+        .collect()
+}
+
+impl Solver for Solid3dDeck {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn description(&self) -> &'static str {
+        self.deck.description()
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        if !scene.pair.is_symmetric() || !scene.pair.body1.radius.is_finite() {
+            return Err(SolveError::NotApplicable(
+                "the 3D deck models two identical spheres through their symmetry plane; different \
+                 spheres or a sphere on a flat are not modelled"
+                    .into(),
+            ));
+        }
+        let toolchain = &self.options.toolchain;
+        let version = toolchain
+            .require(Tool::Dolfinx)
+            .map_err(SolveError::Unavailable)?;
+        if self.deck.ranks > 1 && super::toolchain::which(Path::new("mpirun")).is_none() {
+            return Err(SolveError::Unavailable(
+                "mpirun not found on PATH; install: apt-get install openmpi-bin (or scripts/setup.sh)".into(),
+            ));
+        }
+        let c_max = scene.max_contact_radius();
+        let resolution = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
+        let mut plan = Plan::of(scene, resolution);
+        plan.grip = Grip::Rigid;
+        plan.candidate_radius = Zones::new(c_max, resolution).candidate_radius;
+        let mut dir = RunDir::new("spherecontact-fenicsx-3d-")
+            .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
+        match self.run_in(scene, &plan, resolution, &dir) {
+            Ok(run) => Ok(history(scene, &version, &plan, &run, self.deck.ranks)),
+            Err(SolveError::Failed(message)) => Err(SolveError::Failed(format!(
+                "{message} (deck, mesh, stdout and stderr kept in {})",
+                dir.keep().display()
+            ))),
+            Err(other) => Err(other),
+        }
+    }
+}
+
+/// One `History` row per path step, the fields at the positions the case records, the metadata.
+fn history(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -> History {
+    let mut steps = Vec::with_capacity(run.rows.len());
+    let mut fields = Vec::new();
+    for ((step, row), surface) in scene.steps().iter().zip(&run.rows).zip(&run.surfaces) {
+        let measures = surface.measures();
+        if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
+            fields.push(surface.field(position, plan.tangential));
+        }
+        let in_contact = row.force_contact > 0.0;
+        steps.push(StepResult {
+            normal_force: Some(row.force_contact),
+            tangential_force: plan.tangential.then_some(row.tangential_force),
+            contact_radius: measures.contact_radius,
+            peak_pressure: measures.peak_pressure,
+            stick_radius: (plan.tangential && in_contact)
+                .then(|| measures.contact_radius.map(|c| surface.stick_radius(c)))
+                .flatten(),
+            ..StepResult::at(step)
+        });
+    }
+    History {
+        metadata: metadata(scene, version, plan, run, ranks),
+        steps,
+        fields,
+    }
+}
+
+/// How the history was obtained.
+fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -> Metadata {
+    let capped: Vec<usize> = run
+        .rows
+        .iter()
+        .filter(|r| r.outcome == Outcome::Capped)
+        .map(|r| r.step)
+        .collect();
+    let mut metadata = Metadata {
+        version: format!("dolfinx {version}"),
+        model: format!(
+            "3D, half of one sphere (y ≥ 0, hemisphere gripped rigidly on its equatorial face) against \
+             its symmetry plane, exact for identical spheres; P2 on quadratic tetrahedra; penalty k = \
+             {KFAC:e} E/h with nodal contact quadrature (sub-triangle lumping), condensed onto the \
+             candidate nodes; {}",
+            if plan.tangential {
+                "Coulomb with history on the disc |q| ≤ μp, all-stick predictor every increment"
+            } else {
+                "frictionless (the path has no tangential motion)"
+            }
+        ),
+        resolution: format!(
+            "pole element {:.3} µm (c_max/{:.1}); every path step computed; {ranks} MPI rank(s)",
+            run.resolution * 1e6,
+            scene.max_contact_radius() / run.resolution
+        ),
+        warnings: vec![
+            "finite hemisphere gripped rigidly, not a half-space: P(δn) above Hertz by ≈ 0.5 % at 17 µm \
+             (the offset fem-axisym and the axisymmetric decks measure on the same domain; docs/external-decks.md)"
+                .into(),
+        ],
+        ..Metadata::default()
+    };
+    if plan.tangential {
+        metadata.warnings.push(
+            "known defect: the nodal contact quadrature lets corner nodes lift off inside the contact, \
+             so the surface fields oscillate node to node and the stick radius (the innermost slipping \
+             node) is far too small; P and Q agree with fenicsx-axisym within 2.2e-3 of the peaks \
+             (docs/external-decks.md)"
+                .into(),
+        );
+    }
+    if !capped.is_empty() {
+        metadata.warnings.push(format!(
+            "the contact iteration hit its cap at steps {capped:?}: their values are the last iterate's"
+        ));
+    }
+    let extra = &mut metadata.extra;
+    extra.insert("grip".into(), json!(Grip::Rigid.name()));
+    extra.insert("ranks".into(), json!(ranks));
+    extra.insert("computed_steps".into(), json!("every step of the path"));
+    extra.insert("candidate_radius_m".into(), json!(plan.candidate_radius));
+    extra.insert(
+        "candidate_nodes".into(),
+        json!(run.surfaces.first().map_or(0, |s| s.nodes.len())),
+    );
+    extra.insert("penalty_factor".into(), json!(KFAC));
+    extra.insert(
+        "contact_measures".into(),
+        json!("c and p0 from a least-squares fit of p² = p0²(1 − r²/c²) over the nodes in contact; stick radius midway between the innermost slipping node and the farthest sticking node inside it"),
+    );
+    extra.insert("capped_steps".into(), json!(capped));
+    extra.insert("meshing_s".into(), json!(run.mesh.wall_s));
+    extra.insert("solving_s".into(), json!(run.solving_s));
+    extra.insert("reading_back_s".into(), json!(run.reading_s));
+    for (phase, value) in &run.timing {
+        extra.insert(format!("deck_{phase}"), json!(value));
+    }
+    extra.insert("outcome".into(), json!("exited with code 0, output read back"));
+    metadata
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_rank_runs_python_and_more_run_mpirun_as_root() {
+        let toolchain = Toolchain::default();
+        let serial = Fenicsx3d { ranks: 1 }.job(&toolchain, Path::new("d.py"), Duration::from_secs(9));
+        assert_eq!(serial.program, toolchain.python);
+        assert_eq!(serial.args, ["d.py"]);
+        let parallel = Fenicsx3d { ranks: 2 }.job(&toolchain, Path::new("d.py"), Duration::from_secs(9));
+        assert_eq!(parallel.program, Path::new("mpirun"));
+        assert_eq!(&parallel.args[..2], ["-np", "2"]);
+        assert_eq!(parallel.args.last().map(String::as_str), Some("d.py"));
+        assert!(parallel
+            .env
+            .iter()
+            .any(|(k, v)| k == "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM" && v == "1"));
+    }
+
+    #[test]
+    fn every_key_of_the_3d_template_is_filled() {
+        let input = DeckInput {
+            scene: "s".into(),
+            mesh: "body.msh".into(),
+            radius_mm: 100.0,
+            young_mpa: 7e4,
+            poisson: 0.3,
+            h_mm: 0.2,
+            kfac: 1e3,
+            friction: 0.2,
+            grip: Grip::Rigid,
+            candidate_radius_mm: 1.3,
+            tangential: true,
+            max_iterations: 30,
+        };
+        let text = deck::fill(TEMPLATE, &input);
+        let unfilled = text.match_indices('@').any(|(i, _)| {
+            let key: String = text[i + 1..]
+                .chars()
+                .take_while(|c| c.is_ascii_uppercase() || *c == '_')
+                .collect();
+            !key.is_empty() && text[i + 1 + key.len()..].starts_with('@')
+        });
+        assert!(!unfilled, "unfilled key");
+        assert!(text.contains("r_cand = 1.3e0") && text.contains(PATH_FILE));
+    }
+
+    #[test]
+    fn different_spheres_are_not_applicable() {
+        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        scene.pair.body2.radius = 0.05;
+        let e = Solid3dDeck::new(1).solve(&scene).unwrap_err();
+        assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
+    }
+
+    #[test]
+    fn timing_phases_are_read_and_garbage_is_skipped() {
+        let phases = parse_phases("phase,seconds\nsetup,1.5\npath,nan\nranks,2\n");
+        assert_eq!(phases, [("setup".to_owned(), 1.5), ("ranks".to_owned(), 2.0)]);
+    }
+}
