@@ -76,6 +76,11 @@ pub fn is_plain_name(name: &str) -> bool {
         && name.chars().all(allowed)
 }
 
+/// The most MPI ranks a case or the command line may ask of a deck that runs under MPI
+/// (`fenicsx-3d`): a cluster node's worth; beyond, run the deck by hand as
+/// docs/external-decks.md shows.
+pub const MAX_RANKS: u32 = 1024;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -102,8 +107,3 @@ mod tests {
         }
     }
 }
-
-/// The most MPI ranks a case or the command line may ask of a deck that runs under MPI
-/// (`fenicsx-3d`): a cluster node's worth; beyond, run the deck by hand as
-/// docs/external-decks.md shows.
-pub const MAX_RANKS: u32 = 1024;
