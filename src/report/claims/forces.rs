@@ -259,10 +259,10 @@ fn fem_normal_force_on_caps(run: &CaseRun) -> Claim {
         claim: claim.into(),
         measured: format!(
             "fem-axisym on two 20 mm caps gripped rigidly on their cut faces: P / P_hertz − 1 up to {}{at_quoted}; \
-             against mdr-domain (Hertz–MD in series with the caps' computed compliance) within {} at every position \
+             against mdr-domain (Hertz–MD in series with the caps' computed compliance) within {:.2} % at every position \
              in contact: the offset is the caps' own compliance, not an error.",
             percent(largest),
-            format!("{:.2} %", 100.0 * against_corrected)
+            100.0 * against_corrected
         ),
         verdict,
         reading,
