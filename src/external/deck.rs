@@ -103,11 +103,21 @@ impl DeckInput {
             ("@KFAC@", format!("{:e}", self.kfac)),
             ("@MU@", format!("{:e}", self.friction)),
             ("@GRIP_RADIAL@", u8::from(self.grip == Grip::Rigid).to_string()),
+            ("@FAR_TAG@", far_face_tag(self.grip).to_string()),
             ("@CANDIDATE_RADIUS_MM@", format!("{:e}", self.candidate_radius_mm)),
             ("@TANGENTIAL@", u8::from(self.tangential).to_string()),
             ("@PATH_FILE@", PATH_FILE.to_owned()),
             ("@MAX_ITERATIONS@", self.max_iterations.to_string()),
         ]
+    }
+}
+
+/// The physical tag of the gripped far face in the mesh that [`super::geo`] writes: the tag
+/// carries the grip, so that a mesh made for one grip is never read as the other.
+fn far_face_tag(grip: Grip) -> u32 {
+    match grip {
+        Grip::Rigid => super::geo::TAG_TOP_RIGID,
+        Grip::Axial => super::geo::TAG_TOP,
     }
 }
 

@@ -76,7 +76,7 @@ dx = ufl.Measure("dx", domain=msh, metadata={"quadrature_degree": 6})
 # nodal contact quadrature: 3-point Gauss-Lobatto (Simpson) on the P2 contact edges
 dsc = ufl.Measure("ds", domain=msh, subdomain_data=ftags,
                   metadata={"quadrature_rule": "GLL", "quadrature_degree": 3})
-CONTACT, TOP, AXIS = 1, 2, 3
+CONTACT, TOP, AXIS = 1, @FAR_TAG@, 3   # the far face's tag carries the grip (2 axial, 4 rigid)
 
 
 def eps0(w):  # n = 0 strains (rr, zz, rz, theta-theta)
