@@ -148,7 +148,7 @@ impl Solver for FemAxisym {
     }
 
     fn description(&self) -> &'static str {
-        "axisymmetric FEM (6-node triangles, graded mesh), frictionless contact by the shared engine's active set on the condensed surface"
+        "axisymmetric FEM (6-node triangles, graded mesh): normal contact (n = 0) and Coulomb friction with history (n = 1) by the shared engine on the condensed contact line"
     }
 
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
