@@ -17,11 +17,11 @@ use spherecontact::contact::Settings as ContactSettings;
 use spherecontact::external::toolchain::Toolchain;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::mesh::solid::SolidMesh;
+use spherecontact::fem::ordering::NodeOrder;
 use spherecontact::fem::solid3d::condense::Condensation;
 use spherecontact::fem::solid3d::contact;
 use spherecontact::fem::solid3d::meshing::{self, Zones};
 use spherecontact::fem::solid3d::model::{Elimination, Model, Settings};
-use spherecontact::fem::solid3d::ordering::NodeOrder;
 use spherecontact::fem::solid3d::system::Grip;
 use spherecontact::pair::{Body, ContactPair, Material};
 

@@ -163,7 +163,7 @@ impl References {
 
     /// `history` scored as a rung: a finite body against the corrected reference with its raw
     /// offsets beside, any other solver against Hertz and MDR.
-    fn score(&self, timing: Timing) -> Rung {
+    pub fn score(&self, timing: Timing) -> Rung {
         let raw = self.raw_errors(&timing.history);
         match &self.corrected {
             Some(corrected) if crate::domain::models_a_finite_body(&timing.solver) => Rung {

@@ -11,7 +11,7 @@ use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::factor::Factor;
 use spherecontact::fem::mesh::solid::SolidMesh;
 use spherecontact::fem::solid3d::condense::{self, Condensation, Condensed};
-use spherecontact::fem::solid3d::ordering::{self, NodeOrder};
+use spherecontact::fem::ordering::{self, NodeOrder};
 use spherecontact::fem::solid3d::surface::Surface;
 use spherecontact::fem::solid3d::system;
 use spherecontact::pair::Material;
