@@ -9,7 +9,8 @@
 //! | [`model`] | the whole set-up of one body |
 //! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
 //! | [`measures`] | the contact radius and peak pressure from the nodal pressures |
-//! | [`solver`] | `fem-3d`: the path walked on the engine, P, c, p0, fields, VTU |
+//! | [`solver`] | `fem-3d`: the model of the scene's domain, the engine's settings, the metadata |
+//! | [`walk`] | the path walked on the engine: P, Q, c, p0, the stick zone, fields, VTU |
 //! | [`output`] | displacement and stress of a contact state; VTU of the volume and the contact surface |
 
 pub mod condense;
@@ -21,5 +22,6 @@ pub mod output;
 pub mod solver;
 pub mod surface;
 pub mod system;
+pub mod walk;
 
 pub use solver::FemSolid3d;
