@@ -23,11 +23,13 @@ use super::model::{Model, Settings};
 use super::output::{self, Loads, SurfaceValues};
 use super::surface::Surface;
 use super::system::Grip;
+use crate::case::limits::SOLID_POLE;
 use crate::contact::Settings as ContactSettings;
 use crate::external::toolchain::Toolchain;
 use crate::fem::element::tri6::Lame;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::path::Step;
+use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -109,6 +111,15 @@ impl Solver for FemSolid3d {
     }
 
     /// Pole sizes c_max/4 … c_max/14.
+    /// A pole element size: `c/N` or a length, within [`SOLID_POLE`].
+    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let h = resolution::pole_size(self.name(), scene, value, SOLID_POLE)?;
+        Ok(Box::new(FemSolid3d {
+            pole_size: Some(h),
+            ..self.clone()
+        }))
+    }
+
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
         [4.0, 6.0, 10.0, 14.0]
             .into_iter()
