@@ -222,7 +222,9 @@ pub fn solve_iterative(
     let (mut momentum, mut residual) = (1.0_f64, f64::INFINITY);
     while cost.iterations < problem.max_iterations {
         cost.iterations += 1;
-        let mut largest_move = 0.0_f64;
+        // One pass: the projected step, how far it moves, and ⟨y − next, next − x⟩ (the
+        // restart test, below).
+        let (mut largest_move, mut against) = (0.0_f64, 0.0);
         for &i in &contact {
             let g = problem.bound[i];
             let mut point = [0.0; 2];
@@ -238,6 +240,7 @@ pub fn solve_iterative(
                 let j = c * m + i;
                 next[j] = value * scale;
                 moved += (next[j] - y[j]).powi(2);
+                against += a[i] * (y[j] - next[j]) * (next[j] - state.traction[j]);
             }
             largest_move = largest_move.max(moved);
         }
@@ -254,17 +257,6 @@ pub fn solve_iterative(
             return Ok(cost);
         }
         // Restart when the step works against the momentum: ⟨y − next, next − x⟩ > 0.
-        let against: f64 = (0..k)
-            .map(|c| {
-                contact
-                    .iter()
-                    .map(|&i| {
-                        let j = c * m + i;
-                        a[i] * (y[j] - next[j]) * (next[j] - state.traction[j])
-                    })
-                    .sum::<f64>()
-            })
-            .sum();
         let weight = if against > 0.0 {
             momentum = 1.0;
             0.0
