@@ -523,7 +523,11 @@ fn report(
 fn list() -> Result<ExitCode, InputError> {
     println!("solvers:");
     let solvers = registry::registry();
-    let width = solvers.iter().map(|s| s.name().chars().count()).max().unwrap_or(0);
+    let width = solvers
+        .iter()
+        .map(|s| s.name().chars().count())
+        .max()
+        .unwrap_or(0);
     for solver in solvers {
         println!("  {:<width$} {}", solver.name(), solver.description());
     }

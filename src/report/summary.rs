@@ -70,6 +70,9 @@ mod tests {
         let rows: Vec<&str> = screen.lines().filter(|l| l.ends_with("not run")).collect();
         assert_eq!(rows.len(), 2, "{screen}");
         // Both rows put "not run" in the same column, one space after the longest name.
-        assert!(rows.iter().all(|r| r.len() == 2 + long.len() + " not run".len()), "{screen}");
+        assert!(
+            rows.iter().all(|r| r.len() == 2 + long.len() + " not run".len()),
+            "{screen}"
+        );
     }
 }
