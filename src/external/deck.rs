@@ -7,25 +7,7 @@ use std::time::Duration;
 use super::geo::MeshFiles;
 use super::process::{Ending, Job};
 use super::toolchain::{Tool, Toolchain};
-
-/// How the modelled sphere's far face is held (the `[domain]` grip).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Grip {
-    /// Every displacement component of the far face follows the imposed approach and shift.
-    Rigid,
-    /// Only the axial displacement is imposed; the face slides freely in r (frictionless only).
-    Axial,
-}
-
-impl Grip {
-    /// The grip's name in metadata.
-    pub fn name(self) -> &'static str {
-        match self {
-            Grip::Rigid => "rigid",
-            Grip::Axial => "axial",
-        }
-    }
-}
+use crate::domain::Grip;
 
 /// The numbers a deck template is filled with: mm, N, MPa (the decks' units). The computed
 /// steps go into a separate file ([`PATH_FILE`]): a path has more steps than FreeFEM accepts in
@@ -48,7 +30,7 @@ pub struct DeckInput {
     pub kfac: f64,
     /// Coulomb friction coefficient μ.
     pub friction: f64,
-    /// How the far face is held.
+    /// How the far face is held: the scene's `[domain]` grip, as its mesh is tagged.
     pub grip: Grip,
     /// Contact-line nodes with r below this are contact candidates [mm].
     pub candidate_radius_mm: f64,
@@ -103,21 +85,12 @@ impl DeckInput {
             ("@KFAC@", format!("{:e}", self.kfac)),
             ("@MU@", format!("{:e}", self.friction)),
             ("@GRIP_RADIAL@", u8::from(self.grip == Grip::Rigid).to_string()),
-            ("@FAR_TAG@", far_face_tag(self.grip).to_string()),
+            ("@FAR_TAG@", super::geo::far_face_tag(self.grip).to_string()),
             ("@CANDIDATE_RADIUS_MM@", format!("{:e}", self.candidate_radius_mm)),
             ("@TANGENTIAL@", u8::from(self.tangential).to_string()),
             ("@PATH_FILE@", PATH_FILE.to_owned()),
             ("@MAX_ITERATIONS@", self.max_iterations.to_string()),
         ]
-    }
-}
-
-/// The physical tag of the gripped far face in the mesh that [`super::geo`] writes: the tag
-/// carries the grip, so that a mesh made for one grip is never read as the other.
-fn far_face_tag(grip: Grip) -> u32 {
-    match grip {
-        Grip::Rigid => super::geo::TAG_TOP_RIGID,
-        Grip::Axial => super::geo::TAG_TOP,
     }
 }
 

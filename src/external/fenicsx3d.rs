@@ -12,13 +12,14 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use super::axisym::{Plan, KFAC, MAX_ITERATIONS};
-use super::deck::{self, Deck, DeckInput, Grip, RunDir, PATH_FILE};
+use super::deck::{self, Deck, DeckInput, RunDir, PATH_FILE};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::solid_geo::{self, SolidMeshFiles};
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
+use crate::domain::Grip;
 use crate::fem::solid3d::meshing::{self, Zones};
 use crate::history::{History, Metadata, StepResult};
 use crate::scene::Scene;
@@ -163,7 +164,7 @@ impl Solid3dDeck {
         let c_max = scene.max_contact_radius();
         let zones = Zones::new(c_max, resolution);
         let r = scene.pair.body1.radius;
-        let geometry = meshing::geometry(r, r, resolution, zones);
+        let geometry = meshing::geometry(r, scene.domain.height(r), resolution, zones);
         let mesh = solid_geo::mesh(&geometry, dir.path(), "body", toolchain)?;
         let input = DeckInput {
             scene: scene.name.clone(),
@@ -174,7 +175,7 @@ impl Solid3dDeck {
             h_mm: resolution * 1e3,
             kfac: KFAC,
             friction: scene.friction,
-            grip: Grip::Rigid,
+            grip: plan.grip,
             candidate_radius_mm: plan.candidate_radius * 1e3,
             tangential: plan.tangential,
             max_iterations: self.options.max_iterations.unwrap_or(MAX_ITERATIONS),
@@ -275,6 +276,13 @@ impl Solver for Solid3dDeck {
                     .into(),
             ));
         }
+        if scene.domain.grip != Grip::Rigid {
+            return Err(SolveError::NotApplicable(
+                "the 3D deck grips the far face rigidly (every component follows the approach and \
+                 shift); the axial grip is not modelled"
+                    .into(),
+            ));
+        }
         let toolchain = &self.options.toolchain;
         let version = toolchain
             .require(Tool::Dolfinx)
@@ -287,7 +295,6 @@ impl Solver for Solid3dDeck {
         let c_max = scene.max_contact_radius();
         let resolution = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
         let mut plan = Plan::of(scene, resolution);
-        plan.grip = Grip::Rigid;
         plan.candidate_radius = Zones::new(c_max, resolution).candidate_radius;
         let mut dir = RunDir::new("spherecontact-fenicsx-3d-")
             .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
@@ -341,10 +348,10 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
     let mut metadata = Metadata {
         version: format!("dolfinx {version}"),
         model: format!(
-            "3D, half of one sphere (y ≥ 0, hemisphere gripped rigidly on its equatorial face) against \
-             its symmetry plane, exact for identical spheres; P2 on quadratic tetrahedra; penalty k = \
-             {KFAC:e} E/h with nodal contact quadrature (sub-triangle lumping), condensed onto the \
-             candidate nodes; {}",
+            "3D, half of one sphere (y ≥ 0; {}) against its symmetry plane, exact for identical \
+             spheres; P2 on quadratic tetrahedra; penalty k = {KFAC:e} E/h with nodal contact \
+             quadrature (sub-triangle lumping), condensed onto the candidate nodes; {}",
+            scene.domain.describe(),
             if plan.tangential {
                 "Coulomb with history on the disc |q| ≤ μp, all-stick predictor every increment"
             } else {
@@ -357,8 +364,8 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
             scene.max_contact_radius() / run.resolution
         ),
         warnings: vec![
-            "finite hemisphere gripped rigidly, not a half-space: P(δn) above Hertz by ≈ 0.5 % at 17 µm \
-             (the offset fem-axisym and the axisymmetric decks measure on the same domain; docs/external-decks.md)"
+            "finite body, not a half-space: P, c, p0 and Q differ from Hertz and Mindlin–Deresiewicz \
+             by the domain's compliance, which mdr-domain computes (docs/finite-body.md)"
                 .into(),
         ],
         ..Metadata::default()
@@ -378,7 +385,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
         ));
     }
     let extra = &mut metadata.extra;
-    extra.insert("grip".into(), json!(Grip::Rigid.name()));
+    extra.insert("grip".into(), json!(plan.grip.name()));
     extra.insert("ranks".into(), json!(ranks));
     extra.insert("computed_steps".into(), json!("every step of the path"));
     extra.insert("candidate_radius_m".into(), json!(plan.candidate_radius));
@@ -454,6 +461,14 @@ mod tests {
     fn different_spheres_are_not_applicable() {
         let mut scene = crate::external::test_scene(&[0.0, 17.0]);
         scene.pair.body2.radius = 0.05;
+        let e = Solid3dDeck::new(1).solve(&scene).unwrap_err();
+        assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
+    }
+
+    #[test]
+    fn the_axial_grip_is_not_applicable() {
+        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        scene.domain.grip = Grip::Axial;
         let e = Solid3dDeck::new(1).solve(&scene).unwrap_err();
         assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
     }

@@ -43,6 +43,16 @@ pub const TAG_TOP_RIGID: u32 = 4;
 /// Physical tag of the symmetry axis.
 pub const TAG_AXIS: u32 = 3;
 
+/// The physical tag of the gripped far face: the mesh carries the grip (2 axial, 4 rigid), so that
+/// a mesh made for one grip is never read as the other. The `.geo` writer and the decks'
+/// templates (`@FAR_TAG@`) both take it from here.
+pub fn far_face_tag(grip: Grip) -> u32 {
+    match grip {
+        Grip::Axial => TAG_TOP,
+        Grip::Rigid => TAG_TOP_RIGID,
+    }
+}
+
 /// The default resolution of a scene: pole element size c_max / 40 [m], or R / 4000 when the
 /// path never closes the gap.
 pub fn default_resolution(scene: &Scene) -> f64 {
@@ -97,9 +107,10 @@ pub fn geo_for_scene(scene: &Scene, resolution: f64) -> Result<String, SolveErro
     let d_fine = (1.5 * c_max).max(4.0 * resolution);
     let d_coarse = (height / 2.0).max(2.0 * d_fine);
     let rim = (height * (2.0 * radius - height)).sqrt();
-    let (top_name, top_tag) = match scene.domain.grip {
-        Grip::Axial => ("top", TAG_TOP),
-        Grip::Rigid => ("top_rigid", TAG_TOP_RIGID),
+    let top_tag = far_face_tag(scene.domain.grip);
+    let top_name = match scene.domain.grip {
+        Grip::Axial => "top",
+        Grip::Rigid => "top_rigid",
     };
     // The hemisphere's cut passes through the centre: the axis point is the centre itself.
     let axis_point = if height < radius {

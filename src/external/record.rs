@@ -115,10 +115,10 @@ fn metadata(
     let mut metadata = Metadata {
         version: format!("{} {version}", deck.tool().name()),
         model: format!(
-            "axisymmetric, one sphere (hemisphere gripped {} on its equatorial face) against its \
-             symmetry plane, exact for identical spheres; {modes}; penalty k = {KFAC:e} E/h with nodal \
-             contact quadrature, condensed onto the contact-line nodes",
-            plan.grip.name()
+            "axisymmetric, one sphere ({}) against its symmetry plane, exact for identical spheres; \
+             {modes}; penalty k = {KFAC:e} E/h with nodal contact quadrature, condensed onto the \
+             contact-line nodes",
+            scene.domain.describe()
         ),
         resolution: format!(
             "pole element {:.3} µm (c_max/{:.0}), {} triangles; every path step computed",
@@ -126,22 +126,17 @@ fn metadata(
             scene.max_contact_radius() / mesh.resolution,
             mesh.triangles
         ),
-        warnings: vec![format!(
-            "finite hemisphere, not a half-space: P(δn) above Hertz by ≈ {} on every mesh (docs/external-decks.md)",
-            match plan.grip {
-                super::deck::Grip::Axial => "0.37 % at 17 µm (axial grip)",
-                super::deck::Grip::Rigid => "0.51 % at 17 µm (rigid grip)",
-            }
-        )],
+        warnings: vec![
+            "finite body, not a half-space: P, c, p0 and Q differ from Hertz and Mindlin–Deresiewicz \
+             by the domain's compliance, which mdr-domain computes (docs/finite-body.md)"
+                .into(),
+        ],
         ..Metadata::default()
     };
     if plan.tangential {
-        metadata.warnings.push(
-            "finite hemisphere gripped at its equator: ≈ 4 % softer in shear than the half-space, Q in \
-             partial slip ≈ 2.4 % below Mindlin–Deresiewicz (docs/external-decks.md); q_y and non-circular \
-             stick zones are outside this model"
-                .into(),
-        );
+        metadata
+            .warnings
+            .push("q_y and non-circular stick zones are outside this model (Fourier modes 0 and 1)".into());
     }
     let flagged: Vec<usize> = steps_with(run, Outcome::Capped);
     if !flagged.is_empty() {
