@@ -46,6 +46,7 @@ pub mod io;
 pub mod number;
 pub mod pair;
 pub mod path;
+pub mod profile;
 pub mod registry;
 pub mod report;
 pub mod scene;

@@ -16,6 +16,7 @@ use super::deck::{self, Deck, DeckInput, RunDir, PATH_FILE};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
+use super::record::{record_run, RunFacts};
 use super::solid_geo::{self, SolidMeshFiles};
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
@@ -379,33 +380,21 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
                 .into(),
         );
     }
-    if !capped.is_empty() {
-        metadata.warnings.push(format!(
-            "the contact iteration hit its cap at steps {capped:?}: their values are the last iterate's"
-        ));
-    }
+    let facts = RunFacts {
+        candidate_nodes: run.surfaces.first().map_or(0, |s| s.nodes.len()),
+        capped: &capped,
+        wall_s: [run.mesh.wall_s, run.solving_s, run.reading_s],
+    };
+    record_run(&mut metadata, plan, &facts);
     let extra = &mut metadata.extra;
-    extra.insert("grip".into(), json!(plan.grip.name()));
     extra.insert("ranks".into(), json!(ranks));
-    extra.insert("computed_steps".into(), json!("every step of the path"));
-    extra.insert("candidate_radius_m".into(), json!(plan.candidate_radius));
-    extra.insert(
-        "candidate_nodes".into(),
-        json!(run.surfaces.first().map_or(0, |s| s.nodes.len())),
-    );
-    extra.insert("penalty_factor".into(), json!(KFAC));
     extra.insert(
         "contact_measures".into(),
         json!("c and p0 from a least-squares fit of p² = p0²(1 − r²/c²) over the nodes in contact; stick radius midway between the innermost slipping node and the farthest sticking node inside it"),
     );
-    extra.insert("capped_steps".into(), json!(capped));
-    extra.insert("meshing_s".into(), json!(run.mesh.wall_s));
-    extra.insert("solving_s".into(), json!(run.solving_s));
-    extra.insert("reading_back_s".into(), json!(run.reading_s));
     for (phase, value) in &run.timing {
         extra.insert(format!("deck_{phase}"), json!(value));
     }
-    extra.insert("outcome".into(), json!("exited with code 0, output read back"));
     metadata
 }
 

@@ -219,22 +219,7 @@ pub fn mesh(
         let mut args = vec![geo_name.to_owned(), "-2".into()];
         args.extend(options.iter().map(|s| s.to_string()));
         args.extend(["-o".into(), out_name.to_owned()]);
-        let job = Job {
-            program: toolchain.gmsh.clone(),
-            args,
-            env: vec![],
-            timeout: GMSH_TIMEOUT,
-        };
-        let run = process::run(&job, dir, "gmsh")
-            .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
-        wall_s += run.wall_s;
-        if !run.succeeded() || !out.is_file() {
-            return Err(SolveError::Failed(format!(
-                "gmsh {}: {}",
-                describe(&run.ending),
-                run.tail(8)
-            )));
-        }
+        wall_s += run_gmsh(toolchain, dir, args, out, GMSH_TIMEOUT, "gmsh")?;
     }
     let triangles = triangle_count(&msh22_mm);
     Ok(MeshFiles {
@@ -247,13 +232,33 @@ pub fn mesh(
     })
 }
 
-/// gmsh's exit in words (gmsh returns 1 on any error).
-fn describe(ending: &Ending) -> String {
-    match ending {
-        Ending::Exited(code) => format!("exited with code {code}"),
-        Ending::Signalled(s) => format!("crashed with {}", process::signal_name(*s)),
-        Ending::TimedOut => format!("timed out after {} s and was killed", GMSH_TIMEOUT.as_secs()),
+/// Runs gmsh with `args` in `dir` for the file `out`, within `timeout`; its wall time [s], or the
+/// failure in words (`what` names the mesh; gmsh returns 1 on any error) with gmsh's last lines.
+pub(super) fn run_gmsh(
+    toolchain: &Toolchain,
+    dir: &Path,
+    args: Vec<String>,
+    out: &Path,
+    timeout: Duration,
+    what: &str,
+) -> Result<f64, SolveError> {
+    let job = Job {
+        program: toolchain.gmsh.clone(),
+        args,
+        env: vec![],
+        timeout,
+    };
+    let run = process::run(&job, dir, "gmsh")
+        .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
+    if run.succeeded() && out.is_file() {
+        return Ok(run.wall_s);
     }
+    let how = match run.ending {
+        Ending::Exited(code) => format!("exited with code {code}"),
+        Ending::Signalled(s) => format!("crashed with {}", process::signal_name(s)),
+        Ending::TimedOut => format!("timed out after {} s and was killed", timeout.as_secs()),
+    };
+    Err(SolveError::Failed(format!("{what} {how}: {}", run.tail(8))))
 }
 
 /// The number of linear triangles (element type 2) in an MSH 2.2 file; 0 if unreadable.
