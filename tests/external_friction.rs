@@ -16,8 +16,8 @@ use common::decks::{at_resolution, frictional_scene, tools_present};
 /// Both decks walk a frictional path with history: Q against MDR within the finite body's
 /// measured offset, against each other within what their geometry (curved against straight
 /// edges) explains, Coulomb's bound on the fields, the stick zone shrinking under load and
-/// reset by the reversal, and the same run twice gives the same numbers. At pole size c/20 (a
-/// third of the default's cost).
+/// reset by the reversal, and the same run twice gives the same numbers within round-off. At
+/// pole size c/20 (a third of the default's cost).
 ///
 /// History of a fault this test caught: the decks once chose their grip from the path (rigid when
 /// it shifts) while the mesh's far-face tag came from the scene's `[domain]` grip; this scene,
@@ -89,13 +89,16 @@ fn the_decks_walk_a_frictional_path_with_history() {
                 );
             }
         }
-        // Deterministic: the same deck on the same scene gives the same Q to the last bit.
+        // Reproducible: the same deck on the same scene gives the same Q within round-off.
+        // Tolerance 1e-12 of the peak: dolfinx reruns are bit-identical (one BLAS thread);
+        // FreeFEM's MUMPS_seq differs in the last bits (≈ 1e-14 relative, measured); the fault
+        // this guards against (an unheld far face) moved Q by whole percents.
         let again = solver::run(deck.as_ref(), &scene).unwrap();
         for (a, b) in history.steps.iter().zip(&again.steps) {
-            assert_eq!(
-                a.tangential_force,
-                b.tangential_force,
-                "{}: step {}",
+            let (qa, qb) = (a.tangential_force.unwrap(), b.tangential_force.unwrap());
+            assert!(
+                (qa - qb).abs() <= 1e-12 * peak,
+                "{}: step {}: {qa} then {qb}",
                 deck.name(),
                 a.step
             );

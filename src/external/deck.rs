@@ -104,6 +104,21 @@ pub fn fill(template: &str, input: &DeckInput) -> String {
         })
 }
 
+/// The environment every deck runs in: one BLAS/OpenMP thread per process. Reason: OpenBLAS
+/// (pthreads) and OpenMP split their reductions by thread count, so a deck's last bits would
+/// depend on the machine's cores (measured: the FEniCSx deck's steps.csv is bit-identical run to
+/// run at a fixed thread count, and differs between one thread and the default); the condensed
+/// problems are small enough that threads gain little on a shared machine, and MPI decks get
+/// their parallelism from ranks. FreeFEM's MUMPS_seq stays nondeterministic in the last bits
+/// even on one thread (P and Q differ by ≈ 1e-14 relative between two runs on the same files;
+/// with UMFPACK the runs are bit-identical): far below every tolerance, and MUMPS's solves are
+/// 4 × faster (docs/external-decks.md).
+pub fn single_threaded() -> Vec<(String, String)> {
+    ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"]
+        .map(|k| (k.to_owned(), "1".to_owned()))
+        .to_vec()
+}
+
 /// One external deck: its template, its program, and the meaning of its exit codes.
 pub trait Deck: Send + Sync + Clone {
     /// The solver name (`freefem-axisym`, …).

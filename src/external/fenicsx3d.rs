@@ -88,7 +88,7 @@ impl Deck for Fenicsx3d {
             return Job {
                 program: toolchain.python.clone(),
                 args: vec![deck],
-                env: vec![],
+                env: deck::single_threaded(),
                 timeout,
             };
         }
@@ -101,10 +101,13 @@ impl Deck for Fenicsx3d {
         Job {
             program: "mpirun".into(),
             args,
-            env: vec![
+            env: [
                 ("OMPI_ALLOW_RUN_AS_ROOT".into(), "1".into()),
                 ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM".into(), "1".into()),
-            ],
+            ]
+            .into_iter()
+            .chain(deck::single_threaded())
+            .collect(),
             timeout,
         }
     }
