@@ -24,7 +24,7 @@
 use faer::Mat;
 
 use super::model::{BodyModel, Reduction, Settings};
-use crate::fem::assembly;
+use crate::fem::assembly::{self, System};
 use crate::fem::condense::condense;
 use crate::fem::element::tri6_n1;
 use crate::fem::factor::Factor;
@@ -63,32 +63,67 @@ impl Mode {
     }
 }
 
-/// The condensed n = 1 compliance of `body` at its candidates' A DOFs [m/N]: the mean x
-/// displacement of ring i under a unit x ring force at ring j, far face held.
-pub fn body_compliance(body: &BodyModel, settings: &Settings) -> Result<Mat<f64>, String> {
-    let system = assembly::assemble_fourier_one(&body.mesh, body.lame, settings.integration)
-        .map_err(|e| e.to_string())?;
-    let factor = Factor::new(&system.stiffness, settings.ordering)?;
-    let dofs = body
-        .candidates
-        .iter()
-        .map(|&n| system.dofs.free(tri6_n1::COMPONENTS * n))
-        .collect::<Option<Vec<usize>>>()
-        .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
-    Ok(condense(&factor, system.dofs.count(), &dofs, &system.reaction).compliance)
+/// One body's mode n = 1: its system and factorisation (kept for the displacement fields) and
+/// its condensed compliance.
+pub struct ShearBody {
+    /// The assembled n = 1 system (A, B, W a node; far face and axis conditions eliminated).
+    pub system: System,
+    /// Its factorisation.
+    pub factor: Factor,
+    /// The compliance at the candidates' A DOFs [m/N]: the mean x displacement of ring i under
+    /// a unit x ring force at ring j, far face held.
+    pub compliance: Mat<f64>,
 }
 
-/// The pair's n = 1 compliance: the bodies' added (one body for identical spheres).
-pub fn pair_compliance(bodies: &[BodyModel], settings: &Settings) -> Result<Mat<f64>, String> {
-    let mut sum: Option<Mat<f64>> = None;
-    for body in bodies {
-        let c = body_compliance(body, settings)?;
-        sum = Some(match sum {
-            None => c,
-            Some(s) => s + c,
-        });
+impl ShearBody {
+    /// Assembles, factors and condenses the mode n = 1 of `body`.
+    pub fn new(body: &BodyModel, settings: &Settings) -> Result<Self, String> {
+        let system = assembly::assemble_fourier_one(&body.mesh, body.lame, settings.integration)
+            .map_err(|e| e.to_string())?;
+        let factor = Factor::new(&system.stiffness, settings.ordering)?;
+        let dofs = body
+            .candidates
+            .iter()
+            .map(|&n| system.dofs.free(tri6_n1::COMPONENTS * n))
+            .collect::<Option<Vec<usize>>>()
+            .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
+        let compliance = condense(&factor, system.dofs.count(), &dofs, &system.reaction).compliance;
+        Ok(Self {
+            system,
+            factor,
+            compliance,
+        })
     }
-    sum.ok_or_else(|| "no body to condense".into())
+}
+
+/// The pair's mode n = 1: each body's, and their compliances added (one body for identical
+/// spheres).
+pub struct Shear {
+    /// Each body's mode n = 1, in the model's order.
+    pub bodies: Vec<ShearBody>,
+    /// The pair's condensed compliance [m/N].
+    pub compliance: Mat<f64>,
+}
+
+impl Shear {
+    /// The mode n = 1 of every body of the model.
+    pub fn new(bodies: &[BodyModel], settings: &Settings) -> Result<Self, String> {
+        let shear: Vec<ShearBody> = bodies
+            .iter()
+            .map(|b| ShearBody::new(b, settings))
+            .collect::<Result<_, _>>()?;
+        let mut compliance = shear
+            .first()
+            .map(|b| b.compliance.clone())
+            .ok_or("no body to condense")?;
+        for b in &shear[1..] {
+            compliance += &b.compliance;
+        }
+        Ok(Self {
+            bodies: shear,
+            compliance,
+        })
+    }
 }
 
 /// The shift increment of the condensed problem for a relative shift increment `delta_t`: half
