@@ -42,14 +42,14 @@ const TIME_TO_START: Duration = Duration::from_secs(120);
 const TIME_FOR_SETUP: Duration = Duration::from_secs(600);
 const TIME_PER_STEP: Duration = Duration::from_millis(500);
 
-/// How a deck is run.
+/// How a deck (axisymmetric or 3D) is run.
 #[derive(Clone, Debug, Default)]
 pub struct Options {
     /// The executables.
     pub toolchain: Toolchain,
-    /// Pole element size [m]; default [`geo::default_resolution`].
+    /// Pole element size [m]; default [`geo::default_resolution`] (axisymmetric decks).
     pub resolution: Option<f64>,
-    /// Time limit for the deck; default 12 min + 0.5 s per step.
+    /// Time limit for the deck; default 12 min + 0.5 s per step (axisymmetric decks).
     pub timeout: Option<Duration>,
     /// A replacement deck text (already filled), for fault tests and experiments.
     pub deck_text: Option<String>,

@@ -40,6 +40,10 @@ pub struct DeckInput {
     pub max_iterations: u32,
 }
 
+/// The Python block both dolfinx decks share (imports, the template's numbers, the list of steps,
+/// the normal contact's Newton), inserted where a template says `@FENICSX_COMMON@`.
+pub const FENICSX_COMMON: &str = include_str!("templates/fenicsx_common.py");
+
 /// The file that lists a deck's computed steps: a count, then one line per step with its path
 /// index, d = δn/2 [mm], t = δt/2 [mm], and the path position it reaches or −1.
 pub const PATH_FILE: &str = "path.txt";
@@ -76,6 +80,8 @@ impl DeckInput {
     /// The `@KEY@` substitutions of the templates.
     fn substitutions(&self) -> Vec<(&'static str, String)> {
         vec![
+            // First, so that the keys of the inserted block are filled by the ones below.
+            ("@FENICSX_COMMON@", FENICSX_COMMON.to_owned()),
             ("@SCENE@", self.scene.replace(['"', '\n'], " ")),
             ("@MESH@", self.mesh.clone()),
             ("@R_MM@", format!("{:e}", self.radius_mm)),
@@ -168,6 +174,19 @@ impl RunDir {
     }
 }
 
+/// Whether a filled deck still holds a key: @ + capitals and underscores + @ (Python's matrix
+/// product `a @ b` is not one).
+#[cfg(test)]
+pub(crate) fn has_unfilled_key(deck: &str) -> bool {
+    deck.match_indices('@').any(|(i, _)| {
+        let key: String = deck[i + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_uppercase() || *c == '_')
+            .collect();
+        !key.is_empty() && deck[i + 1 + key.len()..].starts_with('@')
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -190,15 +209,7 @@ mod tests {
         };
         for template in [super::super::freefem::TEMPLATE, super::super::fenicsx::TEMPLATE] {
             let deck = fill(template, &input);
-            // A key is @ + capitals and underscores + @ (Python's matrix product `a @ b` is not).
-            let unfilled = deck.match_indices('@').any(|(i, _)| {
-                let key: String = deck[i + 1..]
-                    .chars()
-                    .take_while(|c| c.is_ascii_uppercase() || *c == '_')
-                    .collect();
-                !key.is_empty() && deck[i + 1 + key.len()..].starts_with('@')
-            });
-            assert!(!unfilled, "unfilled key in {deck}");
+            assert!(!has_unfilled_key(&deck), "unfilled key in {deck}");
             assert!(deck.contains("1.25e0") && deck.contains(PATH_FILE));
         }
     }

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use super::axisym::{Plan, KFAC, MAX_ITERATIONS};
+use super::axisym::{Options, Plan, KFAC, MAX_ITERATIONS};
 use super::deck::{self, Deck, DeckInput, RunDir, PATH_FILE};
 use super::geo::MeshFiles;
 use super::process::Job;
@@ -34,7 +34,7 @@ pub const TEMPLATE: &str = include_str!("templates/fenicsx_3d.py");
 
 /// Default pole element size, as a fraction of the path's largest contact radius: a coarse mesh,
 /// c_max/5 (measured on the paper's spheres: 32.6k DOFs, 319 candidate nodes, a set-up of 7 s
-/// CPU on one core; docs/external-decks.md). Finer meshes through [`Options3d::resolution`].
+/// CPU on one core; docs/external-decks.md). Finer meshes through [`Options::resolution`].
 pub const DEFAULT_POLE_FRACTION: f64 = 1.0 / 5.0;
 
 pub use crate::case::limits::MAX_RANKS;
@@ -121,25 +121,15 @@ impl Deck for Fenicsx3d {
     }
 }
 
-/// How the 3D deck is run.
-#[derive(Clone, Debug, Default)]
-pub struct Options3d {
-    /// The executables.
-    pub toolchain: Toolchain,
-    /// Pole element size [m]; default [`DEFAULT_POLE_FRACTION`] of the largest contact radius.
-    pub resolution: Option<f64>,
-    /// Time limit for the deck; default 33 min + 3 s per step.
-    pub timeout: Option<Duration>,
-    /// Cap on contact iterations per step; default [`MAX_ITERATIONS`].
-    pub max_iterations: Option<u32>,
-}
-
 /// The 3D deck as a [`Solver`].
 pub struct Solid3dDeck {
     /// The deck (its rank count).
     pub deck: Fenicsx3d,
     /// How it is run.
-    pub options: Options3d,
+    /// How it is run (the same options as the axisymmetric decks'; the default pole size is
+    /// [`DEFAULT_POLE_FRACTION`] of the largest contact radius, the default time limit 33 min +
+    /// 3 s per step).
+    pub options: Options,
 }
 
 /// What a finished 3D run left, read back.
@@ -158,7 +148,7 @@ impl Solid3dDeck {
     pub fn new(ranks: u32) -> Self {
         Self {
             deck: Fenicsx3d { ranks },
-            options: Options3d::default(),
+            options: Options::default(),
         }
     }
 
@@ -188,7 +178,12 @@ impl Solid3dDeck {
             std::fs::write(dir.path().join(name), text)
                 .map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
         };
-        write(self.deck.file_name(), &deck::fill(TEMPLATE, &input))?;
+        let text = self
+            .options
+            .deck_text
+            .clone()
+            .unwrap_or_else(|| deck::fill(TEMPLATE, &input));
+        write(self.deck.file_name(), &text)?;
         write(PATH_FILE, &deck::path_file(&plan.steps))?;
         let steps = u32::try_from(plan.steps.len()).unwrap_or(u32::MAX);
         let timeout = self
@@ -438,14 +433,7 @@ mod tests {
             max_iterations: 30,
         };
         let text = deck::fill(TEMPLATE, &input);
-        let unfilled = text.match_indices('@').any(|(i, _)| {
-            let key: String = text[i + 1..]
-                .chars()
-                .take_while(|c| c.is_ascii_uppercase() || *c == '_')
-                .collect();
-            !key.is_empty() && text[i + 1 + key.len()..].starts_with('@')
-        });
-        assert!(!unfilled, "unfilled key");
+        assert!(!deck::has_unfilled_key(&text), "unfilled key");
         assert!(text.contains("r_cand = 1.3e0") && text.contains(PATH_FILE));
     }
 
