@@ -188,6 +188,11 @@ impl CheckSpec {
             },
             Reference::Value { .. } => None,
         };
+        if let (Some(field), Some(reference), Where::Position(position)) =
+            (self.quantity.profile(), reference_history, self.at)
+        {
+            return self.evaluate_profile(subject, reference, position, field);
+        }
         let mut pairs = Vec::new();
         for row in subject.steps.iter().filter(|r| self.at.selects(r)) {
             let reference = match (&self.reference, reference_history) {
@@ -230,6 +235,36 @@ impl CheckSpec {
             error: Some(error),
             worst_step: Some(worst_step),
             message: None,
+        }
+    }
+
+    /// A profile check: the RMS difference over the annulus (value [Pa]) against the reference
+    /// profile's peak (reference [Pa]); the error is their ratio ([`crate::profile`]).
+    fn evaluate_profile(
+        &self,
+        subject: &History,
+        reference: &History,
+        position: usize,
+        field: crate::profile::Field,
+    ) -> Outcome {
+        match crate::profile::compare(subject, reference, position, field) {
+            Ok(c) => {
+                let error = c.rms / c.peak;
+                Outcome {
+                    spec: self.clone(),
+                    verdict: match self.tolerance {
+                        None => Verdict::Info,
+                        Some(tolerance) if error <= tolerance => Verdict::Ok,
+                        Some(_) => Verdict::Nook,
+                    },
+                    value: Some(c.rms),
+                    reference: Some(c.peak),
+                    error: Some(error),
+                    worst_step: subject.at_position(position).map(|r| r.step),
+                    message: None,
+                }
+            }
+            Err(message) => self.outcome_without_error(Verdict::Nook, format!("{}: {message}", self.solver)),
         }
     }
 

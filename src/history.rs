@@ -57,6 +57,11 @@ pub enum Quantity {
     PeakPressure,
     /// Stick radius [m].
     StickRadius,
+    /// The pressure profile p(r) at one path position (checks only: its RMS difference from a
+    /// reference solver's, [`crate::profile`]).
+    PressureProfile,
+    /// The traction profile q_x(r) at one path position (checks only, as the pressure's).
+    TractionProfile,
 }
 
 impl Quantity {
@@ -69,6 +74,9 @@ impl Quantity {
         Quantity::StickRadius,
     ];
 
+    /// The profiles a check can compare (not step values: no CSV column).
+    pub const PROFILES: [Quantity; 2] = [Quantity::PressureProfile, Quantity::TractionProfile];
+
     /// The name used in case files and CSV headers.
     pub fn name(self) -> &'static str {
         match self {
@@ -77,6 +85,17 @@ impl Quantity {
             Quantity::ContactRadius => "contact_radius",
             Quantity::PeakPressure => "peak_pressure",
             Quantity::StickRadius => "stick_radius",
+            Quantity::PressureProfile => "pressure_profile",
+            Quantity::TractionProfile => "traction_profile",
+        }
+    }
+
+    /// The field a profile quantity compares; `None` for a step value.
+    pub fn profile(self) -> Option<crate::profile::Field> {
+        match self {
+            Quantity::PressureProfile => Some(crate::profile::Field::Pressure),
+            Quantity::TractionProfile => Some(crate::profile::Field::Traction),
+            _ => None,
         }
     }
 
@@ -85,13 +104,21 @@ impl Quantity {
         match self {
             Quantity::NormalForce | Quantity::TangentialForce => "N",
             Quantity::ContactRadius | Quantity::StickRadius => "m",
-            Quantity::PeakPressure => "Pa",
+            Quantity::PeakPressure | Quantity::PressureProfile | Quantity::TractionProfile => "Pa",
         }
     }
 
-    /// The quantity named `name`, if any.
+    /// The step quantity (a CSV column) named `name`, if any.
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|q| q.name() == name)
+    }
+
+    /// The quantity a check may name `name`: a step quantity or a profile.
+    pub fn checkable(name: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .chain(Self::PROFILES)
+            .find(|q| q.name() == name)
     }
 
     /// This quantity's value in a step row.
@@ -102,6 +129,7 @@ impl Quantity {
             Quantity::ContactRadius => row.contact_radius,
             Quantity::PeakPressure => row.peak_pressure,
             Quantity::StickRadius => row.stick_radius,
+            Quantity::PressureProfile | Quantity::TractionProfile => None,
         }
     }
 }

@@ -47,6 +47,7 @@ pub mod limits;
 pub mod number;
 pub mod pair;
 pub mod path;
+pub mod profile;
 pub mod registry;
 pub mod report;
 pub mod resolution;

@@ -12,7 +12,8 @@ use spherecontact::check::{CheckSpec, ErrorMeasure, Histories, Reference, Verdic
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
-use spherecontact::history::{Quantity, SurfaceField};
+use spherecontact::history::Quantity;
+use spherecontact::profile;
 
 mod common;
 use common::decks::{at_resolution, scene_17um, tools_present, with_deck_text};
@@ -62,6 +63,11 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
     let scene = scene_17um();
     let hertz = scene.hertz();
     let dn = 17e-6;
+    let corrected = solver::run(
+        spherecontact::registry::by_name("mdr-domain").unwrap().as_ref(),
+        &scene,
+    )
+    .unwrap();
     let mut forces = Vec::new();
     for solver in [
         Box::new(AxisymSolver::new(FreeFem)) as Box<dyn Solver>,
@@ -70,11 +76,21 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
         let history = solver::run(solver.as_ref(), &scene).unwrap();
         let row = history.at_position(1).unwrap();
         let p = row.normal_force.unwrap();
-        // Tolerance 0.6 %: the finite hemisphere (axial grip) is +0.37 % stiffer than the
-        // half-space at 17 µm on every mesh (docs/external-decks.md), discretisation at c/40
-        // below 0.1 %.
-        let error = p / hertz.force(dn) - 1.0;
-        assert!(error.abs() < 6e-3, "{}: P error {error}", solver.name());
+        // Against Hertz in series with the axially held hemisphere's computed compliance
+        // (mdr-domain): the +0.37 % raw offset from Hertz is the domain's; what is left is the
+        // penalty (< 1e-4 when k doubles) and the mesh (≈ 5e-5 at c/40): measured 1.1e-4.
+        let raw = p / hertz.force(dn) - 1.0;
+        let error = p / corrected.at_position(1).unwrap().normal_force.unwrap() - 1.0;
+        eprintln!(
+            "{}: P {raw:+.3e} from Hertz, {error:+.3e} from mdr-domain",
+            solver.name()
+        );
+        assert!(
+            error.abs() < 3e-4,
+            "{}: P error {error} (raw {raw})",
+            solver.name()
+        );
+        assert!((raw - 3.7e-3).abs() < 5e-4, "{}: raw offset {raw}", solver.name());
         // Every step is computed: P rises with δn; a normal-only path has no Q.
         let normal: Vec<f64> = history.steps.iter().map(|r| r.normal_force.unwrap()).collect();
         assert!(normal.windows(2).all(|w| w[1] > w[0]), "{normal:?}");
@@ -101,62 +117,35 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
     assert!((forces[0] / forces[1] - 1.0).abs() < 1e-4, "{forces:?}");
 }
 
-/// RMS of `field`'s pressure against `reference`'s (linearly interpolated between its points)
-/// over lo < r < hi, relative to `scale`.
-fn profile_rms(field: &SurfaceField, reference: &SurfaceField, lo: f64, hi: f64, scale: f64) -> f64 {
-    let at = |r: f64| {
-        let k = reference
-            .points
-            .partition_point(|x| x[0] < r)
-            .clamp(1, reference.points.len() - 1);
-        let (r0, r1) = (reference.points[k - 1][0], reference.points[k][0]);
-        let (p0, p1) = (reference.pressure[k - 1], reference.pressure[k]);
-        p0 + (p1 - p0) * (r - r0) / (r1 - r0)
-    };
-    let squares: Vec<f64> = field
-        .points
-        .iter()
-        .zip(&field.pressure)
-        .filter(|(x, _)| x[0] > lo && x[0] < hi)
-        .map(|(x, p)| (p - at(x[0])).powi(2))
-        .collect();
-    assert!(squares.len() >= 10, "too few profile points in ({lo}, {hi})");
-    (squares.iter().sum::<f64>() / squares.len() as f64).sqrt() / scale
-}
-
 /// The decks' p(r) at δn = 17 µm against fem-axisym's, RMS over 0.1 c < r < 0.9 c relative to
-/// p0. This catches a profile that is wrong while P is right: FreeFEM's penalty on the straight
-/// chords of its P1 mesh put its vertex pressures 2.1 % (RMS) above fem-axisym with P within
-/// 0.01 %. Tolerance 0.3 %: the three models share the pole size c/40 and the P2 class; the
-/// legitimate differences (penalty k = 1e3 E/h against exact multipliers, different meshes of the
-/// same grading, curved against straight edges) measured 0.04 % (FEniCSx) and 0.06 % (FreeFEM);
-/// linear interpolation of fem-axisym's nodes adds < 0.03 % for r < 0.9 c.
+/// p0 (`spherecontact::profile`, as the cases' `pressure_profile` checks). This catches a profile
+/// that is wrong while P is right: FreeFEM's penalty on the straight chords of its P1 mesh once
+/// put its vertex pressures 2.1 % (RMS) above fem-axisym with P within 0.01 %. Tolerance 5e-4:
+/// the three models share the domain, the pole size c/40 and the P2 class; the legitimate
+/// differences (penalty k = 1e3 E/h against exact multipliers, different meshes of the same
+/// grading, curved against straight edges) measured 1.6e-4 (FreeFEM) and 1.7e-4 (FEniCSx);
+/// linear interpolation of fem-axisym's nodes adds < 3e-5 of p0 inside 0.9 c.
 #[test]
 fn the_decks_pressure_profiles_match_fem_axisym() {
     if !tools_present("the_decks_pressure_profiles_match_fem_axisym") {
         return;
     }
     let scene = scene_17um();
-    let (c, p0) = (
-        scene.hertz().contact_radius(17e-6),
-        scene.hertz().peak_pressure(17e-6),
-    );
     let fem = spherecontact::registry::by_name("fem-axisym").unwrap();
     let reference = solver::run(fem.as_ref(), &scene).unwrap();
-    let reference = reference.fields.iter().find(|f| f.position == 1).unwrap();
     for deck in [
         Box::new(AxisymSolver::new(FreeFem)) as Box<dyn Solver>,
         Box::new(AxisymSolver::new(Fenicsx)),
     ] {
         let history = solver::run(deck.as_ref(), &scene).unwrap();
-        let field = history.fields.iter().find(|f| f.position == 1).unwrap();
-        let rms = profile_rms(field, reference, 0.1 * c, 0.9 * c, p0);
+        let e = profile::compare(&history, &reference, 1, profile::Field::Pressure).unwrap();
+        let rms = e.rms / e.peak;
         eprintln!(
             "{}: p(r) RMS against fem-axisym {:.4} % of p0",
             deck.name(),
             rms * 100.0
         );
-        assert!(rms < 3e-3, "{}: p(r) RMS {rms} of p0", deck.name());
+        assert!(rms < 5e-4, "{}: p(r) RMS {rms} of p0", deck.name());
     }
 }
 

@@ -19,8 +19,12 @@ impl Validator<'_> {
         positions: usize,
     ) -> Result<CheckSpec, CaseError> {
         let solver = self.solver_name(&raw.solver, &format!("{field}.solver"))?;
-        let quantity = Quantity::from_name(raw.quantity.get_ref()).ok_or_else(|| {
-            let names: Vec<_> = Quantity::ALL.iter().map(|q| q.name()).collect();
+        let quantity = Quantity::checkable(raw.quantity.get_ref()).ok_or_else(|| {
+            let names: Vec<_> = Quantity::ALL
+                .iter()
+                .chain(&Quantity::PROFILES)
+                .map(|q| q.name())
+                .collect();
             self.error(
                 &raw.quantity,
                 format!("{field}.quantity"),
@@ -46,6 +50,9 @@ impl Validator<'_> {
                 )
             })?,
         };
+        if quantity.profile().is_some() {
+            self.profile_rules(raw, field, quantity, at, &reference, measure)?;
+        }
         let tolerance = match (&raw.tolerance, raw.informational) {
             (Some(t), _) => Some(self.number(
                 t,
@@ -80,6 +87,43 @@ impl Validator<'_> {
             tolerance,
             reason,
         })
+    }
+
+    /// A profile is compared at one position with another solver's, relative to its peak.
+    fn profile_rules(
+        &self,
+        raw: &RawCheck,
+        field: &str,
+        quantity: Quantity,
+        at: Where,
+        reference: &Reference,
+        measure: ErrorMeasure,
+    ) -> Result<(), CaseError> {
+        if !matches!(at, Where::Position(_)) {
+            return Err(self.error(
+                &raw.at,
+                format!("{field}.at"),
+                format!("a {quantity} is compared at one position (allowed: {{ position = K }})"),
+            ));
+        }
+        if !matches!(reference, Reference::Solver(_)) {
+            return Err(self.error(
+                &raw.reference,
+                format!("{field}.reference"),
+                format!("a {quantity} is compared with another solver's (allowed: {{ solver = \"NAME\" }})"),
+            ));
+        }
+        if measure != ErrorMeasure::RelativeToPeak {
+            return Err(self.error(
+                raw.error.as_ref().unwrap_or(&raw.quantity),
+                format!("{field}.error"),
+                format!(
+                    "a {quantity} is measured as its RMS relative to the reference's peak (allowed: \
+                     relative-to-peak)"
+                ),
+            ));
+        }
+        Ok(())
     }
 
     fn at(&self, raw: &Spanned<toml::Value>, field: &str, positions: usize) -> Result<Where, CaseError> {
@@ -194,5 +238,43 @@ impl Validator<'_> {
             key: format!("{file}#{key}"),
             source: stored.source,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::case::Case;
+    use crate::history::Quantity;
+    use std::path::Path;
+
+    /// A case with two solvers and one check given by its fields.
+    fn check(fields: &str) -> Result<Case, crate::case::CaseError> {
+        let text = format!(
+            "friction = 0.2\nsolvers = [\"hertz\", \"mdr\"]\n[body1]\nradius = 0.1\nyoung = 70e9\n\
+             poisson = 0.3\n[path]\nunit = \"um\"\ndelta_n = [0, 17]\ndelta_t = [0, 1]\nsubsteps = 2\n\
+             [[checks]]\nsolver = \"mdr\"\nreference = {{ solver = \"hertz\" }}\ntolerance = 1e-3\n\
+             reason = \"r\"\n{fields}"
+        );
+        Case::parse(Path::new("p.toml"), &text)
+    }
+
+    #[test]
+    fn a_profile_is_checked_at_one_position_relative_to_the_peak() {
+        let ok = "quantity = \"traction_profile\"\nat = { position = 1 }\nerror = \"relative-to-peak\"";
+        assert_eq!(check(ok).unwrap().checks[0].quantity, Quantity::TractionProfile);
+        let everywhere = "quantity = \"pressure_profile\"\nat = \"every-step\"\nerror = \"relative-to-peak\"";
+        let e = check(everywhere).unwrap_err();
+        assert!(
+            e.field.ends_with(".at") && e.to_string().contains("one position"),
+            "{e}"
+        );
+        let relative = "quantity = \"pressure_profile\"\nat = { position = 1 }";
+        let e = check(relative).unwrap_err();
+        assert!(
+            e.field.ends_with(".error") && e.to_string().contains("relative-to-peak"),
+            "{e}"
+        );
+        let unknown = check("quantity = \"shape\"\nat = { position = 1 }").unwrap_err();
+        assert!(unknown.to_string().contains("pressure_profile"), "{unknown}");
     }
 }

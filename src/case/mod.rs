@@ -40,7 +40,10 @@
 //! [[checks]]
 //! solver = "mdr"
 //! quantity = "normal_force"             # normal_force, tangential_force, contact_radius,
-//!                                       # peak_pressure, stick_radius
+//!                                       # peak_pressure, stick_radius; or a profile at one
+//!                                       # position against another solver's: pressure_profile,
+//!                                       # traction_profile (RMS over 0.1c < r < 0.9c,
+//!                                       # error = "relative-to-peak", src/profile.rs)
 //! at = "every-step"                     # "every-position", { position = 2 }, { positions = [1, 2] }
 //! reference = { solver = "hertz" }      # or { file = "../reference/x.toml", key = "…" }
 //! error = "relative"                    # "relative-to-peak", "absolute"

@@ -258,6 +258,8 @@ impl Cells<'_> {
                 Quantity::ContactRadius => row.contact_radius = value,
                 Quantity::PeakPressure => row.peak_pressure = value,
                 Quantity::StickRadius => row.stick_radius = value,
+                // Never a column: `Quantity::from_name` gives step quantities only.
+                Quantity::PressureProfile | Quantity::TractionProfile => {}
             }
         }
         Ok(row)

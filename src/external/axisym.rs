@@ -12,12 +12,13 @@
 
 use std::time::{Duration, Instant};
 
-use super::deck::{self, ComputedStep, Deck, DeckInput, Grip, RunDir, PATH_FILE};
+use super::deck::{self, ComputedStep, Deck, DeckInput, RunDir, PATH_FILE};
 use super::geo::{self, MeshFiles};
 use super::readback::{self, DeckRow};
 use super::record::{self, Run};
 use super::surface::{self, Surface};
 use super::toolchain::{Tool, Toolchain};
+use crate::domain::Grip;
 use crate::history::History;
 use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{self, ResolutionError};
@@ -43,14 +44,14 @@ const TIME_TO_START: Duration = Duration::from_secs(120);
 const TIME_FOR_SETUP: Duration = Duration::from_secs(600);
 const TIME_PER_STEP: Duration = Duration::from_millis(500);
 
-/// How a deck is run.
+/// How a deck (axisymmetric or 3D) is run.
 #[derive(Clone, Debug, Default)]
 pub struct Options {
     /// The executables.
     pub toolchain: Toolchain,
-    /// Pole element size [m]; default [`geo::default_resolution`].
+    /// Pole element size [m]; default [`geo::default_resolution`] (axisymmetric decks).
     pub resolution: Option<f64>,
-    /// Time limit for the deck; default 12 min + 0.5 s per step.
+    /// Time limit for the deck; default 12 min + 0.5 s per step (axisymmetric decks).
     pub timeout: Option<Duration>,
     /// A replacement deck text (already filled), for fault tests and experiments.
     pub deck_text: Option<String>,
@@ -87,7 +88,7 @@ pub struct Plan {
     pub steps: Vec<ComputedStep>,
     /// Whether the tangential mode is solved (the path moves tangentially).
     pub tangential: bool,
-    /// How the far face is held.
+    /// How the far face is held: the scene's `[domain]` grip, the one its mesh is tagged with.
     pub grip: Grip,
     /// Candidate contact zone [m].
     pub candidate_radius: f64,
@@ -96,9 +97,9 @@ pub struct Plan {
 impl Plan {
     /// The plan of `scene` at pole size `resolution`.
     ///
-    /// Grip: rigid where the path moves tangentially (the shift must be imposed on the whole far
-    /// face); axial for a normal-only path, the loading of fem-axisym, so that one normal case
-    /// means one model in every axisymmetric solver.
+    /// Grip: the scene's (`scene.domain.grip`), as for the mesh's far-face tag and every other
+    /// FEM solver: one case means one domain and one grip ([`applicable`] refuses a tangential
+    /// path under the axial grip).
     pub fn of(scene: &Scene, resolution: f64) -> Self {
         let tangential = !scene.path.is_normal_only();
         let steps = scene
@@ -114,7 +115,7 @@ impl Plan {
         Self {
             steps,
             tangential,
-            grip: if tangential { Grip::Rigid } else { Grip::Axial },
+            grip: scene.domain.grip,
             candidate_radius: (CANDIDATE_ZONE * scene.max_contact_radius()).max(3.0 * resolution),
         }
     }
@@ -303,8 +304,9 @@ fn read_back(
     Ok((rows, surfaces))
 }
 
-/// `NotApplicable` unless the scene is two identical finite spheres (the symmetric model).
-fn applicable(scene: &Scene) -> Result<(), SolveError> {
+/// `NotApplicable` unless the scene is two identical finite spheres (the symmetric model) whose
+/// far faces can carry the path: a shift needs the rigid grip.
+pub fn applicable(scene: &Scene) -> Result<(), SolveError> {
     if !scene.pair.is_symmetric() {
         return Err(SolveError::NotApplicable(
             "the external decks model two identical spheres through their symmetry plane; \
@@ -317,6 +319,13 @@ fn applicable(scene: &Scene) -> Result<(), SolveError> {
             "two flats have no contact to model".into(),
         ));
     }
+    if scene.domain.grip == Grip::Axial && !scene.path.is_normal_only() {
+        return Err(SolveError::NotApplicable(
+            "the axial grip leaves the far face free to slide, so the path's tangential shift \
+             cannot be imposed (grip = \"rigid\" in [domain])"
+                .into(),
+        ));
+    }
     Ok(())
 }
 
@@ -327,14 +336,17 @@ mod tests {
 
     #[test]
     fn the_plan_walks_every_step_with_half_displacements() {
-        let scene = crate::external::test_scene(&[0.0, 10.0, 17.0]);
+        let mut scene = crate::external::test_scene(&[0.0, 10.0, 17.0]);
         let plan = Plan::of(&scene, 2e-5);
         assert_eq!(plan.steps.len(), scene.steps().len());
         let last = plan.steps.last().unwrap();
         assert_eq!((last.step, last.position), (8, Some(2)));
         assert!((last.d - 8.5e-6).abs() < 1e-18 && last.t == 0.0);
         assert!(plan.steps[3].position.is_none());
-        assert!(!plan.tangential && plan.grip == Grip::Axial);
+        // The scene's grip (the default: rigid), the one its mesh is tagged with.
+        assert!(!plan.tangential && plan.grip == Grip::Rigid);
+        scene.domain.grip = Grip::Axial;
+        assert_eq!(Plan::of(&scene, 2e-5).grip, Grip::Axial);
         let c = scene.max_contact_radius();
         assert!((plan.candidate_radius - 1.25 * c).abs() < 1e-15);
     }
@@ -345,6 +357,24 @@ mod tests {
         scene.pair.body2.radius = 0.05;
         let e = AxisymSolver::new(FreeFem).solve(&scene).unwrap_err();
         assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
+    }
+
+    #[test]
+    fn a_shift_under_the_axial_grip_is_not_applicable() {
+        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        scene.domain.grip = Grip::Axial;
+        assert!(applicable(&scene).is_ok());
+        let positions = scene.path.positions().to_vec();
+        let shifted: Vec<_> = positions
+            .iter()
+            .map(|p| crate::path::Position { delta_t: 1e-6, ..*p })
+            .collect();
+        scene.path = crate::path::LoadingPath::try_new(shifted, vec![4]).unwrap();
+        let e = applicable(&scene).unwrap_err();
+        assert!(
+            matches!(e, SolveError::NotApplicable(_)) && e.to_string().contains("rigid"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -7,25 +7,7 @@ use std::time::Duration;
 use super::geo::MeshFiles;
 use super::process::{Ending, Job};
 use super::toolchain::{Tool, Toolchain};
-
-/// How the modelled sphere's far face is held (the `[domain]` grip).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Grip {
-    /// Every displacement component of the far face follows the imposed approach and shift.
-    Rigid,
-    /// Only the axial displacement is imposed; the face slides freely in r (frictionless only).
-    Axial,
-}
-
-impl Grip {
-    /// The grip's name in metadata.
-    pub fn name(self) -> &'static str {
-        match self {
-            Grip::Rigid => "rigid",
-            Grip::Axial => "axial",
-        }
-    }
-}
+use crate::domain::Grip;
 
 /// The numbers a deck template is filled with: mm, N, MPa (the decks' units). The computed
 /// steps go into a separate file ([`PATH_FILE`]): a path has more steps than FreeFEM accepts in
@@ -48,7 +30,7 @@ pub struct DeckInput {
     pub kfac: f64,
     /// Coulomb friction coefficient μ.
     pub friction: f64,
-    /// How the far face is held.
+    /// How the far face is held: the scene's `[domain]` grip, as its mesh is tagged.
     pub grip: Grip,
     /// Contact-line nodes with r below this are contact candidates [mm].
     pub candidate_radius_mm: f64,
@@ -57,6 +39,10 @@ pub struct DeckInput {
     /// Cap on contact iterations per step and mode.
     pub max_iterations: u32,
 }
+
+/// The Python block both dolfinx decks share (imports, the template's numbers, the list of steps,
+/// the normal contact's Newton), inserted where a template says `@FENICSX_COMMON@`.
+pub const FENICSX_COMMON: &str = include_str!("templates/fenicsx_common.py");
 
 /// The file that lists a deck's computed steps: a count, then one line per step with its path
 /// index, d = δn/2 [mm], t = δt/2 [mm], and the path position it reaches or −1.
@@ -94,6 +80,8 @@ impl DeckInput {
     /// The `@KEY@` substitutions of the templates.
     fn substitutions(&self) -> Vec<(&'static str, String)> {
         vec![
+            // First, so that the keys of the inserted block are filled by the ones below.
+            ("@FENICSX_COMMON@", FENICSX_COMMON.to_owned()),
             ("@SCENE@", self.scene.replace(['"', '\n'], " ")),
             ("@MESH@", self.mesh.clone()),
             ("@R_MM@", format!("{:e}", self.radius_mm)),
@@ -103,21 +91,12 @@ impl DeckInput {
             ("@KFAC@", format!("{:e}", self.kfac)),
             ("@MU@", format!("{:e}", self.friction)),
             ("@GRIP_RADIAL@", u8::from(self.grip == Grip::Rigid).to_string()),
-            ("@FAR_TAG@", far_face_tag(self.grip).to_string()),
+            ("@FAR_TAG@", super::geo::far_face_tag(self.grip).to_string()),
             ("@CANDIDATE_RADIUS_MM@", format!("{:e}", self.candidate_radius_mm)),
             ("@TANGENTIAL@", u8::from(self.tangential).to_string()),
             ("@PATH_FILE@", PATH_FILE.to_owned()),
             ("@MAX_ITERATIONS@", self.max_iterations.to_string()),
         ]
-    }
-}
-
-/// The physical tag of the gripped far face in the mesh that [`super::geo`] writes: the tag
-/// carries the grip, so that a mesh made for one grip is never read as the other.
-fn far_face_tag(grip: Grip) -> u32 {
-    match grip {
-        Grip::Rigid => super::geo::TAG_TOP_RIGID,
-        Grip::Axial => super::geo::TAG_TOP,
     }
 }
 
@@ -129,6 +108,21 @@ pub fn fill(template: &str, input: &DeckInput) -> String {
         .fold(template.to_owned(), |text, (key, value)| {
             text.replace(key, &value)
         })
+}
+
+/// The environment every deck runs in: one BLAS/OpenMP thread per process. Reason: OpenBLAS
+/// (pthreads) and OpenMP split their reductions by thread count, so a deck's last bits would
+/// depend on the machine's cores (measured: the FEniCSx deck's steps.csv is bit-identical run to
+/// run at a fixed thread count, and differs between one thread and the default); the condensed
+/// problems are small enough that threads gain little on a shared machine, and MPI decks get
+/// their parallelism from ranks. FreeFEM's MUMPS_seq stays nondeterministic in the last bits
+/// even on one thread (P and Q differ by ≈ 1e-14 relative between two runs on the same files;
+/// with UMFPACK the runs are bit-identical): far below every tolerance, and MUMPS's solves are
+/// 4 × faster (docs/external-decks.md).
+pub fn single_threaded() -> Vec<(String, String)> {
+    ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"]
+        .map(|k| (k.to_owned(), "1".to_owned()))
+        .to_vec()
 }
 
 /// One external deck: its template, its program, and the meaning of its exit codes.
@@ -180,6 +174,19 @@ impl RunDir {
     }
 }
 
+/// Whether a filled deck still holds a key: @ + capitals and underscores + @ (Python's matrix
+/// product `a @ b` is not one).
+#[cfg(test)]
+pub(crate) fn has_unfilled_key(deck: &str) -> bool {
+    deck.match_indices('@').any(|(i, _)| {
+        let key: String = deck[i + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_uppercase() || *c == '_')
+            .collect();
+        !key.is_empty() && deck[i + 1 + key.len()..].starts_with('@')
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -202,15 +209,7 @@ mod tests {
         };
         for template in [super::super::freefem::TEMPLATE, super::super::fenicsx::TEMPLATE] {
             let deck = fill(template, &input);
-            // A key is @ + capitals and underscores + @ (Python's matrix product `a @ b` is not).
-            let unfilled = deck.match_indices('@').any(|(i, _)| {
-                let key: String = deck[i + 1..]
-                    .chars()
-                    .take_while(|c| c.is_ascii_uppercase() || *c == '_')
-                    .collect();
-                !key.is_empty() && deck[i + 1 + key.len()..].starts_with('@')
-            });
-            assert!(!unfilled, "unfilled key in {deck}");
+            assert!(!has_unfilled_key(&deck), "unfilled key in {deck}");
             assert!(deck.contains("1.25e0") && deck.contains(PATH_FILE));
         }
     }

@@ -48,7 +48,7 @@ impl Deck for Fenicsx {
         Job {
             program: toolchain.python.clone(),
             args: vec![deck.display().to_string()],
-            env: vec![],
+            env: super::deck::single_threaded(),
             timeout,
         }
     }

@@ -11,15 +11,17 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use super::axisym::{Plan, KFAC, MAX_ITERATIONS};
-use super::deck::{self, Deck, DeckInput, Grip, RunDir, PATH_FILE};
+use super::axisym::{Options, Plan, KFAC, MAX_ITERATIONS};
+use super::deck::{self, Deck, DeckInput, RunDir, PATH_FILE};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
+use super::record::{record_run, RunFacts};
 use super::solid_geo::{self, SolidMeshFiles};
 use super::solid_geo::{self as meshing, Zones};
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
+use crate::domain::Grip;
 use crate::history::{History, Metadata, StepResult};
 use crate::limits::SOLID_POLE;
 use crate::resolution::{self, ResolutionError};
@@ -34,7 +36,7 @@ pub const TEMPLATE: &str = include_str!("templates/fenicsx_3d.py");
 
 /// Default pole element size, as a fraction of the path's largest contact radius: a coarse mesh,
 /// c_max/5 (measured on the paper's spheres: 32.6k DOFs, 319 candidate nodes, a set-up of 7 s
-/// CPU on one core; docs/external-decks.md). Finer meshes through [`Options3d::resolution`].
+/// CPU on one core; docs/external-decks.md). Finer meshes through [`Options::resolution`].
 pub const DEFAULT_POLE_FRACTION: f64 = 1.0 / 5.0;
 
 pub use crate::limits::MAX_RANKS;
@@ -88,7 +90,7 @@ impl Deck for Fenicsx3d {
             return Job {
                 program: toolchain.python.clone(),
                 args: vec![deck],
-                env: vec![],
+                env: deck::single_threaded(),
                 timeout,
             };
         }
@@ -101,10 +103,13 @@ impl Deck for Fenicsx3d {
         Job {
             program: "mpirun".into(),
             args,
-            env: vec![
+            env: [
                 ("OMPI_ALLOW_RUN_AS_ROOT".into(), "1".into()),
                 ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM".into(), "1".into()),
-            ],
+            ]
+            .into_iter()
+            .chain(deck::single_threaded())
+            .collect(),
             timeout,
         }
     }
@@ -118,25 +123,15 @@ impl Deck for Fenicsx3d {
     }
 }
 
-/// How the 3D deck is run.
-#[derive(Clone, Debug, Default)]
-pub struct Options3d {
-    /// The executables.
-    pub toolchain: Toolchain,
-    /// Pole element size [m]; default [`DEFAULT_POLE_FRACTION`] of the largest contact radius.
-    pub resolution: Option<f64>,
-    /// Time limit for the deck; default 33 min + 3 s per step.
-    pub timeout: Option<Duration>,
-    /// Cap on contact iterations per step; default [`MAX_ITERATIONS`].
-    pub max_iterations: Option<u32>,
-}
-
 /// The 3D deck as a [`Solver`].
 pub struct Solid3dDeck {
     /// The deck (its rank count).
     pub deck: Fenicsx3d,
     /// How it is run.
-    pub options: Options3d,
+    /// How it is run (the same options as the axisymmetric decks'; the default pole size is
+    /// [`DEFAULT_POLE_FRACTION`] of the largest contact radius, the default time limit 33 min +
+    /// 3 s per step).
+    pub options: Options,
 }
 
 /// What a finished 3D run left, read back.
@@ -155,7 +150,7 @@ impl Solid3dDeck {
     pub fn new(ranks: u32) -> Self {
         Self {
             deck: Fenicsx3d { ranks },
-            options: Options3d::default(),
+            options: Options::default(),
         }
     }
 
@@ -165,7 +160,7 @@ impl Solid3dDeck {
         let c_max = scene.max_contact_radius();
         let zones = Zones::new(c_max, resolution);
         let r = scene.pair.body1.radius;
-        let geometry = meshing::geometry(r, r, resolution, zones);
+        let geometry = meshing::geometry(r, scene.domain.height(r), resolution, zones);
         let mesh = solid_geo::mesh(&geometry, dir.path(), "body", toolchain)?;
         let input = DeckInput {
             scene: scene.name.clone(),
@@ -176,7 +171,7 @@ impl Solid3dDeck {
             h_mm: resolution * 1e3,
             kfac: KFAC,
             friction: scene.friction,
-            grip: Grip::Rigid,
+            grip: plan.grip,
             candidate_radius_mm: plan.candidate_radius * 1e3,
             tangential: plan.tangential,
             max_iterations: self.options.max_iterations.unwrap_or(MAX_ITERATIONS),
@@ -185,7 +180,12 @@ impl Solid3dDeck {
             std::fs::write(dir.path().join(name), text)
                 .map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
         };
-        write(self.deck.file_name(), &deck::fill(TEMPLATE, &input))?;
+        let text = self
+            .options
+            .deck_text
+            .clone()
+            .unwrap_or_else(|| deck::fill(TEMPLATE, &input));
+        write(self.deck.file_name(), &text)?;
         write(PATH_FILE, &deck::path_file(&plan.steps))?;
         let steps = u32::try_from(plan.steps.len()).unwrap_or(u32::MAX);
         let timeout = self
@@ -294,6 +294,13 @@ impl Solver for Solid3dDeck {
                     .into(),
             ));
         }
+        if scene.domain.grip != Grip::Rigid {
+            return Err(SolveError::NotApplicable(
+                "the 3D deck grips the far face rigidly (every component follows the approach and \
+                 shift); the axial grip is not modelled"
+                    .into(),
+            ));
+        }
         let toolchain = &self.options.toolchain;
         let version = toolchain
             .require(Tool::Dolfinx)
@@ -306,7 +313,6 @@ impl Solver for Solid3dDeck {
         let c_max = scene.max_contact_radius();
         let resolution = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
         let mut plan = Plan::of(scene, resolution);
-        plan.grip = Grip::Rigid;
         plan.candidate_radius = Zones::new(c_max, resolution).candidate_radius;
         let mut dir = RunDir::new("spherecontact-fenicsx-3d-")
             .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
@@ -360,10 +366,10 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
     let mut metadata = Metadata {
         version: format!("dolfinx {version}"),
         model: format!(
-            "3D, half of one sphere (y ≥ 0, hemisphere gripped rigidly on its equatorial face) against \
-             its symmetry plane, exact for identical spheres; P2 on quadratic tetrahedra; penalty k = \
-             {KFAC:e} E/h with nodal contact quadrature (sub-triangle lumping), condensed onto the \
-             candidate nodes; {}",
+            "3D, half of one sphere (y ≥ 0; {}) against its symmetry plane, exact for identical \
+             spheres; P2 on quadratic tetrahedra; penalty k = {KFAC:e} E/h with nodal contact \
+             quadrature (sub-triangle lumping), condensed onto the candidate nodes; {}",
+            scene.domain.describe(),
             if plan.tangential {
                 "Coulomb with history on the disc |q| ≤ μp, all-stick predictor every increment"
             } else {
@@ -376,8 +382,8 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
             scene.max_contact_radius() / run.resolution
         ),
         warnings: vec![
-            "finite hemisphere gripped rigidly, not a half-space: P(δn) above Hertz by ≈ 0.5 % at 17 µm \
-             (the offset fem-axisym and the axisymmetric decks measure on the same domain; docs/external-decks.md)"
+            "finite body, not a half-space: P, c, p0 and Q differ from Hertz and Mindlin–Deresiewicz \
+             by the domain's compliance, which mdr-domain computes (docs/finite-body.md)"
                 .into(),
         ],
         ..Metadata::default()
@@ -391,33 +397,21 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
                 .into(),
         );
     }
-    if !capped.is_empty() {
-        metadata.warnings.push(format!(
-            "the contact iteration hit its cap at steps {capped:?}: their values are the last iterate's"
-        ));
-    }
+    let facts = RunFacts {
+        candidate_nodes: run.surfaces.first().map_or(0, |s| s.nodes.len()),
+        capped: &capped,
+        wall_s: [run.mesh.wall_s, run.solving_s, run.reading_s],
+    };
+    record_run(&mut metadata, plan, &facts);
     let extra = &mut metadata.extra;
-    extra.insert("grip".into(), json!(Grip::Rigid.name()));
     extra.insert("ranks".into(), json!(ranks));
-    extra.insert("computed_steps".into(), json!("every step of the path"));
-    extra.insert("candidate_radius_m".into(), json!(plan.candidate_radius));
-    extra.insert(
-        "candidate_nodes".into(),
-        json!(run.surfaces.first().map_or(0, |s| s.nodes.len())),
-    );
-    extra.insert("penalty_factor".into(), json!(KFAC));
     extra.insert(
         "contact_measures".into(),
         json!("c and p0 from a least-squares fit of p² = p0²(1 − r²/c²) over the nodes in contact; stick radius midway between the innermost slipping node and the farthest sticking node inside it"),
     );
-    extra.insert("capped_steps".into(), json!(capped));
-    extra.insert("meshing_s".into(), json!(run.mesh.wall_s));
-    extra.insert("solving_s".into(), json!(run.solving_s));
-    extra.insert("reading_back_s".into(), json!(run.reading_s));
     for (phase, value) in &run.timing {
         extra.insert(format!("deck_{phase}"), json!(value));
     }
-    extra.insert("outcome".into(), json!("exited with code 0, output read back"));
     metadata
 }
 
@@ -458,14 +452,7 @@ mod tests {
             max_iterations: 30,
         };
         let text = deck::fill(TEMPLATE, &input);
-        let unfilled = text.match_indices('@').any(|(i, _)| {
-            let key: String = text[i + 1..]
-                .chars()
-                .take_while(|c| c.is_ascii_uppercase() || *c == '_')
-                .collect();
-            !key.is_empty() && text[i + 1 + key.len()..].starts_with('@')
-        });
-        assert!(!unfilled, "unfilled key");
+        assert!(!deck::has_unfilled_key(&text), "unfilled key");
         assert!(text.contains("r_cand = 1.3e0") && text.contains(PATH_FILE));
     }
 
@@ -473,6 +460,14 @@ mod tests {
     fn different_spheres_are_not_applicable() {
         let mut scene = crate::external::test_scene(&[0.0, 17.0]);
         scene.pair.body2.radius = 0.05;
+        let e = Solid3dDeck::new(1).solve(&scene).unwrap_err();
+        assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
+    }
+
+    #[test]
+    fn the_axial_grip_is_not_applicable() {
+        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        scene.domain.grip = Grip::Axial;
         let e = Solid3dDeck::new(1).solve(&scene).unwrap_err();
         assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
     }

@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::time::Duration;
 
-use super::deck::Deck;
+use super::deck::{self, Deck};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::toolchain::{Tool, Toolchain, FF_LOADPATH};
@@ -53,7 +53,10 @@ impl Deck for FreeFem {
                 "0".into(),
                 deck.display().to_string(),
             ],
-            env: vec![("FF_LOADPATH".into(), FF_LOADPATH.into())],
+            env: [("FF_LOADPATH".into(), FF_LOADPATH.into())]
+                .into_iter()
+                .chain(deck::single_threaded())
+                .collect(),
             timeout,
         }
     }

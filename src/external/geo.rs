@@ -43,6 +43,16 @@ pub const TAG_TOP_RIGID: u32 = 4;
 /// Physical tag of the symmetry axis.
 pub const TAG_AXIS: u32 = 3;
 
+/// The physical tag of the gripped far face: the mesh carries the grip (2 axial, 4 rigid), so that
+/// a mesh made for one grip is never read as the other. The `.geo` writer and the decks'
+/// templates (`@FAR_TAG@`) both take it from here.
+pub fn far_face_tag(grip: Grip) -> u32 {
+    match grip {
+        Grip::Axial => TAG_TOP,
+        Grip::Rigid => TAG_TOP_RIGID,
+    }
+}
+
 /// The default resolution of a scene: pole element size c_max / 40 [m], or R / 4000 when the
 /// path never closes the gap.
 pub fn default_resolution(scene: &Scene) -> f64 {
@@ -80,9 +90,10 @@ pub fn geo_for_scene(scene: &Scene, resolution: f64) -> Result<String, SolveErro
     let d_fine = (1.5 * c_max).max(4.0 * resolution);
     let d_coarse = (height / 2.0).max(2.0 * d_fine);
     let rim = (height * (2.0 * radius - height)).sqrt();
-    let (top_name, top_tag) = match scene.domain.grip {
-        Grip::Axial => ("top", TAG_TOP),
-        Grip::Rigid => ("top_rigid", TAG_TOP_RIGID),
+    let top_tag = far_face_tag(scene.domain.grip);
+    let top_name = match scene.domain.grip {
+        Grip::Axial => "top",
+        Grip::Rigid => "top_rigid",
     };
     // The hemisphere's cut passes through the centre: the axis point is the centre itself.
     let axis_point = if height < radius {
@@ -191,22 +202,7 @@ pub fn mesh(
         let mut args = vec![geo_name.to_owned(), "-2".into()];
         args.extend(options.iter().map(|s| s.to_string()));
         args.extend(["-o".into(), out_name.to_owned()]);
-        let job = Job {
-            program: toolchain.gmsh.clone(),
-            args,
-            env: vec![],
-            timeout: GMSH_TIMEOUT,
-        };
-        let run = process::run(&job, dir, "gmsh")
-            .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
-        wall_s += run.wall_s;
-        if !run.succeeded() || !out.is_file() {
-            return Err(SolveError::Failed(format!(
-                "gmsh {}: {}",
-                describe(&run.ending),
-                run.tail(8)
-            )));
-        }
+        wall_s += run_gmsh(toolchain, dir, args, out, GMSH_TIMEOUT, "gmsh")?;
     }
     let triangles = triangle_count(&msh22_mm);
     Ok(MeshFiles {
@@ -219,13 +215,33 @@ pub fn mesh(
     })
 }
 
-/// gmsh's exit in words (gmsh returns 1 on any error).
-fn describe(ending: &Ending) -> String {
-    match ending {
-        Ending::Exited(code) => format!("exited with code {code}"),
-        Ending::Signalled(s) => format!("crashed with {}", process::signal_name(*s)),
-        Ending::TimedOut => format!("timed out after {} s and was killed", GMSH_TIMEOUT.as_secs()),
+/// Runs gmsh with `args` in `dir` for the file `out`, within `timeout`; its wall time [s], or the
+/// failure in words (`what` names the mesh; gmsh returns 1 on any error) with gmsh's last lines.
+pub(super) fn run_gmsh(
+    toolchain: &Toolchain,
+    dir: &Path,
+    args: Vec<String>,
+    out: &Path,
+    timeout: Duration,
+    what: &str,
+) -> Result<f64, SolveError> {
+    let job = Job {
+        program: toolchain.gmsh.clone(),
+        args,
+        env: vec![],
+        timeout,
+    };
+    let run = process::run(&job, dir, "gmsh")
+        .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
+    if run.succeeded() && out.is_file() {
+        return Ok(run.wall_s);
     }
+    let how = match run.ending {
+        Ending::Exited(code) => format!("exited with code {code}"),
+        Ending::Signalled(s) => format!("crashed with {}", process::signal_name(s)),
+        Ending::TimedOut => format!("timed out after {} s and was killed", timeout.as_secs()),
+    };
+    Err(SolveError::Failed(format!("{what} {how}: {}", run.tail(8))))
 }
 
 /// The number of linear triangles (element type 2) in an MSH 2.2 file; 0 if unreadable.

@@ -115,10 +115,10 @@ fn metadata(
     let mut metadata = Metadata {
         version: format!("{} {version}", deck.tool().name()),
         model: format!(
-            "axisymmetric, one sphere (hemisphere gripped {} on its equatorial face) against its \
-             symmetry plane, exact for identical spheres; {modes}; penalty k = {KFAC:e} E/h with nodal \
-             contact quadrature, condensed onto the contact-line nodes",
-            plan.grip.name()
+            "axisymmetric, one sphere ({}) against its symmetry plane, exact for identical spheres; \
+             {modes}; penalty k = {KFAC:e} E/h with nodal contact quadrature, condensed onto the \
+             contact-line nodes",
+            scene.domain.describe()
         ),
         resolution: format!(
             "pole element {:.3} µm (c_max/{:.0}), {} triangles; every path step computed",
@@ -126,42 +126,31 @@ fn metadata(
             scene.max_contact_radius() / mesh.resolution,
             mesh.triangles
         ),
-        warnings: vec![format!(
-            "finite hemisphere, not a half-space: P(δn) above Hertz by ≈ {} on every mesh (docs/external-decks.md)",
-            match plan.grip {
-                super::deck::Grip::Axial => "0.37 % at 17 µm (axial grip)",
-                super::deck::Grip::Rigid => "0.51 % at 17 µm (rigid grip)",
-            }
-        )],
+        warnings: vec![
+            "finite body, not a half-space: P, c, p0 and Q differ from Hertz and Mindlin–Deresiewicz \
+             by the domain's compliance, which mdr-domain computes (docs/finite-body.md)"
+                .into(),
+        ],
         ..Metadata::default()
     };
     if plan.tangential {
-        metadata.warnings.push(
-            "finite hemisphere gripped at its equator: ≈ 4 % softer in shear than the half-space, Q in \
-             partial slip ≈ 2.4 % below Mindlin–Deresiewicz (docs/external-decks.md); q_y and non-circular \
-             stick zones are outside this model"
-                .into(),
-        );
+        metadata
+            .warnings
+            .push("q_y and non-circular stick zones are outside this model (Fourier modes 0 and 1)".into());
     }
     let flagged: Vec<usize> = steps_with(run, Outcome::Capped);
-    if !flagged.is_empty() {
-        metadata.warnings.push(format!(
-            "the contact iteration hit its cap at steps {flagged:?}: their values are the last iterate's"
-        ));
-    }
+    let timing = &run.timing;
+    let run_facts = RunFacts {
+        candidate_nodes: run.surfaces.first().map_or(0, |s| s.nodes.len()),
+        capped: &flagged,
+        wall_s: [timing.meshing_s, timing.solving_s, timing.reading_s],
+    };
+    record_run(&mut metadata, plan, &run_facts);
     let extra = &mut metadata.extra;
-    extra.insert("grip".into(), json!(plan.grip.name()));
     extra.insert(
         "fourier_modes".into(),
         json!(if plan.tangential { vec![0, 1] } else { vec![0] }),
     );
-    extra.insert("computed_steps".into(), json!("every step of the path"));
-    extra.insert("candidate_radius_m".into(), json!(plan.candidate_radius));
-    extra.insert(
-        "candidate_nodes".into(),
-        json!(run.surfaces.first().map_or(0, |s| s.nodes.len())),
-    );
-    extra.insert("penalty_factor".into(), json!(KFAC));
     extra.insert(
         "contact_measures".into(),
         json!("as fem-axisym, from the nodal ring forces: c from a quadratic fit of p² at the edge, p0 from an even fit of p on 0 < r ≤ c/2, stick radius midway between the last sticking and the innermost slipping node"),
@@ -180,16 +169,45 @@ fn metadata(
         "stick_edge_cycles_at_steps".into(),
         json!(steps_with(run, Outcome::Cycle)),
     );
-    extra.insert("capped_steps".into(), json!(flagged));
-    extra.insert("meshing_s".into(), json!(run.timing.meshing_s));
-    extra.insert("solving_s".into(), json!(run.timing.solving_s));
-    extra.insert("reading_back_s".into(), json!(run.timing.reading_s));
     if let (Some(setup), Some(path)) = run.deck_clock {
         extra.insert("deck_setup_s".into(), json!(setup));
         extra.insert("deck_path_s".into(), json!(path));
     }
-    extra.insert("outcome".into(), json!("exited with code 0, output read back"));
     metadata
+}
+
+/// What every deck run (axisymmetric or 3D) records the same way.
+pub struct RunFacts<'a> {
+    /// Contact candidate nodes.
+    pub candidate_nodes: usize,
+    /// The steps whose contact iteration hit its cap.
+    pub capped: &'a [usize],
+    /// Wall time of meshing, solving and reading back [s].
+    pub wall_s: [f64; 3],
+}
+
+/// Records in `metadata` what every deck run states: the grip, the steps computed, the candidate
+/// zone, the penalty, the capped steps (with a warning when there are any), the wall times and
+/// the outcome.
+pub fn record_run(metadata: &mut Metadata, plan: &Plan, facts: &RunFacts) {
+    if !facts.capped.is_empty() {
+        metadata.warnings.push(format!(
+            "the contact iteration hit its cap at steps {:?}: their values are the last iterate's",
+            facts.capped
+        ));
+    }
+    let [meshing, solving, reading] = facts.wall_s;
+    let extra = &mut metadata.extra;
+    extra.insert("grip".into(), json!(plan.grip.name()));
+    extra.insert("computed_steps".into(), json!("every step of the path"));
+    extra.insert("candidate_radius_m".into(), json!(plan.candidate_radius));
+    extra.insert("candidate_nodes".into(), json!(facts.candidate_nodes));
+    extra.insert("penalty_factor".into(), json!(KFAC));
+    extra.insert("capped_steps".into(), json!(facts.capped));
+    extra.insert("meshing_s".into(), json!(meshing));
+    extra.insert("solving_s".into(), json!(solving));
+    extra.insert("reading_back_s".into(), json!(reading));
+    extra.insert("outcome".into(), json!("exited with code 0, output read back"));
 }
 
 /// The path steps whose iteration ended with `outcome`.

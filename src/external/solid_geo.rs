@@ -22,7 +22,6 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use super::process::{self, Ending, Job};
 use super::toolchain::{Tool, Toolchain};
 use crate::solver::SolveError;
 
@@ -176,39 +175,20 @@ pub fn mesh(
     let text = geometry.geo().map_err(SolveError::NotApplicable)?;
     std::fs::write(&geo, text).map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
     let msh = dir.join(format!("{stem}.msh"));
-    let job = Job {
-        program: toolchain.gmsh.clone(),
-        args: vec![
-            geo.display().to_string(),
-            "-3".into(),
-            "-order".into(),
-            "2".into(),
-            "-format".into(),
-            "msh41".into(),
-            "-o".into(),
-            msh.display().to_string(),
-        ],
-        env: vec![],
-        timeout: GMSH_TIMEOUT,
-    };
-    let run = process::run(&job, dir, "gmsh")
-        .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
-    if !run.succeeded() || !msh.is_file() {
-        let how = match run.ending {
-            Ending::Exited(code) => format!("exited with code {code}"),
-            Ending::Signalled(s) => format!("crashed with {}", process::signal_name(s)),
-            Ending::TimedOut => format!("timed out after {} s and was killed", GMSH_TIMEOUT.as_secs()),
-        };
-        return Err(SolveError::Failed(format!(
-            "gmsh (3D mesh) {how}: {}",
-            run.tail(8)
-        )));
-    }
-    Ok(SolidMeshFiles {
-        geo,
-        msh,
-        wall_s: run.wall_s,
-    })
+    let args = [
+        &geo.display().to_string(),
+        "-3",
+        "-order",
+        "2",
+        "-format",
+        "msh41",
+        "-o",
+        &msh.display().to_string(),
+    ]
+    .map(str::to_owned)
+    .to_vec();
+    let wall_s = super::geo::run_gmsh(toolchain, dir, args, &msh, GMSH_TIMEOUT, "gmsh (3D mesh)")?;
+    Ok(SolidMeshFiles { geo, msh, wall_s })
 }
 
 // The mesh zones and geometry of a scene's solid (fem-3d and fenicsx-3d mesh alike).

@@ -5,6 +5,7 @@ use std::path::Path;
 use std::time::Duration;
 
 use spherecontact::case::Case;
+use spherecontact::domain::Grip;
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
 use spherecontact::external::toolchain::Toolchain;
@@ -54,9 +55,12 @@ pub fn at_resolution<D: Deck + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
 }
 
 /// The paper's spheres pressed to δn = 17 µm (4 increments), sheared to δt = 3 µm (6) and back to
-/// −3 µm (12): partial slip, reversal, and gross sliding is not reached (δs = 4.13 µm).
+/// −3 µm (12): partial slip, reversal, and gross sliding is not reached (δs = 4.13 µm). The
+/// hemisphere is gripped rigidly (the only grip that can impose a shift; the normal scene's
+/// axial grip would leave the far face free to slide).
 pub fn frictional_scene() -> Scene {
     let mut scene = scene_17um();
+    scene.domain.grip = Grip::Rigid;
     let um = |delta_n: f64, delta_t: f64| Position {
         delta_n: delta_n * 1e-6,
         delta_t: delta_t * 1e-6,

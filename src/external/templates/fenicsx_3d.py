@@ -32,41 +32,9 @@ Rank 0 writes steps.csv (one row per computed step, P and Q of the whole sphere)
 normal and of the tangential problem) at path positions, and timing.csv (CPU and wall seconds of
 the set-up and of the path).
 """
-import csv
-import time
+@FENICSX_COMMON@
+import scipy.spatial  # noqa: E402 (after the shared block)
 
-import gmsh
-import numpy as np
-import scipy.linalg
-import scipy.spatial
-import ufl
-from mpi4py import MPI
-from petsc4py import PETSc
-
-import dolfinx
-import dolfinx.fem.petsc
-from dolfinx import fem
-from dolfinx.io import gmshio
-
-MESH = "@MESH@"
-R, E, nu = @R_MM@, @E_MPA@, @NU@
-h = @H_MM@
-k = @KFAC@ * E / h                 # penalty [MPa/mm], normal and tangential
-mu = @MU@
-r_cand = @CANDIDATE_RADIUS_MM@     # contact candidates: nodes of contact faces wholly within r_cand
-tangential = @TANGENTIAL@          # 0: normal-only path, the tangential problem is not solved
-# the computed steps (@PATH_FILE@): a count, then per step its path index, d = delta_n/2 [mm],
-# t = delta_t/2 [mm] and the path position it reaches (a field file is written) or -1
-with open("@PATH_FILE@") as path_file:
-    path_rows = [line.split() for line in path_file.read().splitlines()[1:]]
-steps = [int(row[0]) for row in path_rows]
-dlist = [float(row[1]) for row in path_rows]
-tlist = [float(row[2]) for row in path_rows]
-fields = [int(row[3]) for row in path_rows]
-maxit = @MAX_ITERATIONS@
-comm = MPI.COMM_WORLD
-root = comm.rank == 0
-clock_start, wall_start = time.process_time(), time.perf_counter()
 CONTACT, FAR, SYMMETRY = 1, 2, 3
 TRIANGLE6 = 9  # gmsh's 6-node triangle
 
@@ -113,8 +81,6 @@ assert m > 3 and rc.min() < 1e-9 * R, "the pole must be a candidate contact node
 zs = R - np.sqrt(R * R - rc * rc)  # the sphere's height at each candidate (exact geometry)
 on_sym = np.abs(XC[:, 1]) <= 1e-9 * R
 fdim = msh.topology.dim - 1
-lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-G = E / (2 * (1 + nu))
 dx = ufl.Measure("dx", domain=msh, metadata={"quadrature_degree": 2})
 
 
@@ -196,20 +162,9 @@ clock_setup, wall_setup = time.process_time(), time.perf_counter()
 
 
 def spd_solve(S, D, b):
-    """(S + D) x = b, S a condensed stiffness, D >= 0 the contact's tangent."""
-    return scipy.linalg.cho_solve(scipy.linalg.cho_factor(S + D), b)
-
-
-def solve_normal(d, w):
-    """Penalty contact at approach d from the start w (u_z at the candidates): (w, f, its, ok)."""
-    for it in range(1, maxit + 1):
-        act = zs + w < 0
-        # Newton on Sz (w + d) = k om <-(zs + w)>_+ with the active set of the start: exact once
-        # the set of the solution is the set it was computed with
-        w = spd_solve(Sz, np.diag(k * om * act), -Sz @ np.full(m, d) - k * om * act * zs)
-        if np.array_equal(act, zs + w < 0):
-            return w, k * om * np.maximum(-(zs + w), 0.0), it, True
-    return w, k * om * np.maximum(-(zs + w), 0.0), maxit, False
+    """(S + D) x = b, S a condensed stiffness, D >= 0 the contact's tangent (a matrix, or a
+    vector: its diagonal)."""
+    return scipy.linalg.cho_solve(scipy.linalg.cho_factor(S + (D if D.ndim == 2 else np.diag(D))), b)
 
 
 def nodal(v):
@@ -339,7 +294,7 @@ if root:
 d_prev = None
 for step, d, t, position in zip(steps, dlist, tlist, fields):
     if d != d_prev:
-        w, f, its0, ok0 = solve_normal(d, w)
+        w, f, its0, ok0 = solve_normal(Sz, d, w, spd_solve)
         d_prev = d
     else:
         its0, ok0 = 0, True

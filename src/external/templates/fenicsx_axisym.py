@@ -25,40 +25,8 @@ at slip. Writes steps.csv (one row per computed step), surface.csv (candidate no
 computed step), field_<position>.xdmf (u, u1 and the surface fields) at path positions, and
 timing.csv (CPU seconds of the set-up and of the path).
 """
-import csv
-import time
-
-import gmsh
-import numpy as np
-import scipy.linalg
-import ufl
-from mpi4py import MPI
-from petsc4py import PETSc
-
-import dolfinx
-import dolfinx.fem.petsc
-from dolfinx import fem
-from dolfinx.io import gmshio
-
-MESH = "@MESH@"
-R, E, nu = @R_MM@, @E_MPA@, @NU@
-h = @H_MM@
-k = @KFAC@ * E / h                 # penalty [MPa/mm], normal and tangential
-mu = @MU@
+@FENICSX_COMMON@
 grip_radial = @GRIP_RADIAL@        # 1: u_r = 0 on the far face in n = 0 (rigid grip); 0: free
-r_cand = @CANDIDATE_RADIUS_MM@     # contact candidates: surface nodes with r <= r_cand
-tangential = @TANGENTIAL@          # 0: normal-only path, the n = 1 mode is not solved
-# the computed steps (@PATH_FILE@): a count, then per step its path index, d = delta_n/2 [mm],
-# t = delta_t/2 [mm] and the path position it reaches (a field file is written) or -1
-with open("@PATH_FILE@") as path_file:
-    path_rows = [line.split() for line in path_file.read().splitlines()[1:]]
-steps = [int(row[0]) for row in path_rows]
-dlist = [float(row[1]) for row in path_rows]
-tlist = [float(row[2]) for row in path_rows]
-fields = [int(row[3]) for row in path_rows]
-maxit = @MAX_ITERATIONS@
-comm = MPI.COMM_WORLD
-clock_start = time.process_time()
 
 # gmshio.read_from_msh is broken in 0.5.2: merge by hand, then model_to_mesh
 gmsh.initialize()
@@ -70,8 +38,6 @@ msh.geometry.x[:, :2] *= 1000.0  # m -> mm
 fdim = msh.topology.dim - 1
 x = ufl.SpatialCoordinate(msh)
 r = x[0]
-lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-G = E / (2 * (1 + nu))
 dx = ufl.Measure("dx", domain=msh, metadata={"quadrature_degree": 6})
 # nodal contact quadrature: 3-point Gauss-Lobatto (Simpson) on the P2 contact edges
 dsc = ufl.Measure("ds", domain=msh, subdomain_data=ftags,
@@ -194,18 +160,6 @@ def spd_solve(S, D, b):
             del FACTORS[mine[0]]
         FACTORS[key] = scipy.linalg.cho_factor(S + np.diag(D))
     return scipy.linalg.cho_solve(FACTORS[key], b)
-
-
-def solve_normal(d, w):
-    """Penalty contact at approach d from the start w (u_z at the candidates): (w, f, its, ok)."""
-    for it in range(1, maxit + 1):
-        act = zs + w < 0
-        # Newton on S0 (w + d) = k om <-(zs + w)>_+ with the active set of the start: exact once
-        # the set of the solution is the set it was computed with
-        w = spd_solve(S0, k * om * act, -S0 @ np.full(m, d) - k * om * act * zs)
-        if np.array_equal(act, zs + w < 0):
-            return w, k * om * np.maximum(-(zs + w), 0.0), it, True
-    return w, k * om * np.maximum(-(zs + w), 0.0), maxit, False
 
 
 # ---------------------------------------- n = 1: tangential mode ------------------------------------
@@ -337,7 +291,7 @@ with open("steps.csv", "w", newline="") as fs, open("surface.csv", "w", newline=
     d_prev = None
     for step, d, t, position in zip(steps, dlist, tlist, fields):
         if d != d_prev:
-            w, f, its0, ok0 = solve_normal(d, w)
+            w, f, its0, ok0 = solve_normal(S0, d, w, spd_solve)
             d_prev = d
         else:
             its0, ok0 = 0, True

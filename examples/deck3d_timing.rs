@@ -1,0 +1,111 @@
+//! Speed of the dolfinx 3D deck `fenicsx-3d` on 1 and 2 MPI ranks, side by side with the in-crate
+//! `fem-3d` on the same mesh (both mesh the case's body with `fem::solid3d::meshing` at the same
+//! pole size, default c_max/5; gmsh is deterministic, so the meshes are the same), in one run:
+//! one warm-up run each, then REPEATS timed runs (default 3), interleaved; medians of the wall
+//! time of the set-up (mesh, assembly, factorisation, condensation) and of the path, the path's
+//! time per increment, and the largest difference of P and Q from fem-3d (relative to the peaks).
+//! The machine may be shared: compare the rows of one run.
+//!
+//! Run: `cargo run --release --example deck3d_timing [CASE] [REPEATS]` (needs scripts/setup.sh;
+//! default case: cases-heavy/paper-fig7-3d.toml, the paper path up to position 5).
+
+use std::path::Path;
+use std::time::Instant;
+
+use spherecontact::bench::{median, worst_error};
+use spherecontact::case::Case;
+use spherecontact::external::fenicsx3d::{Solid3dDeck, DEFAULT_POLE_FRACTION};
+use spherecontact::fem::solid3d::solver::FemSolid3d;
+use spherecontact::fem::solid3d::system::Grip;
+use spherecontact::history::{History, Quantity};
+use spherecontact::solver::{self, Solver};
+
+/// A number from the metadata [s], or NaN when the solver does not report it.
+fn extra(history: &History, key: &str) -> f64 {
+    history
+        .metadata
+        .extra
+        .get(key)
+        .and_then(serde_json::Value::as_f64)
+        .unwrap_or(f64::NAN)
+}
+
+/// (set-up, path) wall seconds of a run: the deck's own clock, or fem-3d's phases.
+fn phases(history: &History, wall_s: f64) -> (f64, f64) {
+    let deck_path = extra(history, "deck_path_wall");
+    if deck_path.is_finite() {
+        return (wall_s - deck_path, deck_path);
+    }
+    let contact = extra(history, "contact_s");
+    (wall_s - contact, contact)
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let case = args
+        .next()
+        .unwrap_or_else(|| "cases-heavy/paper-fig7-3d.toml".into());
+    let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(3);
+    let scene = Case::load(Path::new(&case))
+        .expect("a valid case, run from the crate root")
+        .scene;
+    let h = DEFAULT_POLE_FRACTION * scene.max_contact_radius();
+    let solvers: Vec<(String, Box<dyn Solver>)> = vec![
+        ("fenicsx-3d, 1 rank".into(), Box::new(Solid3dDeck::new(1))),
+        ("fenicsx-3d, 2 ranks".into(), Box::new(Solid3dDeck::new(2))),
+        (
+            "fem-3d".into(),
+            Box::new(FemSolid3d::with_pole_size(h, Grip::Rigid)),
+        ),
+    ];
+    let increments = scene.steps().len() - 1;
+    println!(
+        "{case}: {increments} increments, pole size {:.1} µm (c_max/{:.0}); medians of {repeats} runs \
+         after a warm-up, interleaved; the machine may be shared",
+        h * 1e6,
+        1.0 / DEFAULT_POLE_FRACTION
+    );
+    let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new(); solvers.len()];
+    let mut histories: Vec<Option<History>> = vec![None; solvers.len()];
+    for round in 0..=repeats {
+        for (k, (name, solver)) in solvers.iter().enumerate() {
+            let start = Instant::now();
+            match solver::run(solver.as_ref(), &scene) {
+                Ok(history) => {
+                    if round > 0 {
+                        runs[k].push(phases(&history, start.elapsed().as_secs_f64()));
+                    }
+                    histories[k] = Some(history);
+                }
+                Err(e) => println!("{name}: {e}"),
+            }
+        }
+    }
+    let fem = histories[2].clone();
+    println!(
+        "{:<20} {:>9} {:>8} {:>14} {:>8} {:>8}",
+        "solver", "set-up s", "path s", "ms/increment", "ΔP/peak", "ΔQ/peak"
+    );
+    for (k, (name, _)) in solvers.iter().enumerate() {
+        let (Some(history), false) = (&histories[k], runs[k].is_empty()) else {
+            continue;
+        };
+        let sorted_median = |part: fn(&(f64, f64)) -> f64| {
+            let mut values: Vec<f64> = runs[k].iter().map(part).collect();
+            values.sort_by(f64::total_cmp);
+            median(&values)
+        };
+        let (setup, path) = (sorted_median(|r| r.0), sorted_median(|r| r.1));
+        let against = |q: Quantity| {
+            fem.as_ref()
+                .and_then(|f| worst_error(history, f, q, true))
+                .map_or_else(|| "—".to_owned(), |e| format!("{e:.1e}"))
+        };
+        println!(
+            "{name:<20} {setup:>9.1} {path:>8.1} {:>14.0} {:>8} {:>8}",
+            path / increments as f64 * 1e3,
+            against(Quantity::NormalForce),
+            against(Quantity::TangentialForce),
+        );
+    }
+}
