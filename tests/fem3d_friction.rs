@@ -81,7 +81,8 @@ fn gross_sliding_at_once_carries_mu_p() {
         row.stick_radius
     );
     // Every point slips with |q| = μp; q_x = μp cos θ with θ the slip's angle from x, which
-    // the transverse compliance turns by a few per cent of a radian at most (cos ≥ 0.999).
+    // the transverse compliance turns by a few per cent of a radian at most (cos ≥ 0.999);
+    // measured Q/μP = 0.99987.
     assert!(ratio <= 1.0 + 1e-9 && ratio > 0.999, "Q/μP = {ratio}");
     assert_eq!(row.stick_radius, Some(0.0));
 }
@@ -125,9 +126,9 @@ fn reversal_at_every_increment_stays_on_the_masing_branches() {
             q[k]
         );
     }
-    // The coarse mesh (c/4) against the corrected reference: the mesh error of a contact
-    // four elements wide (measured in the output above), bounded loosely here.
-    assert!(worst < 0.05, "{worst}");
+    // The coarse mesh (c/4) against the corrected reference: the mesh error of a contact four
+    // elements wide, measured 4.1e-3 of the peak; 1e-2 is the bound at the default mesh.
+    assert!(worst < 1e-2, "{worst}");
 }
 
 #[test]
