@@ -48,6 +48,7 @@ pub mod pair;
 pub mod path;
 pub mod registry;
 pub mod report;
+pub mod resolution;
 pub mod scene;
 pub mod solver;
 pub mod verify;

@@ -3,7 +3,6 @@
 //! | file | concept |
 //! |---|---|
 //! | [`system`] | DOFs (far face gripped, u_y = 0 on the symmetry plane) and the assembled stiffness |
-//! | [`ordering`] | the elimination order: minimum degree on the interior, contact DOFs last |
 //! | [`surface`] | the contact candidate surface and its sub-triangulated contact rule |
 //! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
 //! | [`contact`] | the contact problem on the shared engine: pressure multipliers, symmetric weights |
@@ -19,7 +18,6 @@ pub mod contact;
 pub mod measures;
 pub mod meshing;
 pub mod model;
-pub mod ordering;
 pub mod output;
 pub mod solver;
 pub mod surface;

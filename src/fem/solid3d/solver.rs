@@ -29,12 +29,14 @@ use super::meshing::{self, Zones};
 use super::model::{Model, Settings};
 use super::system::Grip;
 use super::walk::{Record, Tangential, Walker};
+use crate::case::limits::SOLID_POLE;
 use crate::contact::{Method, Settings as ContactSettings};
 use crate::domain::Grip as DomainGrip;
 use crate::driver;
 use crate::external::toolchain::Toolchain;
 use crate::fem::element::tri6::Lame;
 use crate::history::{History, Metadata, StepResult};
+use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -155,6 +157,15 @@ impl Solver for FemSolid3d {
     }
 
     /// Pole sizes c_max/4 … c_max/14.
+    /// A pole element size: `c/N` or a length, within [`SOLID_POLE`].
+    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let h = resolution::pole_size(self.name(), scene, value, SOLID_POLE)?;
+        Ok(Box::new(FemSolid3d {
+            pole_size: Some(h),
+            ..self.clone()
+        }))
+    }
+
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
         [4.0, 6.0, 10.0, 14.0]
             .into_iter()
