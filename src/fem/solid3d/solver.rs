@@ -30,7 +30,7 @@ use super::meshing::{self, Zones};
 use super::model::{Model, Settings};
 use super::system::Grip;
 use super::walk::{Record, Tangential, Walker};
-use crate::case::limits::SOLID_POLE;
+use crate::limits::SOLID_POLE;
 use crate::contact::{Method, Settings as ContactSettings};
 use crate::domain::Grip as DomainGrip;
 use crate::driver;
