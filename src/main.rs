@@ -445,19 +445,30 @@ fn bench(
     );
     let table = &document.sections[0].tables[0];
     println!(
-        "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12}",
-        "solver", "resolution", "CPU [ms]", "wall [ms]", "P error", "Q error"
+        "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12} {:>12} {:>14} {:>12}",
+        "solver",
+        "resolution",
+        "CPU [ms]",
+        "wall [ms]",
+        "P error",
+        "Q error",
+        "reference",
+        "P raw/Hertz",
+        "Q raw/MDR"
     );
     for row in &table.rows {
         let cell = |k: usize| row.get(k).map_or("", |c| c.text.as_str());
         println!(
-            "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12}",
+            "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12} {:>12} {:>14} {:>12}",
             cell(0),
             cell(1),
             cell(2),
             cell(3),
             cell(4),
-            cell(5)
+            cell(5),
+            cell(6),
+            cell(7),
+            cell(8)
         );
     }
     println!("report: {}", out.join("report.html").display());

@@ -180,9 +180,10 @@ pub struct Model {
     pub radii: Vec<f64>,
     /// Ring weights of the candidates (body 1's surface) [m²].
     pub weights: Vec<f64>,
-    /// The pair's condensed Fourier n = 1 compliance at the candidates' A DOFs [m/N], when the
-    /// tangential problem is solved ([`Model::with_shear`]).
-    pub shear: Option<Mat<f64>>,
+    /// The pair's Fourier mode n = 1 (each body's factorisation, the condensed compliance at
+    /// the candidates' A DOFs [m/N]), when the tangential problem is solved
+    /// ([`Model::with_shear`]).
+    pub shear: Option<super::tangential::Shear>,
 }
 
 /// The generator's grading for `body` under `settings`: a sphere's cap (the hemisphere, or the
@@ -262,7 +263,7 @@ impl Model {
     /// Adds the tangential compliance: the mode n = 1 assembled, factored and condensed on the
     /// same meshes ([`super::tangential`]).
     pub fn with_shear(mut self, settings: &Settings) -> Result<Self, String> {
-        self.shear = Some(super::tangential::pair_compliance(&self.bodies, settings)?);
+        self.shear = Some(super::tangential::Shear::new(&self.bodies, settings)?);
         Ok(self)
     }
 }
@@ -282,7 +283,7 @@ impl Model {
         match &self.shear {
             None => Ok(contact),
             Some(shear) => {
-                let shear = DenseCompliance::scalar(shear.clone()).map_err(|e| e.to_string())?;
+                let shear = DenseCompliance::scalar(shear.compliance.clone()).map_err(|e| e.to_string())?;
                 contact
                     .with_friction(shear, FrictionSet::Interval, friction)
                     .map_err(|e| e.to_string())

@@ -14,6 +14,7 @@ use serde_json::json;
 
 use super::model::{AxisymContact, Model, Reduction, Settings};
 use super::output;
+use super::output_n1::{self, TangentialState};
 use super::pressure::{self, Profile};
 use super::tangential::{self, Mode};
 use crate::domain::Grip;
@@ -209,18 +210,20 @@ impl Solver for FemAxisym {
         }
         .map_err(SolveError::Failed)?;
         let mode = Mode::of(scene);
+        let t = Instant::now();
         let model = if mode == Mode::Solved {
             model.with_shear(&settings).map_err(SolveError::Failed)?
         } else {
             model
         };
+        let shear_time = t.elapsed().as_secs_f64();
         let mut run = Run::new(&model, scene, mode).map_err(SolveError::Failed)?;
         let t = Instant::now();
         for step in scene.steps() {
             run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
         }
         let contact_time = t.elapsed().as_secs_f64();
-        Ok(run.finish(&model, &settings, contact_time))
+        Ok(run.finish(&model, &settings, [shear_time, contact_time]))
     }
 }
 
@@ -288,22 +291,39 @@ impl Run {
         self.judge_resolution(&profile, force, step.delta_n, scene);
         let solved = self.mode == Mode::Solved;
         if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
-            self.fields.push(SurfaceField {
+            let field = SurfaceField {
                 position,
                 points: model.radii.iter().map(|&r| [r, 0.0]).collect(),
                 pressure: profile.pressure.clone(),
                 traction: solved.then(|| self.traction(model)),
                 stick: solved.then(|| self.contact.stick()),
-                slip: None,
+                slip: solved.then(|| self.slip(model)),
                 triangles: None,
-            });
+            };
             if let Some(dir) = vtu_dir {
-                let path = dir.join(format!("{}-fem-axisym-{position}.vtu", scene.name));
+                let stem = format!("{}-fem-axisym-{position}", scene.name);
                 std::fs::create_dir_all(dir)
                     .map_err(|e| SolveError::Failed(format!("creating {}: {e}", dir.display())))?;
+                let path = dir.join(format!("{stem}.vtu"));
                 output::write_fields(model, &forces, approach, &path)
                     .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
+                if solved {
+                    let state = TangentialState {
+                        normal: &forces,
+                        tangential: self.contact.traction(),
+                        approach,
+                        shift: tangential::shift(model.reduction, step.delta_t),
+                        field: &field,
+                    };
+                    output_n1::write(model, &state, dir, &stem).map_err(|e| {
+                        SolveError::Failed(format!(
+                            "writing the n = 1 fields {stem}-*.vtu in {}: {e}",
+                            dir.display()
+                        ))
+                    })?;
+                }
             }
+            self.fields.push(field);
         }
         let (tangential_force, stick_radius) = match self.mode {
             Mode::Solved => (
@@ -341,6 +361,18 @@ impl Run {
             .collect()
     }
 
+    /// The relative slip of the surfaces (body 1 − body 2) along x at the candidates,
+    /// accumulated since each node last came into contact: the engine's slip against the
+    /// symmetry plane, doubled for one sphere of two (the condensed shift is half of δt).
+    fn slip(&self, model: &Model) -> Vec<[f64; 2]> {
+        let per_relative = model.reduction.approach(1.0);
+        self.contact
+            .slip()
+            .iter()
+            .map(|s| [s / per_relative, 0.0])
+            .collect()
+    }
+
     /// Σλ against each body's far-boundary reaction ρ·λ.
     fn check_balance(&mut self, model: &Model, forces: &[f64], force: f64) {
         for body in &model.bodies {
@@ -372,7 +404,7 @@ impl Run {
         }
     }
 
-    fn finish(self, model: &Model, settings: &Settings, contact_time: f64) -> History {
+    fn finish(self, model: &Model, settings: &Settings, [shear_time, contact_time]: [f64; 2]) -> History {
         let mut warnings = Vec::new(); // the scene's own warnings are reported by verify
         if let (Some(first), Some(last)) = (self.unresolved.first(), self.unresolved.last()) {
             warnings.push(format!(
@@ -445,6 +477,7 @@ impl Run {
                 "condense_s",
                 json!(model.bodies.iter().map(|b| b.times[2]).sum::<f64>()),
             ),
+            ("fourier_one_s", json!(shear_time)),
             ("contact_s", json!(contact_time)),
             ("iterations_total", json!(self.iterations.0)),
             ("iterations_max", json!(self.iterations.1)),

@@ -9,7 +9,7 @@
 //! compliance is the n = 1 stiffness, assembled and factored once with the far face gripped
 //! rigidly (all of A, B, W fixed: a rigid shift of the far face is a rigid translation of the
 //! whole body, A = const, which adds the shift itself to every surface A), condensed onto the
-//! candidates' A DOFs (`fem::condense`). The contact engine takes it with
+//! candidates' A DOFs from the factor's trailing block (the candidates ordered last). The contact engine takes it with
 //! [`FrictionSet::Interval`] and the bound g_i = μ λ_i on the n = 0 nodal forces λ_i.
 //!
 //! Identical spheres (Dundurs β = 0) decouple exactly: p(r) from the n = 0 problem does not
@@ -21,13 +21,14 @@
 //! and unloaded: the surface's u_y distortion is computed but no q_y resists it), which need
 //! a 3D model.
 
-use faer::Mat;
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+use faer::{Accum, Mat, Par};
 
 use super::model::{BodyModel, Reduction, Settings};
-use crate::fem::assembly;
-use crate::fem::condense::condense;
-use crate::fem::element::tri6_n1;
+use crate::fem::assembly::{self, System};
 use crate::fem::factor::Factor;
+use crate::fem::ordering::{self, NodeOrder};
 use crate::scene::{Scene, DISSIMILARITY_BETA};
 
 /// What fem-axisym does about the tangential problem of a scene.
@@ -63,32 +64,96 @@ impl Mode {
     }
 }
 
-/// The condensed n = 1 compliance of `body` at its candidates' A DOFs [m/N]: the mean x
-/// displacement of ring i under a unit x ring force at ring j, far face held.
-pub fn body_compliance(body: &BodyModel, settings: &Settings) -> Result<Mat<f64>, String> {
-    let system = assembly::assemble_fourier_one(&body.mesh, body.lame, settings.integration)
-        .map_err(|e| e.to_string())?;
-    let factor = Factor::new(&system.stiffness, settings.ordering)?;
-    let dofs = body
-        .candidates
-        .iter()
-        .map(|&n| system.dofs.free(tri6_n1::COMPONENTS * n))
-        .collect::<Option<Vec<usize>>>()
-        .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
-    Ok(condense(&factor, system.dofs.count(), &dofs, &system.reaction).compliance)
+/// One body's mode n = 1: its system and factorisation (kept for the displacement fields) and
+/// its condensed compliance.
+pub struct ShearBody {
+    /// The assembled n = 1 system (A, B, W a node; far face and axis conditions eliminated).
+    pub system: System,
+    /// Its factorisation.
+    pub factor: Factor,
+    /// The compliance at the candidates' A DOFs [m/N]: the mean x displacement of ring i under
+    /// a unit x ring force at ring j, far face held.
+    pub compliance: Mat<f64>,
 }
 
-/// The pair's n = 1 compliance: the bodies' added (one body for identical spheres).
-pub fn pair_compliance(bodies: &[BodyModel], settings: &Settings) -> Result<Mat<f64>, String> {
-    let mut sum: Option<Mat<f64>> = None;
-    for body in bodies {
-        let c = body_compliance(body, settings)?;
-        sum = Some(match sum {
-            None => c,
-            Some(s) => s + c,
-        });
+impl ShearBody {
+    /// Assembles, factors and condenses the mode n = 1 of `body`. The candidates' DOFs are
+    /// ordered last ([`crate::fem::ordering`]), so the factor's trailing block L₂₂ factors their
+    /// Schur complement and the compliance of their A DOFs is Eᵀ (L₂₂ L₂₂ᵀ)⁻¹ E = ZᵀZ with
+    /// Z = L₂₂⁻¹ E (E selects the A rows): one dense triangular solve of the candidates' size
+    /// instead of one solve through the whole factor per candidate.
+    pub fn new(body: &BodyModel, settings: &Settings) -> Result<Self, String> {
+        let system = assembly::assemble_fourier_one(&body.mesh, body.lame, settings.integration)
+            .map_err(|e| e.to_string())?;
+        let mesh = &body.mesh;
+        let points: Vec<[f64; 3]> = mesh.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        let order = ordering::contact_last(
+            &ordering::node_graph(mesh.nodes.len(), &mesh.triangles),
+            &points,
+            &system.dofs,
+            &body.candidates,
+            NodeOrder::MinimumDegree,
+        )?;
+        let factor = Factor::with_permutation(&system.stiffness, &order.forward)?;
+        let m = body.candidates.len();
+        let mut z = Mat::<f64>::zeros(order.trailing.len(), m);
+        let mut loaded = vec![false; m];
+        for (p, &(j, a)) in order.trailing.iter().enumerate() {
+            if a == 0 {
+                z[(p, j)] = 1.0;
+                loaded[j] = true;
+            }
+        }
+        if loaded.contains(&false) {
+            return Err("a candidate contact node lies on the far boundary: the domain is too small".into());
+        }
+        let l22 = factor.trailing_block(order.trailing.len());
+        solve_lower_triangular_in_place(l22.as_ref(), z.as_mut(), Par::Seq);
+        let mut compliance = Mat::<f64>::zeros(m, m);
+        matmul(
+            compliance.as_mut(),
+            Accum::Replace,
+            z.transpose(),
+            z.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        Ok(Self {
+            system,
+            factor,
+            compliance,
+        })
     }
-    sum.ok_or_else(|| "no body to condense".into())
+}
+
+/// The pair's mode n = 1: each body's, and their compliances added (one body for identical
+/// spheres).
+pub struct Shear {
+    /// Each body's mode n = 1, in the model's order.
+    pub bodies: Vec<ShearBody>,
+    /// The pair's condensed compliance [m/N].
+    pub compliance: Mat<f64>,
+}
+
+impl Shear {
+    /// The mode n = 1 of every body of the model.
+    pub fn new(bodies: &[BodyModel], settings: &Settings) -> Result<Self, String> {
+        let shear: Vec<ShearBody> = bodies
+            .iter()
+            .map(|b| ShearBody::new(b, settings))
+            .collect::<Result<_, _>>()?;
+        let mut compliance = shear
+            .first()
+            .map(|b| b.compliance.clone())
+            .ok_or("no body to condense")?;
+        for b in &shear[1..] {
+            compliance += &b.compliance;
+        }
+        Ok(Self {
+            bodies: shear,
+            compliance,
+        })
+    }
 }
 
 /// The shift increment of the condensed problem for a relative shift increment `delta_t`: half
