@@ -269,6 +269,10 @@ impl Run {
         let shift = [tangential::shift(model.reduction, step.delta_t - self.previous_t)];
         self.previous_t = step.delta_t;
         let shift: &[f64] = if self.mode == Mode::Solved { &shift } else { &[] };
+        if step.delta_n <= 0.0 {
+            // The walker's rule (crate::driver): an open gap forgets the contact's history.
+            self.contact.release();
+        }
         let cost = self
             .contact
             .advance(approach, shift)
