@@ -223,7 +223,10 @@ impl PathModel for Walker<'_> {
             normal_force: Some(state.normal_force),
             tangential_force: Some(state.tangential_force),
             contact_radius: Some(self.hertz.contact_radius(step.delta_n)),
-            stick_radius: Some(state.stick_radius),
+            // The bed resolves the stick edge to one spring cell (a cell edge, at or beyond the
+            // last sticking spring); the stick zone lies within Hertz's contact radius, which
+            // this model reports (as mdr-domain's series model).
+            stick_radius: Some(state.stick_radius.min(self.hertz.contact_radius(step.delta_n))),
             ..StepResult::at(step)
         })
     }

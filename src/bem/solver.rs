@@ -214,7 +214,9 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
                 .collect(),
         ),
         stick: Some(s.stick.clone()),
-        slip: None,
+        // The engine's accumulated slip: the grid carries the pair's compliance and the relative
+        // shift, so it is the relative slip (body 1 − body 2), as fem-axisym and fem-3d report it.
+        slip: Some(s.slip.x.iter().zip(&s.slip.y).map(|(&x, &y)| [x, y]).collect()),
         triangles: None,
     }
 }

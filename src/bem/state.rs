@@ -126,10 +126,18 @@ impl Snapshot {
         }
     }
 
-    /// The radius of the disc with the stick area [m] (0 in gross sliding).
+    /// The stick radius [m]: the contact radius scaled by the square root of the stick panels'
+    /// share of the contact panels, c √(N_stick / N_contact) — the stick zone's share of the
+    /// contact area, in the contact radius's own measure. It equals the contact radius at full
+    /// stick and never exceeds it (the area-equivalent radius of the stick panels alone, √(N h²/π),
+    /// exceeded the fitted contact radius by up to 5 % at full stick); 0 in gross sliding.
     pub fn stick_radius(&self) -> f64 {
-        self.grid
-            .equivalent_radius(self.contact().filter(|&k| self.stick[k]).count())
+        let contact = self.contact().count();
+        if contact == 0 {
+            return 0.0;
+        }
+        let stick = self.contact().filter(|&k| self.stick[k]).count();
+        self.contact_radius() * (stick as f64 / contact as f64).sqrt()
     }
 
     /// The largest panel pressure [Pa] (the centre panel's, for a Hertz contact).
