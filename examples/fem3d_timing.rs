@@ -1,7 +1,13 @@
 //! Set-up cost and normal-contact accuracy of the 3D model (`fem-3d`) on the paper's spheres
 //! (R 0.1 m, E 70 GPa, ν 0.3), half hemisphere gripped rigidly on its equatorial face.
 //!
-//! Run: `cargo run --release --example fem3d_timing -- [DIVISIONS…] [--variants] [--cattaneo]`
+//! Run: `cargo run --release --example fem3d_timing -- [DIVISIONS…] [--variants] [--cattaneo]`,
+//! or the whole paper path: `cargo run --release --example fem3d_timing -- --path SUBSTEPS
+//! [--iterative]` (the path of cases/paper-fig7.toml with SUBSTEPS increments a segment, the
+//! default mesh; the solver `fem-3d` end to end: mesh, set-up and every increment timed, Q
+//! against mdr-domain and MDR, peak memory; `--iterative`: the engine's iterative algorithm).
+//!
+//! Set-up only:
 //! (DIVISIONS: pole size = c_max / DIVISIONS, c_max the contact radius at δn = 20 µm; default 10).
 //! For each mesh: gmsh's time, nodes, DOFs, candidates, the times of assembly, ordering,
 //! factorisation and condensation, the factor's entries, the peak resident memory, and P at
@@ -13,17 +19,22 @@
 
 use std::time::Instant;
 
-use spherecontact::contact::Settings as ContactSettings;
+use spherecontact::case::Case;
+use spherecontact::contact::{Method, Settings as ContactSettings};
 use spherecontact::external::toolchain::Toolchain;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::mesh::solid::SolidMesh;
+use spherecontact::fem::ordering::NodeOrder;
 use spherecontact::fem::solid3d::condense::Condensation;
 use spherecontact::fem::solid3d::contact;
 use spherecontact::fem::solid3d::meshing::{self, Zones};
 use spherecontact::fem::solid3d::model::{Elimination, Model, Settings};
-use spherecontact::fem::solid3d::ordering::NodeOrder;
 use spherecontact::fem::solid3d::system::Grip;
+use spherecontact::fem::FemSolid3d;
+use spherecontact::history::{History, Quantity};
 use spherecontact::pair::{Body, ContactPair, Material};
+use spherecontact::path::LoadingPath;
+use spherecontact::{registry, solver};
 
 /// Peak resident memory of this process so far [GB] (Linux VmHWM).
 fn peak_memory_gb() -> f64 {
@@ -135,8 +146,111 @@ fn report(label: &str, model: &Model, pair: &ContactPair, friction: bool) {
     );
 }
 
+/// The whole paper path through the solver `fem-3d` (see the module doc).
+fn paper_path(substeps: usize, method: Method, tolerance: f64) {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/paper-fig7.toml");
+    let mut scene = Case::load(&file).expect("the paper case").scene;
+    let positions = scene.path.positions().to_vec();
+    let segments = positions.len() - 1;
+    scene.path = LoadingPath::try_new(positions, vec![substeps; segments]).expect("path");
+    let run = |name: &str| {
+        let solver = registry::by_name(name).expect("registered");
+        solver::run(solver.as_ref(), &scene).unwrap_or_else(|e| panic!("{name}: {e}"))
+    };
+    let (mdr, corrected) = (run("mdr"), run("mdr-domain"));
+    let (start, cpu0) = (Instant::now(), cpu_seconds());
+    let solver = FemSolid3d {
+        contact: ContactSettings {
+            method,
+            tangential_tolerance: tolerance,
+            ..ContactSettings::default()
+        },
+        ..FemSolid3d::default()
+    };
+    let history = solver::run(&solver, &scene).expect("fem-3d");
+    let (wall, cpu) = (start.elapsed().as_secs_f64(), cpu_seconds() - cpu0);
+    let extra = &history.metadata.extra;
+    let number = |key: &str| extra.get(key).and_then(|v| v.as_f64()).unwrap_or(f64::NAN);
+    let peak = corrected.peak(Quantity::TangentialForce);
+    let worst = |reference: &History| {
+        history
+            .steps
+            .iter()
+            .zip(&reference.steps)
+            .map(|(a, b)| (a.tangential_force.unwrap_or(0.0) - b.tangential_force.unwrap_or(0.0)).abs())
+            .fold(0.0, f64::max)
+            / peak
+    };
+    println!(
+        "paper path, {substeps} increments a segment ({} steps), {method:?}, tangential tolerance {tolerance:e}: {} DOFs, {} candidates",
+        history.steps.len(),
+        number("dofs"),
+        number("candidates")
+    );
+    println!(
+        "  whole run {wall:.1} s wall, {cpu:.1} s CPU: gmsh + read {:.2} s, assembly {:.2} s, ordering {:.2} s, \
+         factor {:.2} s, condense {:.2} s, contact {:.2} s ({} increments: median {:.4} s, max {:.3} s); \
+         tangential rounds {} (max {}); peak memory {:.2} GB",
+        number("mesh_s"),
+        number("assembly_s"),
+        number("ordering_s"),
+        number("factor_s"),
+        number("condense_s"),
+        number("contact_s"),
+        number("increments"),
+        number("increment_median_s"),
+        number("increment_max_s"),
+        number("tangential_iterations_total"),
+        number("tangential_iterations_max"),
+        peak_memory_gb()
+    );
+    println!(
+        "  Q: worst |Q − Q_mdr-domain| {:.3} % of the peak, |Q − Q_mdr| {:.3} %",
+        100.0 * worst(&corrected),
+        100.0 * worst(&mdr)
+    );
+    for row in history.at_positions() {
+        let k = row.position.unwrap();
+        let (c, m) = (corrected.at_position(k).unwrap(), mdr.at_position(k).unwrap());
+        let axes = extra["stick_semi_axes_m"][row.step].as_array().map(|a| {
+            format!(
+                "{:.1}/{:.1} µm",
+                1e6 * a[0].as_f64().unwrap_or(0.0),
+                1e6 * a[1].as_f64().unwrap_or(0.0)
+            )
+        });
+        println!(
+            "  P{k}: P {:.2} N (mdr-domain {:.2}, MDR {:.2}), Q {:+.3} N (mdr-domain {:+.3}, MDR {:+.3}), \
+             stick radius {:.1} µm, semi-axes x/y {}",
+            row.normal_force.unwrap_or(0.0),
+            c.normal_force.unwrap_or(0.0),
+            m.normal_force.unwrap_or(0.0),
+            row.tangential_force.unwrap_or(0.0),
+            c.tangential_force.unwrap_or(0.0),
+            m.tangential_force.unwrap_or(0.0),
+            1e6 * row.stick_radius.unwrap_or(0.0),
+            axes.unwrap_or_else(|| "—".into())
+        );
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Some(k) = args.iter().position(|a| a == "--path") {
+        let substeps = args.get(k + 1).and_then(|a| a.parse().ok()).unwrap_or(10);
+        let method = if args.iter().any(|a| a == "--iterative") {
+            Method::Iterative
+        } else {
+            Method::Direct
+        };
+        let tolerance = args
+            .iter()
+            .position(|a| a == "--tolerance")
+            .and_then(|k| args.get(k + 1)?.parse().ok())
+            .unwrap_or(ContactSettings::default().tangential_tolerance);
+        paper_path(substeps, method, tolerance);
+        return;
+    }
     let variants = args.iter().any(|a| a == "--variants");
     let friction = args.iter().any(|a| a == "--cattaneo");
     let divisions: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();

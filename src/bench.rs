@@ -7,12 +7,15 @@
 //!
 //! Errors are measured against the references every report uses: P against Hertz (relative, at
 //! every step in contact), Q against MDR on a bed far finer than any rung (relative to its peak
-//! |Q|). Speed is measured and reported here, never asserted in tests: the machines are shared.
+//! |Q|). A model of a finite body (a FEM solver or deck) is scored against `mdr-domain`, MDR in
+//! series with the case's domain, so that its error is its discretisation's; its raw offsets from
+//! Hertz and MDR (the domain effect on top) are kept beside. Speed is measured and reported here, never asserted in tests: the machines are shared.
 
 use std::time::Instant;
 
 use crate::analytic::hertz::HertzSolver;
 use crate::analytic::mdr::Mdr;
+use crate::fem::MdrDomain;
 use crate::history::{History, Quantity};
 use crate::registry;
 use crate::scene::Scene;
@@ -103,22 +106,38 @@ pub type RungResult = Result<Rung, (String, SolveError)>;
 pub struct Rung {
     /// The timing and history.
     pub timing: Timing,
-    /// max |P − P_Hertz| / P_Hertz over the steps in contact; `None` for Hertz itself or a
-    /// solver without P.
+    /// The references its errors are measured against: "hertz" and "mdr", or for a model of a
+    /// finite body [`CORRECTED_REFERENCE`] (MDR in series with the case's domain).
+    pub reference: &'static str,
+    /// max |P − P_ref| / P_ref over the steps in contact; `None` for Hertz itself or a solver
+    /// without P.
     pub normal_error: Option<f64>,
     /// max |Q − Q_ref| / max |Q_ref|; `None` without Q, or on a frictionless path.
     pub tangential_error: Option<f64>,
+    /// For a finite body scored against the corrected reference, its raw offsets from Hertz
+    /// and from MDR (the domain effect plus the discretisation); `None` otherwise.
+    pub raw: Option<(Option<f64>, Option<f64>)>,
 }
 
-/// The references of a sweep: Hertz, and MDR on [`REFERENCE_SPRINGS`] springs.
+/// The reference of finite-body solvers: Mindlin–Deresiewicz in series with the case's domain.
+pub const CORRECTED_REFERENCE: &str = "mdr-domain";
+
+/// The references of a sweep: Hertz, MDR on [`REFERENCE_SPRINGS`] springs, and `mdr-domain`
+/// when a solver of the sweep models a finite body.
 pub struct References {
     hertz: History,
     mdr: History,
+    corrected: Option<History>,
 }
 
 impl References {
-    /// Computes the references for `scene`.
-    pub fn of(scene: &Scene) -> Result<Self, SolveError> {
+    /// Computes the references for `scene`; the corrected one only when `finite_body`.
+    pub fn of(scene: &Scene, finite_body: bool) -> Result<Self, SolveError> {
+        // Where the corrected reference cannot be computed (a scene it does not apply to), the
+        // finite bodies are scored raw, and each rung names the reference it was scored on.
+        let corrected = finite_body
+            .then(|| solver::run(&MdrDomain::default(), scene).ok())
+            .flatten();
         Ok(Self {
             hertz: solver::run(&HertzSolver, scene)?,
             mdr: solver::run(
@@ -127,11 +146,12 @@ impl References {
                 },
                 scene,
             )?,
+            corrected,
         })
     }
 
-    /// The errors of `history` against the references.
-    fn errors(&self, history: &History) -> (Option<f64>, Option<f64>) {
+    /// The errors of `history` against Hertz (P) and MDR (Q).
+    fn raw_errors(&self, history: &History) -> (Option<f64>, Option<f64>) {
         let normal = (history.metadata.solver != "hertz")
             .then(|| worst_error(history, &self.hertz, Quantity::NormalForce, false))
             .flatten();
@@ -139,6 +159,28 @@ impl References {
             normal,
             worst_error(history, &self.mdr, Quantity::TangentialForce, true),
         )
+    }
+
+    /// `history` scored as a rung: a finite body against the corrected reference with its raw
+    /// offsets beside, any other solver against Hertz and MDR.
+    pub fn score(&self, timing: Timing) -> Rung {
+        let raw = self.raw_errors(&timing.history);
+        match &self.corrected {
+            Some(corrected) if crate::domain::models_a_finite_body(&timing.solver) => Rung {
+                reference: CORRECTED_REFERENCE,
+                normal_error: worst_error(&timing.history, corrected, Quantity::NormalForce, false),
+                tangential_error: worst_error(&timing.history, corrected, Quantity::TangentialForce, true),
+                raw: Some(raw),
+                timing,
+            },
+            _ => Rung {
+                reference: "hertz, mdr",
+                normal_error: raw.0,
+                tangential_error: raw.1,
+                raw: None,
+                timing,
+            },
+        }
     }
 }
 
@@ -165,7 +207,10 @@ pub fn sweep(
     scene: &Scene,
     repeat: usize,
 ) -> Result<Vec<RungResult>, SolveError> {
-    let references = References::of(scene)?;
+    let finite_body = solvers
+        .iter()
+        .any(|s| crate::domain::models_a_finite_body(s.name()));
+    let references = References::of(scene, finite_body)?;
     let rungs: Vec<Box<dyn Solver>> = solvers
         .iter()
         .flat_map(|s| {
@@ -179,16 +224,7 @@ pub fn sweep(
         .collect();
     Ok(time_solvers(&rungs, scene, repeat)
         .into_iter()
-        .map(|result| {
-            result.map(|timing| {
-                let (normal_error, tangential_error) = references.errors(&timing.history);
-                Rung {
-                    timing,
-                    normal_error,
-                    tangential_error,
-                }
-            })
-        })
+        .map(|result| result.map(|timing| references.score(timing)))
         .collect())
 }
 

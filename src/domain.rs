@@ -117,6 +117,15 @@ impl Domain {
     }
 }
 
+/// Whether the solver named `solver` models a finite body (every FEM solver and deck: `fem-*`,
+/// `freefem-*`, `fenicsx-*`), whose reference is Mindlin–Deresiewicz corrected for the case's
+/// domain rather than the half-space's.
+pub fn models_a_finite_body(solver: &str) -> bool {
+    ["fem-", "freefem-", "fenicsx-"]
+        .iter()
+        .any(|prefix| solver.starts_with(prefix))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

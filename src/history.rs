@@ -134,6 +134,16 @@ impl Quantity {
     }
 }
 
+impl Metadata {
+    /// The resolution in words, with the user's choice where there is one (what reports show).
+    pub fn resolution_shown(&self) -> String {
+        match &self.chosen_resolution {
+            Some(value) => format!("{} (chosen: {value})", self.resolution),
+            None => self.resolution.clone(),
+        }
+    }
+}
+
 impl fmt::Display for Quantity {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -151,6 +161,9 @@ pub struct Metadata {
     pub model: String,
     /// The resolution (springs, mesh size, grid), in words.
     pub resolution: String,
+    /// The resolution the user chose (a case's `[resolution]` entry or `--resolution`), as
+    /// given; `None`: the solver's default.
+    pub chosen_resolution: Option<String>,
     /// Wall time of the solve [s].
     pub wall_time_s: f64,
     /// Warnings a reader must see (validity limits, assumptions that do not hold).

@@ -49,6 +49,7 @@ pub mod path;
 pub mod profile;
 pub mod registry;
 pub mod report;
+pub mod resolution;
 pub mod scene;
 pub mod solver;
 pub mod verify;

@@ -10,9 +10,8 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use spherecontact::case::{limits, Case};
 use spherecontact::external::{geo, toolchain::Toolchain};
-use spherecontact::number::Short;
 use spherecontact::report::{history_files, junit, summary, table};
-use spherecontact::{io, registry, solver, verify};
+use spherecontact::{io, registry, resolution, solver, verify};
 
 #[derive(Parser)]
 #[command(
@@ -40,6 +39,10 @@ enum Command {
         /// Also write VTU fields (ParaView) into DIR/<solver>-vtu/ for solvers that have them.
         #[arg(long)]
         vtu: bool,
+        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+        resolution: Vec<String>,
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: the case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
@@ -54,6 +57,10 @@ enum Command {
         /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
         #[arg(long)]
         require_external: bool,
+        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+        resolution: Vec<String>,
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
@@ -62,7 +69,7 @@ enum Command {
     Mesh {
         /// The case file.
         case: PathBuf,
-        /// Element size at the contact pole, e.g. 20um, 0.02mm, 2e-5 (m); default c_max/40.
+        /// Element size at the contact pole, e.g. c/80, 20um, 0.02mm, 2e-5 (m); default c_max/40.
         #[arg(long, value_name = "LENGTH")]
         resolution: Option<String>,
         /// Output folder (created if missing).
@@ -80,6 +87,10 @@ enum Command {
         /// Output folder; default: out/compare-<case name>.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+        resolution: Vec<String>,
     },
     /// Reproduce the paper: its case with every available solver, reported in its figures' order.
     ReproducePaper {
@@ -89,6 +100,10 @@ enum Command {
         /// The paper's case file.
         #[arg(long, default_value = "cases/paper-fig7.toml")]
         case: PathBuf,
+        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+        resolution: Vec<String>,
     },
     /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
     /// (build with --release for representative numbers).
@@ -129,14 +144,16 @@ fn main() -> ExitCode {
             solvers,
             out,
             vtu,
+            resolution,
             ranks,
-        } => run(&case, &solvers, &out, vtu, ranks),
+        } => run(&case, &solvers, &out, vtu, &resolution, ranks),
         Command::Verify {
             cases,
             junit,
             require_external,
+            resolution,
             ranks,
-        } => verify_cases(cases, junit.as_deref(), require_external, ranks),
+        } => verify_cases(cases, junit.as_deref(), require_external, &resolution, ranks),
         Command::Mesh {
             case,
             resolution,
@@ -144,8 +161,16 @@ fn main() -> ExitCode {
         } => mesh(&case, resolution.as_deref(), &out),
         Command::Doctor => Ok(doctor()),
         Command::List => list(),
-        Command::Compare { case, out } => report(&case, out, Report::Compare),
-        Command::ReproducePaper { out, case } => report(&case, Some(out), Report::Paper),
+        Command::Compare {
+            case,
+            out,
+            resolution,
+        } => report(&case, out, &resolution, Report::Compare),
+        Command::ReproducePaper {
+            out,
+            case,
+            resolution,
+        } => report(&case, Some(out), &resolution, Report::Paper),
         Command::Bench {
             case,
             solvers,
@@ -181,6 +206,37 @@ fn case_files(dir: &Path) -> Result<Vec<PathBuf>, InputError> {
     Ok(files)
 }
 
+/// The `--resolution SOLVER=VALUE` options, split, each solver named once.
+fn resolution_options(options: &[String]) -> Result<Vec<(String, String)>, InputError> {
+    let mut pairs: Vec<(String, String)> = Vec::new();
+    for option in options {
+        let (name, value) =
+            resolution::split_option(option).map_err(|e| InputError(format!("--resolution: {e}")))?;
+        if pairs.iter().any(|(n, _)| *n == name) {
+            return Err(InputError(format!(
+                "--resolution: `{name}` is given twice (allowed: each solver once)"
+            )));
+        }
+        pairs.push((name, value));
+    }
+    Ok(pairs)
+}
+
+/// Loads the case at `file` with the command line's ranks and resolutions over its own.
+fn load_case(file: &Path, ranks: Option<u32>, resolutions: &[(String, String)]) -> Result<Case, InputError> {
+    let mut case = Case::load(file)?;
+    case.ranks = ranks.unwrap_or(case.ranks);
+    for (name, value) in resolutions {
+        case.set_resolution(name, value).map_err(|e| {
+            InputError(format!(
+                "--resolution {name}={value} (case {}): {e}",
+                file.display()
+            ))
+        })?;
+    }
+    Ok(case)
+}
+
 /// The solvers named on the command line (each once), or the case's own list.
 fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::Solver>>, InputError> {
     let names = if names.is_empty() {
@@ -214,11 +270,11 @@ fn run(
     solvers: &[String],
     out: &Path,
     vtu: bool,
+    resolution: &[String],
     ranks: Option<u32>,
 ) -> Result<ExitCode, InputError> {
     // Plan: the case and every solver named must be valid before anything is written.
-    let mut case = Case::load(case)?;
-    case.ranks = ranks.unwrap_or(case.ranks);
+    let case = load_case(case, ranks, &resolution_options(resolution)?)?;
     let mut plan = planned_solvers(&case, solvers)?;
     output_folder("--out", out)?;
     if vtu {
@@ -270,8 +326,10 @@ fn verify_cases(
     files: Vec<PathBuf>,
     junit_file: Option<&Path>,
     require_external: bool,
+    resolution: &[String],
     ranks: Option<u32>,
 ) -> Result<ExitCode, InputError> {
+    let resolutions = resolution_options(resolution)?;
     let files = if files.is_empty() {
         case_files(Path::new("cases"))?
     } else {
@@ -282,12 +340,7 @@ fn verify_cases(
     }
     let cases = files
         .iter()
-        .map(|f| {
-            Case::load(f).map(|mut case| {
-                case.ranks = ranks.unwrap_or(case.ranks);
-                case
-            })
-        })
+        .map(|f| load_case(f, ranks, &resolutions))
         .collect::<Result<Vec<_>, _>>()?;
     if let Some(file) = junit_file {
         io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
@@ -319,20 +372,12 @@ fn verify_cases(
 fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, InputError> {
     // Plan: the case and the resolution must be valid before anything is written.
     let case = Case::load(case)?;
+    // The pole sizes of fem-axisym's and the decks' `[resolution]` (c/N or a length).
     let resolution = match resolution {
-        Some(text) => geo::parse_length(text).map_err(|e| InputError(format!("--resolution: {e}")))?,
+        Some(text) => resolution::pole_size("mesh", &case.scene, text, limits::MERIDIAN_POLE)
+            .map_err(|e| InputError(format!("--resolution: {e}")))?,
         None => geo::default_resolution(&case.scene),
     };
-    let finest = limits::min_mesh_size(&case.scene);
-    if resolution < finest {
-        return Err(InputError(format!(
-            "--resolution: {} m is finer than this case may mesh (allowed: at least {} m, c_max/{}: \
-             under a million triangles)",
-            Short(resolution),
-            Short(finest),
-            limits::MAX_ELEMENTS_PER_CONTACT_RADIUS
-        )));
-    }
     geo::geo_for_scene(&case.scene, resolution)?;
     output_folder("--out", out)?;
     std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
@@ -400,19 +445,30 @@ fn bench(
     );
     let table = &document.sections[0].tables[0];
     println!(
-        "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12}",
-        "solver", "resolution", "CPU [ms]", "wall [ms]", "P error", "Q error"
+        "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12} {:>12} {:>14} {:>12}",
+        "solver",
+        "resolution",
+        "CPU [ms]",
+        "wall [ms]",
+        "P error",
+        "Q error",
+        "reference",
+        "P raw/Hertz",
+        "Q raw/MDR"
     );
     for row in &table.rows {
         let cell = |k: usize| row.get(k).map_or("", |c| c.text.as_str());
         println!(
-            "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12}",
+            "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12} {:>12} {:>14} {:>12}",
             cell(0),
             cell(1),
             cell(2),
             cell(3),
             cell(4),
-            cell(5)
+            cell(5),
+            cell(6),
+            cell(7),
+            cell(8)
         );
     }
     println!("report: {}", out.join("report.html").display());
@@ -432,8 +488,13 @@ enum Report {
     Paper,
 }
 
-fn report(case: &Path, out: Option<PathBuf>, kind: Report) -> Result<ExitCode, InputError> {
-    let case = Case::load(case)?;
+fn report(
+    case: &Path,
+    out: Option<PathBuf>,
+    resolution: &[String],
+    kind: Report,
+) -> Result<ExitCode, InputError> {
+    let case = load_case(case, None, &resolution_options(resolution)?)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
     output_folder("--out", &out)?;
     let reference_dir = case.file.parent().unwrap_or(Path::new(".")).join("../reference");

@@ -7,6 +7,7 @@
 use std::time::Instant;
 
 use crate::history::{History, Quantity};
+use crate::resolution::ResolutionError;
 use crate::scene::Scene;
 use crate::vtu;
 
@@ -42,6 +43,22 @@ pub trait Solver: Send + Sync {
     /// resolution is the path's own increments).
     fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
         Vec::new()
+    }
+
+    /// The same solver at the resolution `value` (a case's `[resolution]` entry or
+    /// `--resolution NAME=VALUE`), judged for `scene`; the default: no resolution to choose.
+    /// Every value accepted must solve in bounded memory ([`crate::case::limits`]).
+    fn at_resolution(&self, _scene: &Scene, _value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        Err(ResolutionError::NotResolvable {
+            solver: self.name().to_owned(),
+            with: String::new(),
+        })
+    }
+
+    /// The same solver on `ranks` MPI ranks, for solvers that run under MPI; `None` for the
+    /// others.
+    fn with_ranks(&self, _ranks: u32) -> Option<Box<dyn Solver>> {
+        None
     }
 
     /// The same solver writing its volume or surface fields as VTU files (for ParaView) into
@@ -128,6 +145,44 @@ fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
         }
     }
     Ok(())
+}
+
+/// A solver at a resolution the user chose: it records the value in its histories' metadata
+/// (`chosen_resolution`), which reports show beside the resolution in words.
+pub struct Resolved {
+    /// The solver, already at that resolution.
+    pub inner: Box<dyn Solver>,
+    /// The value as the user gave it.
+    pub value: String,
+}
+
+impl Solver for Resolved {
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+
+    fn description(&self) -> &str {
+        self.inner.description()
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        let mut history = self.inner.solve(scene)?;
+        history.metadata.chosen_resolution = Some(self.value.clone());
+        Ok(history)
+    }
+
+    fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
+        self.inner.resolution_ladder(scene)
+    }
+
+    fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
+        self.inner.writing_fields_to(dir).map(|inner| {
+            Box::new(Resolved {
+                inner,
+                value: self.value.clone(),
+            }) as Box<dyn Solver>
+        })
+    }
 }
 
 /// A solver whose surface fields on a grid are also written as VTU files, one per path position

@@ -10,8 +10,8 @@
 mod common;
 
 use common::{identical_spheres, normal_scene};
+use spherecontact::domain::Grip;
 use spherecontact::external::toolchain::{Tool, Toolchain};
-use spherecontact::fem::solid3d::system::Grip;
 use spherecontact::fem::{FemAxisym, FemSolid3d};
 use spherecontact::history::History;
 use spherecontact::scene::Scene;
@@ -28,9 +28,11 @@ fn run(solver: &dyn Solver, scene: &Scene) -> History {
 
 /// fem-3d at `divisions` (pole size c_max/divisions) with `grip`.
 fn fem3d(scene: &Scene, divisions: f64, grip: Grip) -> History {
+    let mut scene = scene.clone();
+    scene.domain.grip = grip;
     run(
-        &FemSolid3d::with_pole_size(scene.max_contact_radius() / divisions, grip),
-        scene,
+        &FemSolid3d::with_pole_size(scene.max_contact_radius() / divisions),
+        &scene,
     )
 }
 
@@ -70,14 +72,10 @@ fn default_mesh_agrees_with_fem_axisym_on_the_same_body() {
     let scene = paper_normal();
     // The same finite body: a hemisphere gripped axially on its equatorial face (fem-axisym's
     // domain); fem-axisym at its default c_max/40 is within 0.04 % of its mesh limit in P.
-    let axisym = run(&FemAxisym::default(), &scene);
-    let solid = run(
-        &FemSolid3d {
-            grip: Grip::Axial,
-            ..FemSolid3d::default()
-        },
-        &scene,
-    );
+    let mut axial = scene.clone();
+    axial.domain.grip = Grip::Axial;
+    let axisym = run(&FemAxisym::default(), &axial);
+    let solid = run(&FemSolid3d::default(), &axial);
     assert!(
         solid.metadata.warnings.is_empty(),
         "{:?}",
@@ -116,7 +114,8 @@ fn refinement_study_against_fem_axisym() {
         eprintln!("gmsh is not installed: fem-3d is not available, nothing to compare");
         return;
     }
-    let scene = paper_normal();
+    let mut scene = paper_normal();
+    scene.domain.grip = Grip::Axial;
     let axisym = run(&FemAxisym::default(), &scene);
     let mut table = Vec::new();
     for divisions in [6.0, 10.0, 14.0] {

@@ -177,9 +177,12 @@ fn bad_command_lines_are_bad_input_and_write_nothing() {
         ),
         (
             &["mesh", "case.toml", "--resolution", "1e-9"],
-            &["--resolution", "allowed: at least"],
+            &["--resolution", "finer than allowed", "allowed: c/N"],
         ),
-        (&["mesh", "case.toml", "--resolution", "1m"], &["below R/20"]),
+        (
+            &["mesh", "case.toml", "--resolution", "1m"],
+            &["--resolution", "coarser than allowed"],
+        ),
         (&["mesh", "flat.toml"], &["body 1 is a flat"]),
     ];
     let failures: Vec<String> = cases

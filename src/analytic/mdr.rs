@@ -38,6 +38,7 @@ use crate::driver::{self, PathIncrement, PathModel};
 use crate::hertz::Hertz;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::path::Step;
+use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -324,6 +325,12 @@ impl Solver for Mdr {
             .into_iter()
             .map(|springs| Box::new(Mdr { springs }) as Box<dyn Solver>)
             .collect()
+    }
+
+    /// `n`: springs on the half-line, 1 ≤ n ≤ [`MAX_MDR_SPRINGS`].
+    fn at_resolution(&self, _scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let springs = resolution::count(self.name(), value, 1, MAX_MDR_SPRINGS, false)?;
+        Ok(Box::new(Mdr { springs }))
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {

@@ -7,6 +7,7 @@ use crate::case::limits::MAX_BEM_GRID;
 use crate::driver::{self, PathIncrement, PathModel};
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::path::Step;
+use crate::resolution::{self, ResolutionError};
 use crate::scene::{Scene, DISSIMILARITY_BETA};
 use crate::solver::{SolveError, Solver};
 
@@ -253,6 +254,15 @@ impl Solver for Bem {
                 }) as Box<dyn Solver>
             })
             .collect()
+    }
+
+    /// `n`: an even number of panels a side, 4 ≤ n ≤ [`MAX_BEM_GRID`], over the same window.
+    fn at_resolution(&self, _scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let n = resolution::count(self.name(), value, 4, MAX_BEM_GRID, true)?;
+        Ok(Box::new(Bem {
+            window: self.window,
+            ..Bem::with_grid(n)
+        }))
     }
 
     /// Pressure, traction and stick/slip of every path position as a grid of quads.

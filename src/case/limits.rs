@@ -6,7 +6,7 @@
 //! valid case solve in bounded memory on an ordinary machine: no limit here is hit by a case that
 //! means something physically.
 
-use crate::scene::Scene;
+use crate::resolution::PoleLimits;
 
 /// The largest case or reference file read [bytes] (4 MiB): parsing costs about 30 bytes of
 /// memory per byte of TOML, and a case that lists a million positions is under 3 MiB.
@@ -51,17 +51,21 @@ pub const MAX_MDR_SPRINGS: usize = 1_000_000;
 /// gmsh or the in-crate FEM.
 pub const MAX_ELEMENTS_PER_CONTACT_RADIUS: f64 = 320.0;
 
-/// The smallest pole element size a mesh of `scene` may ask for [m]: c_max/320, or, when the
-/// path never closes the gap, R1/32 000 (the same count over a hundredth of the radius).
-pub fn min_mesh_size(scene: &Scene) -> f64 {
-    let c_max = scene.max_contact_radius();
-    let span = if c_max > 0.0 {
-        c_max
-    } else {
-        scene.pair.body1.radius / 100.0
-    };
-    span / MAX_ELEMENTS_PER_CONTACT_RADIUS
-}
+/// The pole element sizes a meridian mesh may take (fem-axisym, mdr-domain, the axisymmetric
+/// decks, `mesh`): c_max/320 ([`MAX_ELEMENTS_PER_CONTACT_RADIUS`], under a million triangles) to
+/// c_max/2 (the contact spans at least two pole elements).
+pub const MERIDIAN_POLE: PoleLimits = PoleLimits {
+    finest: MAX_ELEMENTS_PER_CONTACT_RADIUS,
+    coarsest: 2.0,
+};
+
+/// The pole element sizes a solid (3D) mesh may take (fem-3d, fenicsx-3d): c_max/14, the finest
+/// rung of fem-3d's ladder (the element count grows as (c/h)³, a tetrahedral mesh at c/14 is
+/// about 2.7 times the default c/10), to c_max/2.
+pub const SOLID_POLE: PoleLimits = PoleLimits {
+    finest: 14.0,
+    coarsest: 2.0,
+};
 
 /// The characters of a plain name, as shown in messages.
 pub const NAME_CHARACTERS: &str = "A–Z a–z 0–9 . _ -, starting with a letter or digit";

@@ -33,6 +33,10 @@
 //!                                       # 10 c_max ≤ height ≤ the smallest finite radius
 //! grip = "rigid"                        # "rigid" (default) or "axial" (frictionless scenes only)
 //!
+//! [resolution]                          # optional: per solver, over its default (see
+//! bem = 128                             # `resolution`); `--resolution SOLVER=VALUE` overrides
+//! fem-axisym = "c/80"                   # c/N or a length ("10um")
+//!
 //! [[checks]]
 //! solver = "mdr"
 //! quantity = "normal_force"             # normal_force, tangential_force, contact_radius,
@@ -68,7 +72,8 @@
 //! | positions with surface fields | at most 16 (see `fields`) |
 //! | BEM grid | at most 512² panels |
 //! | MDR bed | at most 1 000 000 springs |
-//! | mesh (`mesh --resolution`) | pole element ≥ c_max/320 (≥ R1/32 000 without contact): under a million triangles |
+//! | mesh (`mesh --resolution`), fem-axisym, mdr-domain, axisymmetric decks | pole element c_max/320 to c_max/2 (R1/32 000 to R1/200 without contact): under a million triangles |
+//! | fem-3d, fenicsx-3d | pole element c_max/14 to c_max/2 |
 
 pub mod case_solvers;
 mod check_rules;
@@ -78,19 +83,19 @@ pub mod input;
 pub mod limits;
 mod raw;
 pub mod reference;
+mod resolution;
 mod scene_rules;
 
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
 pub use limits::{MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
 use crate::check::{CheckSpec, Reference};
 use crate::domain::Domain;
-use crate::external::fenicsx3d;
 use crate::number::Short;
 use crate::pair::ContactPair;
 use crate::registry;
@@ -117,6 +122,9 @@ pub struct Case {
     pub own_solvers: Vec<CaseSolver>,
     /// MPI ranks of the solvers that run under MPI (`fenicsx-3d`); 1 by default.
     pub ranks: u32,
+    /// The resolution chosen per solver (`[resolution]`, then `--resolution`), each value
+    /// accepted by its solver for this scene; solvers not named run at their default.
+    pub resolution: BTreeMap<String, String>,
 }
 
 impl Case {
@@ -153,17 +161,21 @@ impl Case {
         &self.scene.name
     }
 
-    /// The solver called `name`: one the case defines, else one of this build.
+    /// The solver called `name` (one the case defines, else one of this build) on the case's
+    /// ranks and at the resolution chosen for it.
     pub fn solver(&self, name: &str) -> Option<Box<dyn Solver>> {
-        self.own_solvers
+        self.unresolved_solver(name).map(|s| self.resolved(s))
+    }
+
+    /// The solver called `name` on the case's ranks, at its default resolution.
+    fn unresolved_solver(&self, name: &str) -> Option<Box<dyn Solver>> {
+        let solver = self
+            .own_solvers
             .iter()
             .find(|s| s.name() == name)
             .map(CaseSolver::solver)
-            .or_else(|| {
-                (name == fenicsx3d::NAME)
-                    .then(|| Box::new(fenicsx3d::Solid3dDeck::new(self.ranks)) as Box<dyn Solver>)
-            })
-            .or_else(|| registry::by_name(name))
+            .or_else(|| registry::by_name(name))?;
+        Some(solver.with_ranks(self.ranks).unwrap_or(solver))
     }
 
     /// Every solver the case needs: its own list, then those its checks refer to.
@@ -271,7 +283,7 @@ impl Validator<'_> {
                     })?
             }
         };
-        Ok(Case {
+        let mut case = Case {
             file: self.file.to_path_buf(),
             focus,
             description: raw.description.unwrap_or_default(),
@@ -280,7 +292,12 @@ impl Validator<'_> {
             checks,
             own_solvers,
             ranks,
-        })
+            resolution: BTreeMap::new(),
+        };
+        if let Some(table) = &raw.resolution {
+            self.resolution(table, &mut case)?;
+        }
+        Ok(case)
     }
 
     /// The two bodies: each in range, and not two flats.

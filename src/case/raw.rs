@@ -22,6 +22,7 @@ pub struct RawCase {
     pub body2: Option<RawBody>,
     pub path: RawPath,
     pub domain: Option<RawDomain>,
+    pub resolution: Option<std::collections::BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
     #[serde(default)]
     pub checks: Vec<RawCheck>,
     #[serde(default)]

@@ -18,8 +18,10 @@ use super::readback::{self, DeckRow};
 use super::record::{self, Run};
 use super::surface::{self, Surface};
 use super::toolchain::{Tool, Toolchain};
+use crate::case::limits::MERIDIAN_POLE;
 use crate::domain::Grip;
 use crate::history::History;
+use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -122,6 +124,16 @@ impl Plan {
 impl<D: Deck + 'static> Solver for AxisymSolver<D> {
     fn name(&self) -> &'static str {
         self.deck.name()
+    }
+
+    /// A pole element size: `c/N` or a length, within [`MERIDIAN_POLE`].
+    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let mut options = self.options.clone();
+        options.resolution = Some(resolution::pole_size(self.name(), scene, value, MERIDIAN_POLE)?);
+        Ok(Box::new(AxisymSolver {
+            deck: self.deck.clone(),
+            options,
+        }))
     }
 
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {

@@ -20,9 +20,11 @@ use super::record::{record_run, RunFacts};
 use super::solid_geo::{self, SolidMeshFiles};
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
+use crate::case::limits::SOLID_POLE;
 use crate::domain::Grip;
 use crate::fem::solid3d::meshing::{self, Zones};
 use crate::history::{History, Metadata, StepResult};
+use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -265,6 +267,23 @@ impl Solver for Solid3dDeck {
 
     fn description(&self) -> &'static str {
         self.deck.description()
+    }
+
+    /// A pole element size: `c/N` or a length, within [`SOLID_POLE`].
+    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let mut options = self.options.clone();
+        options.resolution = Some(resolution::pole_size(self.name(), scene, value, SOLID_POLE)?);
+        Ok(Box::new(Solid3dDeck {
+            deck: self.deck,
+            options,
+        }))
+    }
+
+    fn with_ranks(&self, ranks: u32) -> Option<Box<dyn Solver>> {
+        Some(Box::new(Solid3dDeck {
+            deck: Fenicsx3d { ranks },
+            options: self.options.clone(),
+        }))
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {

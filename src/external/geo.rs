@@ -64,24 +64,7 @@ pub fn default_resolution(scene: &Scene) -> f64 {
     }
 }
 
-/// Reads a resolution (a length) such as `20um`, `0.02mm` or `2e-5` (metres) into metres.
-pub fn parse_length(text: &str) -> Result<f64, String> {
-    let text = text.trim();
-    let units = [("um", 1e-6), ("µm", 1e-6), ("μm", 1e-6), ("mm", 1e-3), ("m", 1.0)];
-    let (number, scale) = units
-        .iter()
-        .find_map(|(unit, scale)| text.strip_suffix(unit).map(|n| (n, *scale)))
-        .unwrap_or((text, 1.0));
-    let value: f64 = number
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{text}` is not a length (e.g. 20um, 0.02mm, 2e-5)"))?;
-    if value.is_finite() && value > 0.0 {
-        Ok(value * scale)
-    } else {
-        Err(format!("`{text}`: a length must be finite and positive"))
-    }
-}
+pub use crate::resolution::parse_length;
 
 /// The gmsh `.geo` text (metres) of body 1's meridian, graded to `resolution` [m] at the pole.
 ///

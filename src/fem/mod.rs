@@ -7,6 +7,7 @@
 //! | [`quadrature`] | Gauss rules |
 //! | [`assembly`] | global stiffness of a meridian mesh, Dirichlet elimination, reaction row |
 //! | [`factor`] | sparse Cholesky with a fill-reducing ordering |
+//! | [`ordering`] | the elimination order with the contact DOFs last (their Schur complement is the factor's trailing block) |
 //! | [`condense`] | the dense compliance of a factored body at its contact DOFs |
 //! | [`axisym`] | the axisymmetric contact model and the `fem-axisym` solver |
 //! | [`solid3d`] | the 3D contact model (10-node tetrahedra, condensed contact surface) and the `fem-3d` solver |
@@ -24,6 +25,7 @@ pub mod condense;
 pub mod element;
 pub mod factor;
 pub mod mesh;
+pub mod ordering;
 pub mod quadrature;
 pub mod solid3d;
 

@@ -16,8 +16,10 @@ use super::model::{grading, Reduction, GROWTH};
 use super::solver::FemAxisym;
 use crate::analytic::mdr::Mdr;
 use crate::analytic::mdr_series::{SeriesCompliance, SeriesMdr};
+use crate::case::limits::MERIDIAN_POLE;
 use crate::fem::mesh::meridian;
 use crate::history::History;
+use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -113,6 +115,15 @@ impl Solver for MdrDomain {
 
     fn description(&self) -> &'static str {
         "reference for finite bodies: MDR in series with the [domain]'s computed normal and tangential compliances"
+    }
+
+    /// The pole element size of its compliance meshes: `c/N` or a length, within
+    /// [`MERIDIAN_POLE`].
+    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let h = resolution::pole_size(self.name(), scene, value, MERIDIAN_POLE)?;
+        let mut solver = self.clone();
+        solver.mesh.pole_size = Some(h);
+        Ok(Box::new(solver))
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {

@@ -17,6 +17,7 @@ use super::output;
 use super::output_n1::{self, TangentialState};
 use super::pressure::{self, Profile};
 use super::tangential::{self, Mode};
+use crate::case::limits::MERIDIAN_POLE;
 use crate::domain::Grip;
 use crate::driver;
 use crate::fem::element::tri6::{Integration, Lame};
@@ -24,6 +25,7 @@ use crate::fem::factor::Ordering;
 use crate::fem::mesh::meridian::Mesh;
 use crate::fem::mesh::msh;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -155,6 +157,15 @@ impl Solver for FemAxisym {
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
         Some(Box::new(FemAxisym {
             vtu_dir: Some(dir.to_path_buf()),
+            ..self.clone()
+        }))
+    }
+
+    /// A pole element size: `c/N` or a length, within [`MERIDIAN_POLE`].
+    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        let h = resolution::pole_size(self.name(), scene, value, MERIDIAN_POLE)?;
+        Ok(Box::new(FemAxisym {
+            pole_size: Some(h),
             ..self.clone()
         }))
     }

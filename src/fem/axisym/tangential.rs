@@ -9,7 +9,7 @@
 //! compliance is the n = 1 stiffness, assembled and factored once with the far face gripped
 //! rigidly (all of A, B, W fixed: a rigid shift of the far face is a rigid translation of the
 //! whole body, A = const, which adds the shift itself to every surface A), condensed onto the
-//! candidates' A DOFs (`fem::condense`). The contact engine takes it with
+//! candidates' A DOFs from the factor's trailing block (the candidates ordered last). The contact engine takes it with
 //! [`FrictionSet::Interval`] and the bound g_i = μ λ_i on the n = 0 nodal forces λ_i.
 //!
 //! Identical spheres (Dundurs β = 0) decouple exactly: p(r) from the n = 0 problem does not
@@ -21,13 +21,14 @@
 //! and unloaded: the surface's u_y distortion is computed but no q_y resists it), which need
 //! a 3D model.
 
-use faer::Mat;
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+use faer::{Accum, Mat, Par};
 
 use super::model::{BodyModel, Reduction, Settings};
 use crate::fem::assembly::{self, System};
-use crate::fem::condense::condense;
-use crate::fem::element::tri6_n1;
 use crate::fem::factor::Factor;
+use crate::fem::ordering::{self, NodeOrder};
 use crate::scene::{Scene, DISSIMILARITY_BETA};
 
 /// What fem-axisym does about the tangential problem of a scene.
@@ -76,18 +77,47 @@ pub struct ShearBody {
 }
 
 impl ShearBody {
-    /// Assembles, factors and condenses the mode n = 1 of `body`.
+    /// Assembles, factors and condenses the mode n = 1 of `body`. The candidates' DOFs are
+    /// ordered last ([`crate::fem::ordering`]), so the factor's trailing block L₂₂ factors their
+    /// Schur complement and the compliance of their A DOFs is Eᵀ (L₂₂ L₂₂ᵀ)⁻¹ E = ZᵀZ with
+    /// Z = L₂₂⁻¹ E (E selects the A rows): one dense triangular solve of the candidates' size
+    /// instead of one solve through the whole factor per candidate.
     pub fn new(body: &BodyModel, settings: &Settings) -> Result<Self, String> {
         let system = assembly::assemble_fourier_one(&body.mesh, body.lame, settings.integration)
             .map_err(|e| e.to_string())?;
-        let factor = Factor::new(&system.stiffness, settings.ordering)?;
-        let dofs = body
-            .candidates
-            .iter()
-            .map(|&n| system.dofs.free(tri6_n1::COMPONENTS * n))
-            .collect::<Option<Vec<usize>>>()
-            .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
-        let compliance = condense(&factor, system.dofs.count(), &dofs, &system.reaction).compliance;
+        let mesh = &body.mesh;
+        let points: Vec<[f64; 3]> = mesh.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        let order = ordering::contact_last(
+            &ordering::node_graph(mesh.nodes.len(), &mesh.triangles),
+            &points,
+            &system.dofs,
+            &body.candidates,
+            NodeOrder::MinimumDegree,
+        )?;
+        let factor = Factor::with_permutation(&system.stiffness, &order.forward)?;
+        let m = body.candidates.len();
+        let mut z = Mat::<f64>::zeros(order.trailing.len(), m);
+        let mut loaded = vec![false; m];
+        for (p, &(j, a)) in order.trailing.iter().enumerate() {
+            if a == 0 {
+                z[(p, j)] = 1.0;
+                loaded[j] = true;
+            }
+        }
+        if loaded.contains(&false) {
+            return Err("a candidate contact node lies on the far boundary: the domain is too small".into());
+        }
+        let l22 = factor.trailing_block(order.trailing.len());
+        solve_lower_triangular_in_place(l22.as_ref(), z.as_mut(), Par::Seq);
+        let mut compliance = Mat::<f64>::zeros(m, m);
+        matmul(
+            compliance.as_mut(),
+            Accum::Replace,
+            z.transpose(),
+            z.as_ref(),
+            1.0,
+            Par::Seq,
+        );
         Ok(Self {
             system,
             factor,

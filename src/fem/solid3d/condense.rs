@@ -19,10 +19,10 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::{Accum, Mat, MatRef, Par};
 
-use super::ordering::ContactLast;
 use super::surface::Surface;
 use super::system::System;
 use crate::fem::factor::Factor;
+use crate::fem::ordering::ContactLast;
 
 /// How the condensed compliance is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -3,14 +3,14 @@
 //! | file | concept |
 //! |---|---|
 //! | [`system`] | DOFs (far face gripped, u_y = 0 on the symmetry plane) and the assembled stiffness |
-//! | [`ordering`] | the elimination order: minimum degree on the interior, contact DOFs last |
 //! | [`surface`] | the contact candidate surface and its sub-triangulated contact rule |
 //! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
 //! | [`contact`] | the contact problem on the shared engine: pressure multipliers, symmetric weights |
 //! | [`model`] | the whole set-up of one body |
 //! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
 //! | [`measures`] | the contact radius and peak pressure from the nodal pressures |
-//! | [`solver`] | `fem-3d`: the path walked on the engine, P, c, p0, fields, VTU |
+//! | [`solver`] | `fem-3d`: the model of the scene's domain, the engine's settings, the metadata |
+//! | [`walk`] | the path walked on the engine: P, Q, c, p0, the stick zone, fields, VTU |
 //! | [`output`] | displacement and stress of a contact state; VTU of the volume and the contact surface |
 
 pub mod condense;
@@ -18,10 +18,10 @@ pub mod contact;
 pub mod measures;
 pub mod meshing;
 pub mod model;
-pub mod ordering;
 pub mod output;
 pub mod solver;
 pub mod surface;
 pub mod system;
+pub mod walk;
 
 pub use solver::FemSolid3d;

@@ -10,13 +10,13 @@
 use std::time::Instant;
 
 use super::condense::{self, Condensation, Condensed};
-use super::ordering::{self, ContactLast, NodeOrder};
 use super::surface::Surface;
 use super::system::{self, Grip, System};
 use crate::fem::assembly::Dofs;
 use crate::fem::element::tri6::Lame;
 use crate::fem::factor::{Factor, Ordering};
 use crate::fem::mesh::solid::SolidMesh;
+use crate::fem::ordering::{self, ContactLast, NodeOrder};
 
 /// The elimination order of the factorisation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -67,17 +67,7 @@ pub fn fixed_dofs(mesh: &SolidMesh, grip: Grip) -> Vec<bool> {
 
 /// The sorted neighbours of every node (nodes sharing an element), itself included.
 pub fn node_graph(mesh: &SolidMesh) -> Vec<Vec<usize>> {
-    let mut graph = vec![Vec::new(); mesh.nodes.len()];
-    for t in &mesh.tetrahedra {
-        for &a in t {
-            graph[a].extend_from_slice(t);
-        }
-    }
-    for list in &mut graph {
-        list.sort_unstable();
-        list.dedup();
-    }
-    graph
+    crate::fem::ordering::node_graph(mesh.nodes.len(), &mesh.tetrahedra)
 }
 
 /// Assembles K_ff of `mesh` for Lamé constants `lame` on the free DOFs of `dofs`.

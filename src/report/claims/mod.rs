@@ -83,9 +83,7 @@ impl Claim {
 
 /// True for the finite element solvers (in-crate or external decks), by the registry's naming.
 pub fn is_finite_element(solver: &str) -> bool {
-    ["fem-", "freefem-", "fenicsx-"]
-        .iter()
-        .any(|prefix| solver.starts_with(prefix))
+    crate::domain::models_a_finite_body(solver)
 }
 
 /// Every claim, in the paper's order.

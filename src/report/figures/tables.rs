@@ -214,7 +214,7 @@ pub fn solver_table(run: &CaseRun) -> Table {
                         Cell::plain(name),
                         Cell::with_class("ran", "ok"),
                         Cell::plain(&m.model),
-                        Cell::plain(&m.resolution),
+                        Cell::plain(m.resolution_shown()),
                         Cell::plain(&m.version),
                         Cell::plain(details.join("; ")),
                         Cell::with_class(wall_time_of(m), "timing"),

@@ -1,4 +1,5 @@
-//! The elimination order of the 3D stiffness: a fill-reducing order of the body's interior with
+//! The elimination order of a body's stiffness with three DOFs a node (the 3D solid's (u_x, u_y,
+//! u_z), the Fourier mode n = 1's (A, B, W)): a fill-reducing order of the body's interior with
 //! the contact candidate nodes' DOFs last.
 //!
 //! Putting the contact DOFs last makes the trailing block of the Cholesky factor the factor of
@@ -41,11 +42,27 @@ pub const LEAF: usize = 256;
 pub struct ContactLast {
     /// forward[k] = the free DOF eliminated k-th.
     pub forward: Vec<usize>,
-    /// The trailing DOFs, as (index into the candidate list, component 0 = x, 1 = y, 2 = z), in
+    /// The trailing DOFs, as (index into the candidate list, component 0 … 2 of the node), in
     /// elimination order: position k of the trailing block is `trailing[k]`.
     pub trailing: Vec<(usize, usize)>,
     /// Their free DOF indices (the last entries of `forward`).
     pub trailing_dofs: Vec<usize>,
+}
+
+/// The node graph of a mesh of `count` nodes and `elements`: the sorted neighbours of every node
+/// (nodes sharing an element), itself included.
+pub fn node_graph<const K: usize>(count: usize, elements: &[[usize; K]]) -> Vec<Vec<usize>> {
+    let mut graph = vec![Vec::new(); count];
+    for e in elements {
+        for &a in e {
+            graph[a].extend_from_slice(e);
+        }
+    }
+    for list in &mut graph {
+        list.sort_unstable();
+        list.dedup();
+    }
+    graph
 }
 
 /// The order of the nodes of `graph` (coordinates `points`) that are not `candidates` by `how`,
