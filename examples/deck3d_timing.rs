@@ -16,7 +16,6 @@ use spherecontact::bench::{median, worst_error};
 use spherecontact::case::Case;
 use spherecontact::external::fenicsx3d::{Solid3dDeck, DEFAULT_POLE_FRACTION};
 use spherecontact::fem::solid3d::solver::FemSolid3d;
-use spherecontact::fem::solid3d::system::Grip;
 use spherecontact::history::{History, Quantity};
 use spherecontact::solver::{self, Solver};
 
@@ -53,10 +52,7 @@ fn main() {
     let solvers: Vec<(String, Box<dyn Solver>)> = vec![
         ("fenicsx-3d, 1 rank".into(), Box::new(Solid3dDeck::new(1))),
         ("fenicsx-3d, 2 ranks".into(), Box::new(Solid3dDeck::new(2))),
-        (
-            "fem-3d".into(),
-            Box::new(FemSolid3d::with_pole_size(h, Grip::Rigid)),
-        ),
+        ("fem-3d".into(), Box::new(FemSolid3d::with_pole_size(h))),
     ];
     let increments = scene.steps().len() - 1;
     println!(
