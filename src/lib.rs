@@ -43,6 +43,7 @@ pub mod fit;
 pub mod hertz;
 pub mod history;
 pub mod io;
+pub mod limits;
 pub mod number;
 pub mod pair;
 pub mod path;

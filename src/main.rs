@@ -533,8 +533,14 @@ fn report(
 
 fn list() -> Result<ExitCode, InputError> {
     println!("solvers:");
-    for solver in registry::registry() {
-        println!("  {:<22} {}", solver.name(), solver.description());
+    let solvers = registry::registry();
+    let width = solvers
+        .iter()
+        .map(|s| s.name().chars().count())
+        .max()
+        .unwrap_or(0);
+    for solver in solvers {
+        println!("  {:<width$} {}", solver.name(), solver.description());
     }
     println!("cases:");
     for file in case_files(Path::new("cases")).unwrap_or_default() {

@@ -5,7 +5,7 @@
 //! share live here: a count in a range (`bem = 128` panels a side, `mdr = 16000` springs) and a
 //! pole element size (`fem-axisym = "c/80"`, a fraction of the path's largest Hertz contact
 //! radius, or a length `"10um"`, `"0.01mm"`, `"1e-5"` in metres). Every form has limits, so that
-//! no valid value exhausts the machine ([`crate::case::limits`]).
+//! no valid value exhausts the machine ([`crate::limits`]).
 
 use crate::number::Short;
 use crate::scene::Scene;

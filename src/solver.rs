@@ -47,7 +47,7 @@ pub trait Solver: Send + Sync {
 
     /// The same solver at the resolution `value` (a case's `[resolution]` entry or
     /// `--resolution NAME=VALUE`), judged for `scene`; the default: no resolution to choose.
-    /// Every value accepted must solve in bounded memory ([`crate::case::limits`]).
+    /// Every value accepted must solve in bounded memory ([`crate::limits`]).
     fn at_resolution(&self, _scene: &Scene, _value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
         Err(ResolutionError::NotResolvable {
             solver: self.name().to_owned(),

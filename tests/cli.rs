@@ -347,7 +347,15 @@ fn run_writes_vtu_fields_for_solvers_that_have_them() {
         .unwrap()
         .map(|e| e.unwrap().path())
         .collect();
-    assert_eq!(files.len(), 3, "one VTU per path position: {files:?}");
+    // Per path position: the meridian volume (n = 0), the n = 1 amplitudes (the case shifts)
+    // and the reconstructed 3D contact surface.
+    for position in 0..3 {
+        for suffix in ["", "-n1", "-surface"] {
+            let name = format!("cli-test-fem-axisym-{position}{suffix}.vtu");
+            assert!(vtu_dir.join(&name).exists(), "{name} missing: {files:?}");
+        }
+    }
+    assert_eq!(files.len(), 9, "three VTU per path position: {files:?}");
     for file in files {
         let text = std::fs::read_to_string(&file).unwrap();
         let xml = roxmltree::Document::parse(&text).unwrap();

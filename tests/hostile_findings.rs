@@ -386,7 +386,8 @@ fn a_mesh_too_fine_for_the_machine_is_refused_with_the_smallest_allowed_size() {
     assert_eq!(output.status.code(), Some(2));
     let message = stderr(&output);
     assert!(message.contains("--resolution"), "{message}");
-    assert!(message.contains("allowed: at least"), "{message}");
+    assert!(message.contains("finer than allowed"), "{message}");
+    assert!(message.contains("allowed: c/N"), "{message}");
     assert!(!dir.path().join("out").exists());
 }
 

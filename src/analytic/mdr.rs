@@ -33,10 +33,10 @@
 //! problem is even in x, so one half is modelled and doubled). P then has a relative error of
 //! order (Δx/c)², from the one cell cut by the contact edge.
 
-use crate::case::limits::MAX_MDR_SPRINGS;
 use crate::driver::{self, PathIncrement, PathModel};
 use crate::hertz::Hertz;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::limits::MAX_MDR_SPRINGS;
 use crate::path::Step;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;

@@ -153,19 +153,26 @@ impl Convolver {
 }
 
 impl Spectrum {
-    /// `self = Σ_k kernel_k ∘ field_k`: the spectrum of the summed convolutions, in place.
-    pub fn set_combination(&mut self, terms: &[(&Spectrum, &Spectrum)]) {
-        self.0.fill(Complex::default());
-        for (kernel, field) in terms {
-            for ((o, k), f) in self.0.iter_mut().zip(&kernel.0).zip(&field.0) {
-                *o += k * f;
-            }
-        }
+    /// Multiplies this spectrum by a real symbol (the spectrum of an even kernel), in place: one
+    /// convolution without a new buffer.
+    pub fn times_real(&mut self, symbol: &[f64]) {
+        self.0.iter_mut().zip(symbol).for_each(|(f, k)| *f *= k);
     }
 
-    /// Multiplies this spectrum by `kernel`, in place: one convolution without a new buffer.
-    pub fn times(&mut self, kernel: &Spectrum) {
-        self.0.iter_mut().zip(&kernel.0).for_each(|(f, k)| *f *= k);
+    /// The real part of each value: the symbol of a kernel even in each offset (or odd in both),
+    /// whose spectrum is real up to round-off.
+    pub fn real_part(&self) -> Vec<f64> {
+        self.0.iter().map(|v| v.re).collect()
+    }
+
+    /// `(x, y) ← (a x + b y, b x + c y)` at every frequency, in place: the two components of a
+    /// symmetric 2 × 2 convolution with real symbols a, b, c, in one pass.
+    pub fn mix_in_place(x: &mut Spectrum, y: &mut Spectrum, [a, b, c]: [&[f64]; 3]) {
+        for ((((x, y), a), b), c) in x.0.iter_mut().zip(y.0.iter_mut()).zip(a).zip(b).zip(c) {
+            let (xv, yv) = (*x, *y);
+            *x = xv * a + yv * b;
+            *y = xv * b + yv * c;
+        }
     }
 
     /// The values, in the half-spectrum layout.
@@ -201,10 +208,11 @@ mod tests {
         }
         let field: Vec<f64> = (0..n * n).map(|k| ((k * 7) % 11) as f64 - 5.0).collect();
         let mut conv = Convolver::new(n);
+        // The kernel is not even (its 0.1 dx part): its spectrum is complex, multiplied in full.
         let ks = conv.kernel_spectrum(&kernel);
         let mut fs = conv.spectrum();
         conv.field_spectrum_into(&field, &mut fs);
-        fs.times(&ks);
+        fs.0.iter_mut().zip(&ks.0).for_each(|(f, k)| *f *= k);
         let mut u = vec![0.0; n * n];
         conv.field_into(&mut fs, &mut u);
         for (i, &ui) in u.iter().enumerate() {

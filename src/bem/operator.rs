@@ -23,9 +23,10 @@ pub struct FftCompliance {
     convolver: Convolver,
     /// The kernels in the circulant layout (row-major blocks: xx, xy, yx, yy, or zz alone).
     kernels: Vec<Vec<f64>>,
-    spectra: Vec<Spectrum>,
-    /// Work spectra of the load's components and of a displacement component.
-    work: [Spectrum; 3],
+    /// Their symbols (spectra), real: every kernel is even in each offset, or (xy) odd in both.
+    symbols: Vec<Vec<f64>>,
+    /// Work spectra of the load's components, transformed in place into the displacement's.
+    work: [Spectrum; 2],
     weights: Vec<f64>,
     largest: f64,
 }
@@ -44,29 +45,29 @@ impl FftCompliance {
 
     fn of(grid: &Grid, kernels: Vec<Vec<f64>>) -> Self {
         let mut convolver = Convolver::new(grid.n);
-        let spectra: Vec<Spectrum> = kernels.iter().map(|k| convolver.kernel_spectrum(k)).collect();
-        // The kernels are even (xy odd in each offset, so its spectrum is real too): the symbol
-        // at each frequency is real, and the largest eigenvalue of C is the largest over the
-        // frequencies of the symbol's (1×1, or symmetric 2×2 [[a, b], [b, c]]) largest eigenvalue,
-        // (a+c)/2 + √(((a−c)/2)² + b²) — the padded circulant bounds the window's operator.
-        let largest = if spectra.len() == 1 {
-            spectra[0].values().iter().map(|v| v.re).fold(0.0, f64::max)
+        let symbols: Vec<Vec<f64>> = kernels
+            .iter()
+            .map(|k| convolver.kernel_spectrum(k).real_part())
+            .collect();
+        // The symbol at each frequency is real, and the largest eigenvalue of C is the largest
+        // over the frequencies of the symbol's (1×1, or symmetric 2×2 [[a, b], [b, c]]) largest
+        // eigenvalue, (a+c)/2 + √(((a−c)/2)² + b²) — the padded circulant bounds the window's
+        // operator.
+        let largest = if symbols.len() == 1 {
+            symbols[0].iter().copied().fold(0.0, f64::max)
         } else {
-            let v = |s: usize| spectra[s].values();
-            (0..v(0).len())
-                .map(|f| {
-                    let (a, b, c) = (v(0)[f].re, v(1)[f].re, v(3)[f].re);
-                    0.5 * (a + c) + (0.25 * (a - c).powi(2) + b * b).sqrt()
-                })
+            let (a, b, c) = (&symbols[0], &symbols[1], &symbols[3]);
+            (0..a.len())
+                .map(|f| 0.5 * (a[f] + c[f]) + (0.25 * (a[f] - c[f]).powi(2) + b[f] * b[f]).sqrt())
                 .fold(0.0, f64::max)
         };
-        let work = [convolver.spectrum(), convolver.spectrum(), convolver.spectrum()];
+        let work = [convolver.spectrum(), convolver.spectrum()];
         Self {
             grid: *grid,
             work,
             convolver,
             kernels,
-            spectra,
+            symbols,
             weights: vec![grid.panel_area(); grid.len()],
             largest,
         }
@@ -97,20 +98,20 @@ impl Compliance for FftCompliance {
 
     fn apply(&mut self, load: &[f64], out: &mut [f64]) {
         let len = self.grid.len();
-        let [qx, qy, u] = &mut self.work;
+        let [qx, qy] = &mut self.work;
         if self.kernels.len() == 1 {
             self.convolver.field_spectrum_into(load, qx);
-            qx.times(&self.spectra[0]);
+            qx.times_real(&self.symbols[0]);
             self.convolver.field_into(qx, out);
             return;
         }
         self.convolver.field_spectrum_into(&load[..len], qx);
         self.convolver.field_spectrum_into(&load[len..], qy);
-        let s = &self.spectra;
-        u.set_combination(&[(&s[0], qx), (&s[1], qy)]);
-        self.convolver.field_into(u, &mut out[..len]);
-        u.set_combination(&[(&s[2], qx), (&s[3], qy)]);
-        self.convolver.field_into(u, &mut out[len..]);
+        let s = &self.symbols;
+        // The yx block is the xy block (the Cerruti kernels are symmetric).
+        Spectrum::mix_in_place(qx, qy, [&s[0], &s[1], &s[3]]);
+        self.convolver.field_into(qx, &mut out[..len]);
+        self.convolver.field_into(qy, &mut out[len..]);
     }
 
     fn largest_eigenvalue(&self) -> f64 {

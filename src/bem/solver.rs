@@ -3,9 +3,9 @@
 
 use serde_json::json;
 
-use crate::case::limits::MAX_BEM_GRID;
 use crate::driver::{self, PathIncrement, PathModel};
 use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::limits::MAX_BEM_GRID;
 use crate::path::Step;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::{Scene, DISSIMILARITY_BETA};

@@ -2,13 +2,13 @@
 //!
 //! A FIFO, a device or a directory is refused without blocking on it (the file is opened
 //! non-blocking and judged by its own metadata), and a file larger than
-//! [`MAX_INPUT_BYTES`](super::limits::MAX_INPUT_BYTES) is refused before it is read.
+//! [`MAX_INPUT_BYTES`](crate::limits::MAX_INPUT_BYTES) is refused before it is read.
 
 use std::fs::File;
 use std::io::{self, Read};
 use std::path::Path;
 
-use super::limits::MAX_INPUT_BYTES;
+use crate::limits::MAX_INPUT_BYTES;
 
 /// The text of the regular file at `path`, at most [`MAX_INPUT_BYTES`] long.
 ///

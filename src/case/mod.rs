@@ -80,15 +80,14 @@ mod check_rules;
 mod domain;
 mod error;
 pub mod input;
-pub mod limits;
 mod raw;
 pub mod reference;
 mod resolution;
 mod scene_rules;
 
+pub use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
-pub use limits::{MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

@@ -4,10 +4,10 @@
 use toml::Spanned;
 
 use super::error::ShortValue;
-use super::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 use super::raw::{RawBody, RawCase, RawPath};
 use super::{CaseError, Validator};
 use crate::hertz::Hertz;
+use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 use crate::number::Short;
 use crate::pair::{Body, ContactPair, Material};
 use crate::path::{LoadingPath, Position};

@@ -212,28 +212,41 @@ pub fn solve_iterative(
         &mut state.displacement,
     ));
     // x: the last iterate (state.traction, its product state.displacement); y, C y: the
-    // extrapolated point; next, C next: the new iterate.
+    // extrapolated point; next, C next: the new iterate. Points out of contact (g = 0) hold
+    // q = 0 in every iterate (the classification and every projection put them there), so the
+    // loops run over the contact only; the products stay whole (the displacement everywhere is
+    // the next increment's C q_prev).
+    let contact: Vec<usize> = (0..m).filter(|&i| problem.bound[i] > 0.0).collect();
     let (mut y, mut y_product) = (state.traction.clone(), state.displacement.clone());
-    let (mut next, mut next_product) = (vec![0.0; n], vec![0.0; n]);
+    let (mut next, mut next_product) = (state.traction.clone(), vec![0.0; n]);
     let (mut momentum, mut residual) = (1.0_f64, f64::INFINITY);
-    let mut moved = vec![0.0; m];
     while cost.iterations < problem.max_iterations {
         cost.iterations += 1;
-        for (c, &w) in problem.shift.iter().enumerate() {
-            for j in c * m..(c + 1) * m {
-                let gradient = y_product[j] - problem.previous_displacement[j] - w;
-                next[j] = y[j] - step * gradient;
+        // One pass: the projected step, how far it moves, and ⟨y − next, next − x⟩ (the
+        // restart test, below).
+        let (mut largest_move, mut against) = (0.0_f64, 0.0);
+        for &i in &contact {
+            let g = problem.bound[i];
+            let mut point = [0.0; 2];
+            for (c, value) in point.iter_mut().enumerate().take(k) {
+                let j = c * m + i;
+                let gradient = y_product[j] - problem.previous_displacement[j] - problem.shift[c];
+                *value = y[j] - step * gradient;
             }
-        }
-        for (i, moved) in moved.iter_mut().enumerate() {
-            project_at(&mut next, m, i, problem.bound[i]);
-            *moved = (0..k)
-                .map(|c| (next[c * m + i] - y[c * m + i]).powi(2))
-                .sum::<f64>();
+            let norm = point[..k].iter().map(|v| v * v).sum::<f64>().sqrt();
+            let scale = if norm > g { g / norm } else { 1.0 };
+            let mut moved = 0.0;
+            for (c, value) in point.iter().enumerate().take(k) {
+                let j = c * m + i;
+                next[j] = value * scale;
+                moved += (next[j] - y[j]).powi(2);
+                against += a[i] * (y[j] - next[j]) * (next[j] - state.traction[j]);
+            }
+            largest_move = largest_move.max(moved);
         }
         op.apply(&next, &mut next_product);
         cost.products += 1;
-        residual = moved.iter().copied().fold(0.0, f64::max).sqrt();
+        residual = largest_move.sqrt();
         if residual <= tolerance {
             state.traction.copy_from_slice(&next);
             state.displacement.copy_from_slice(&next_product);
@@ -244,17 +257,6 @@ pub fn solve_iterative(
             return Ok(cost);
         }
         // Restart when the step works against the momentum: ⟨y − next, next − x⟩ > 0.
-        let against: f64 = (0..n)
-            .step_by(m)
-            .map(|start| {
-                (0..m)
-                    .map(|i| {
-                        a[i] * (y[start + i] - next[start + i])
-                            * (next[start + i] - state.traction[start + i])
-                    })
-                    .sum::<f64>()
-            })
-            .sum();
         let weight = if against > 0.0 {
             momentum = 1.0;
             0.0
@@ -264,9 +266,13 @@ pub fn solve_iterative(
             momentum = following;
             w
         };
-        for j in 0..n {
-            y[j] = next[j] + weight * (next[j] - state.traction[j]);
-            y_product[j] = next_product[j] + weight * (next_product[j] - state.displacement[j]);
+        // y and C y are needed on the contact only (the gradient is read there).
+        for c in 0..k {
+            for &i in &contact {
+                let j = c * m + i;
+                y[j] = next[j] + weight * (next[j] - state.traction[j]);
+                y_product[j] = next_product[j] + weight * (next_product[j] - state.displacement[j]);
+            }
         }
         std::mem::swap(&mut state.traction, &mut next);
         std::mem::swap(&mut state.displacement, &mut next_product);

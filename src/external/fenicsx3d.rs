@@ -18,12 +18,12 @@ use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts};
 use super::solid_geo::{self, SolidMeshFiles};
+use super::solid_geo::{self as meshing, Zones};
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
-use crate::case::limits::SOLID_POLE;
 use crate::domain::Grip;
-use crate::fem::solid3d::meshing::{self, Zones};
 use crate::history::{History, Metadata, StepResult};
+use crate::limits::SOLID_POLE;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -39,7 +39,7 @@ pub const TEMPLATE: &str = include_str!("templates/fenicsx_3d.py");
 /// CPU on one core; docs/external-decks.md). Finer meshes through [`Options::resolution`].
 pub const DEFAULT_POLE_FRACTION: f64 = 1.0 / 5.0;
 
-pub use crate::case::limits::MAX_RANKS;
+pub use crate::limits::MAX_RANKS;
 
 /// Time allowed for start-up (imports, form compilation on a first run), for the set-up
 /// (assembly, factorisation, one solve per candidate DOF: minutes at c_max/8) and per computed

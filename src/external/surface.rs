@@ -13,7 +13,7 @@
 //! Units: the file is in mm, MPa; [`Node`] is SI.
 
 use super::readback;
-use crate::fem::axisym::pressure;
+use crate::fit::profile as pressure;
 use crate::history::SurfaceField;
 
 /// The columns of `surface.csv`, in order.

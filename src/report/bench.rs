@@ -184,3 +184,72 @@ pub fn document(case: &str, increments: usize, repeat: usize, rungs: &[RungResul
         }],
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bench::Timing;
+    use crate::history::History;
+
+    fn rung(solver: &str, errors: (f64, f64), raw: Option<(Option<f64>, Option<f64>)>) -> RungResult {
+        Ok(Rung {
+            timing: Timing {
+                solver: solver.into(),
+                seconds: vec![0.2],
+                cpu_seconds: vec![0.1],
+                history: History::default(),
+            },
+            reference: if raw.is_some() {
+                CORRECTED_REFERENCE
+            } else {
+                "hertz, mdr"
+            },
+            normal_error: Some(errors.0),
+            tangential_error: Some(errors.1),
+            raw,
+        })
+    }
+
+    #[test]
+    fn a_finite_body_is_scored_against_the_corrected_reference_with_its_raw_offset_beside() {
+        let rungs = [
+            rung("fem-axisym", (2e-4, 1e-3), Some((Some(5e-3), Some(3e-2)))),
+            rung("mdr", (1e-6, 1e-7), None),
+        ];
+        let document = document("case", 10, 1, &rungs).unwrap();
+        let section = &document.sections[0];
+        let row = |k: usize| -> Vec<&str> {
+            section.tables[0].rows[k]
+                .iter()
+                .map(|c| c.text.as_str())
+                .collect()
+        };
+        assert_eq!(
+            row(0)[4..],
+            [
+                "2.000e-4",
+                "1.000e-3",
+                CORRECTED_REFERENCE,
+                "5.000e-3",
+                "3.000e-2"
+            ]
+        );
+        assert_eq!(row(1)[6..], ["hertz, mdr", "—", "—"]);
+        let series = |id: &str| -> Vec<String> {
+            let figure = section.figures.iter().find(|f| f.id == id).unwrap();
+            figure.data.rows.iter().map(|r| r[0].text.clone()).collect()
+        };
+        assert_eq!(
+            series("normal-front"),
+            [
+                "fem-axisym vs mdr-domain",
+                "fem-axisym raw vs hertz",
+                "mdr vs hertz"
+            ]
+        );
+        assert_eq!(
+            series("tangential-front"),
+            ["fem-axisym vs mdr-domain", "fem-axisym raw vs mdr", "mdr vs mdr"]
+        );
+    }
+}

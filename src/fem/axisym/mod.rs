@@ -15,7 +15,8 @@ pub mod compliance;
 pub mod model;
 pub mod output;
 pub mod output_n1;
-pub mod pressure;
+/// The profile fits moved to [`crate::fit::profile`], shared with the decks' readback.
+pub use crate::fit::profile as pressure;
 pub mod reference;
 pub mod solver;
 pub mod tangential;

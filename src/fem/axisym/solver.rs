@@ -17,7 +17,6 @@ use super::output;
 use super::output_n1::{self, TangentialState};
 use super::pressure::{self, Profile};
 use super::tangential::{self, Mode};
-use crate::case::limits::MERIDIAN_POLE;
 use crate::domain::Grip;
 use crate::driver;
 use crate::fem::element::tri6::{Integration, Lame};
@@ -25,6 +24,7 @@ use crate::fem::factor::Ordering;
 use crate::fem::mesh::meridian::Mesh;
 use crate::fem::mesh::msh;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -269,6 +269,10 @@ impl Run {
         let shift = [tangential::shift(model.reduction, step.delta_t - self.previous_t)];
         self.previous_t = step.delta_t;
         let shift: &[f64] = if self.mode == Mode::Solved { &shift } else { &[] };
+        if step.delta_n <= 0.0 {
+            // The walker's rule (crate::driver): an open gap forgets the contact's history.
+            self.contact.release();
+        }
         let cost = self
             .contact
             .advance(approach, shift)

@@ -14,7 +14,7 @@
 //! p0: the smooth even fit a₀ + a₁ (r/c)² + a₂ (r/c)⁴ to the nodal pressures on 0 < r ≤ c/2, as in
 //! the axisymmetric model ([`crate::fem::axisym::pressure`]): a fit, not the pole node's value.
 
-use crate::fem::axisym::pressure::peak_pressure;
+use crate::fit::profile::peak_pressure;
 
 /// c and p0 of one contact state.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -1,6 +1,8 @@
 //! Least-squares fits shared by the solvers' post-processing (contact edges) and the
 //! convergence tests (observed rates).
 
+pub mod profile;
+
 /// A straight line y = ȳ + slope (x − x̄) fitted by least squares.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Line {
