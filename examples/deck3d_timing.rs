@@ -1,5 +1,5 @@
 //! Speed of the dolfinx 3D deck `fenicsx-3d` on 1 and 2 MPI ranks, side by side with the in-crate
-//! `fem-3d` on the same mesh (both mesh the case's body with `fem::solid3d::meshing` at the same
+//! `fem-3d` on the same mesh (both mesh the case's body with `external::solid_geo` at the same
 //! pole size, default c_max/5; gmsh is deterministic, so the meshes are the same), in one run:
 //! one warm-up run each, then REPEATS timed runs (default 3), interleaved; medians of the wall
 //! time of the set-up (mesh, assembly, factorisation, condensation) and of the path, the path's
