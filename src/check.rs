@@ -189,7 +189,7 @@ impl CheckSpec {
             Reference::Value { .. } => None,
         };
         if let (Some(field), Some(reference), Where::Position(position)) =
-            (self.quantity.profile(), reference_history, self.at)
+            (crate::profile::Field::of(self.quantity), reference_history, self.at)
         {
             return self.evaluate_profile(subject, reference, position, field);
         }

@@ -90,15 +90,6 @@ impl Quantity {
         }
     }
 
-    /// The field a profile quantity compares; `None` for a step value.
-    pub fn profile(self) -> Option<crate::profile::Field> {
-        match self {
-            Quantity::PressureProfile => Some(crate::profile::Field::Pressure),
-            Quantity::TractionProfile => Some(crate::profile::Field::Traction),
-            _ => None,
-        }
-    }
-
     /// The SI unit.
     pub fn unit(self) -> &'static str {
         match self {

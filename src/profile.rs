@@ -7,7 +7,7 @@
 //! is flat) and the contact edge (where p ~ √(c − r) is resolved only to one element, so a
 //! difference of a fraction of an element in c reads as a large local difference).
 
-use crate::history::{History, SurfaceField};
+use crate::history::{History, Quantity, SurfaceField};
 
 /// Inner and outer radius of the compared annulus, in units of the reference's contact radius.
 pub const ANNULUS: (f64, f64) = (0.1, 0.9);
@@ -22,6 +22,17 @@ pub enum Field {
     Pressure,
     /// The tangential traction's component q_x along the shift.
     Traction,
+}
+
+impl Field {
+    /// The field a profile quantity compares; `None` for a step value.
+    pub fn of(quantity: Quantity) -> Option<Self> {
+        match quantity {
+            Quantity::PressureProfile => Some(Field::Pressure),
+            Quantity::TractionProfile => Some(Field::Traction),
+            _ => None,
+        }
+    }
 }
 
 /// The comparison of one profile with its reference.

@@ -50,7 +50,7 @@ impl Validator<'_> {
                 )
             })?,
         };
-        if quantity.profile().is_some() {
+        if crate::profile::Field::of(quantity).is_some() {
             self.profile_rules(raw, field, quantity, at, &reference, measure)?;
         }
         let tolerance = match (&raw.tolerance, raw.informational) {
