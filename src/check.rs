@@ -188,9 +188,11 @@ impl CheckSpec {
             },
             Reference::Value { .. } => None,
         };
-        if let (Some(field), Some(reference), Where::Position(position)) =
-            (crate::profile::Field::of(self.quantity), reference_history, self.at)
-        {
+        if let (Some(field), Some(reference), Where::Position(position)) = (
+            crate::profile::Field::of(self.quantity),
+            reference_history,
+            self.at,
+        ) {
             return self.evaluate_profile(subject, reference, position, field);
         }
         let mut pairs = Vec::new();
