@@ -14,7 +14,7 @@
 //! contact on the increment that closes the gap is its own (the DEM laws start at Q = 0; the
 //! surface models load the new contact with the increment's shift).
 
-use crate::history::StepResult;
+use crate::history::{History, Metadata, StepResult};
 use crate::path::Step;
 use crate::scene::Scene;
 use crate::solver::SolveError;
@@ -94,6 +94,19 @@ pub fn never_closed(scene: &Scene, peak_pressure: bool) -> Option<Vec<StepResult
             .iter()
             .map(|step| open_row(step, peak_pressure))
             .collect()
+    })
+}
+
+/// The whole answer of a surface solver on a path that never closes the gap: the rows of
+/// [`never_closed`] (with peak pressures), no fields, and [`NEVER_CLOSES`] added to `metadata`'s
+/// warnings; `None` when the path closes the gap somewhere.
+pub fn never_closed_history(scene: &Scene, mut metadata: Metadata) -> Option<History> {
+    let steps = never_closed(scene, true)?;
+    metadata.warnings.push(NEVER_CLOSES.into());
+    Some(History {
+        metadata,
+        steps,
+        fields: Vec::new(),
     })
 }
 

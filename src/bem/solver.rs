@@ -73,17 +73,11 @@ impl Bem {
             )));
         }
         let c_max = scene.max_contact_radius();
-        let mut metadata = self.metadata(scene);
-        if let Some(steps) = driver::never_closed(scene, true) {
+        if let Some(history) = driver::never_closed_history(scene, self.metadata(scene)) {
             // Nothing to discretise.
-            metadata.warnings.push(driver::NEVER_CLOSES.into());
-            let history = History {
-                metadata,
-                steps,
-                fields: Vec::new(),
-            };
             return Ok((history, Vec::new()));
         }
+        let mut metadata = self.metadata(scene);
         let grid = Grid::covering(self.grid, self.window * c_max);
         let mut walker = Walker {
             scene,

@@ -77,11 +77,9 @@ fn grid(mesh: &Mesh, u: &[[f64; 2]], stress: &[[f64; 4]]) -> Grid {
         let d = [s[0] - s[1], s[1] - s[2], s[2] - s[0]];
         (0.5 * d.iter().map(|v| v * v).sum::<f64>() + 3.0 * s[3] * s[3]).sqrt()
     };
-    Grid {
-        points: mesh.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect(),
-        cell_type: CellType::QuadraticTriangle,
-        cells: mesh.triangles.iter().map(|t| t.to_vec()).collect(),
-        point_data: vec![
+    meridian_grid(
+        mesh,
+        vec![
             PointData {
                 name: "displacement".into(),
                 components: 3,
@@ -93,5 +91,15 @@ fn grid(mesh: &Mesh, u: &[[f64; 2]], stress: &[[f64; 4]]) -> Grid {
             scalar("stress_rz", &|s| s[3]),
             scalar("von_mises", &von_mises),
         ],
+    )
+}
+
+/// A meridian mesh as a VTU grid (x = r, y = z, quadratic triangles) carrying `point_data`.
+pub fn meridian_grid(mesh: &Mesh, point_data: Vec<PointData>) -> Grid {
+    Grid {
+        points: mesh.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect(),
+        cell_type: CellType::QuadraticTriangle,
+        cells: mesh.triangles.iter().map(|t| t.to_vec()).collect(),
+        point_data,
     }
 }

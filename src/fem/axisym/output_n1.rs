@@ -94,12 +94,9 @@ pub fn write(model: &Model, state: &TangentialState, dir: &Path, stem: &str) -> 
 
 /// The meridian grid (x = r, y = z) with the amplitudes (A, B, W) and (U, V, W).
 fn meridian(body: &BodyModel, amplitudes: &[[f64; 3]]) -> Grid {
-    let mesh = &body.mesh;
-    Grid {
-        points: mesh.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect(),
-        cell_type: CellType::QuadraticTriangle,
-        cells: mesh.triangles.iter().map(|t| t.to_vec()).collect(),
-        point_data: vec![
+    output::meridian_grid(
+        &body.mesh,
+        vec![
             PointData {
                 name: "n1_ABW".into(),
                 components: 3,
@@ -114,7 +111,7 @@ fn meridian(body: &BodyModel, amplitudes: &[[f64; 3]]) -> Grid {
                     .collect(),
             },
         ],
-    }
+    )
 }
 
 /// Body 1's candidate surface swept around the axis: points (r cos θ, r sin θ, z) at the

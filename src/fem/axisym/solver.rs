@@ -190,18 +190,13 @@ impl Solver for FemAxisym {
                 "two flats have no Hertz contact".into(),
             ));
         }
-        if let Some(steps) = driver::never_closed(scene, true) {
+        let metadata = Metadata {
+            model: "axisymmetric finite elements, frictionless".into(),
+            ..Metadata::default()
+        };
+        if let Some(history) = driver::never_closed_history(scene, metadata) {
             // Nothing to size the mesh by and nothing to solve: the walker's rule.
-            let metadata = Metadata {
-                model: "axisymmetric finite elements, frictionless".into(),
-                warnings: vec![driver::NEVER_CLOSES.into()],
-                ..Metadata::default()
-            };
-            return Ok(History {
-                metadata,
-                steps,
-                fields: Vec::new(),
-            });
+            return Ok(history);
         }
         let settings = self.settings(scene)?;
         let model = match &self.mesh_file {

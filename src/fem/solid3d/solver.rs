@@ -183,18 +183,13 @@ impl Solver for FemSolid3d {
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         Self::applicability(scene)?;
-        if let Some(steps) = driver::never_closed(scene, true) {
+        let metadata = Metadata {
+            model: "3D finite elements".into(),
+            ..Metadata::default()
+        };
+        if let Some(history) = driver::never_closed_history(scene, metadata) {
             // Nothing to size the mesh by and nothing to solve: the walker's rule.
-            let metadata = Metadata {
-                model: "3D finite elements".into(),
-                warnings: vec![driver::NEVER_CLOSES.into()],
-                ..Metadata::default()
-            };
-            return Ok(History {
-                metadata,
-                steps,
-                fields: Vec::new(),
-            });
+            return Ok(history);
         }
         let h = self.pole_size(scene)?;
         let (model, candidate_radius, mesh_s) = Self::model(scene, h)?;
