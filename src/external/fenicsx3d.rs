@@ -16,9 +16,8 @@ use super::deck::{self, Deck, DeckInput, RunDir, PATH_FILE};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
-use super::record::{record_run, RunFacts};
-use super::solid_geo::{self, SolidMeshFiles};
-use super::solid_geo::{self as meshing, Zones};
+use super::record::{record_run, RunFacts, FINITE_BODY};
+use super::solid_geo::{self, SolidMeshFiles, Zones};
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
@@ -160,7 +159,7 @@ impl Solid3dDeck {
         let c_max = scene.max_contact_radius();
         let zones = Zones::new(c_max, resolution);
         let r = scene.pair.body1.radius;
-        let geometry = meshing::geometry(r, scene.domain.height(r), resolution, zones);
+        let geometry = solid_geo::geometry(r, scene.domain.height(r), resolution, zones);
         let mesh = solid_geo::mesh(&geometry, dir.path(), "body", toolchain)?;
         let input = DeckInput {
             scene: scene.name.clone(),
@@ -381,11 +380,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
             run.resolution * 1e6,
             scene.max_contact_radius() / run.resolution
         ),
-        warnings: vec![
-            "finite body, not a half-space: P, c, p0 and Q differ from Hertz and Mindlin–Deresiewicz \
-             by the domain's compliance, which mdr-domain computes (docs/finite-body.md)"
-                .into(),
-        ],
+        warnings: vec![FINITE_BODY.into()],
         ..Metadata::default()
     };
     if plan.tangential {

@@ -97,6 +97,10 @@ pub fn history(deck: &impl Deck, scene: &Scene, version: &str, plan: &Plan, run:
 }
 
 /// How the history was obtained.
+/// The warning every deck's history carries: a finite body, not Hertz's half-space.
+pub const FINITE_BODY: &str = "finite body, not a half-space: P, c, p0 and Q differ from Hertz and \
+     Mindlin–Deresiewicz by the domain's compliance, which mdr-domain computes (docs/finite-body.md)";
+
 fn metadata(
     deck: &impl Deck,
     scene: &Scene,
@@ -126,11 +130,7 @@ fn metadata(
             scene.max_contact_radius() / mesh.resolution,
             mesh.triangles
         ),
-        warnings: vec![
-            "finite body, not a half-space: P, c, p0 and Q differ from Hertz and Mindlin–Deresiewicz \
-             by the domain's compliance, which mdr-domain computes (docs/finite-body.md)"
-                .into(),
-        ],
+        warnings: vec![FINITE_BODY.into()],
         ..Metadata::default()
     };
     if plan.tangential {
