@@ -249,7 +249,7 @@ fn transverse_traction_and_stick_zone_at_position_five_against_the_bem() {
 }
 
 /// Q on Cattaneo's shift (δn = 17 µm, δt 0 → 5 µm, 10 increments) against mdr-domain under
-/// refinement of the pole size, c_max/4, /6, /10. Heavy (c/10: 63 000 DOFs, a minute):
+/// refinement of the pole size, c_max/4, /6, /10, /14. Heavy (c/14: 2.5 GB, about a minute):
 /// `cargo test --release --test fem3d_friction -- --ignored --nocapture`.
 #[test]
 #[ignore]
@@ -262,7 +262,7 @@ fn tangential_force_converges_under_refinement() {
         spherecontact::path::LoadingPath::try_new(scene.path.positions().to_vec(), vec![2, 10]).unwrap();
     let reference = common::solve("mdr-domain", &scene);
     let peak = reference.peak(spherecontact::history::Quantity::TangentialForce);
-    let errors: Vec<f64> = [4.0, 6.0, 10.0]
+    let errors: Vec<f64> = [4.0, 6.0, 10.0, 14.0]
         .into_iter()
         .map(|divisions| {
             let history = fem3d(&scene, divisions);
@@ -280,7 +280,8 @@ fn tangential_force_converges_under_refinement() {
         })
         .collect();
     // The error falls at every refinement, towards the reference's own first-order remainder
-    // (about 1.1e-3 of the peak, which fem-axisym also leaves at c_max/40).
-    assert!(errors[1] < errors[0] && errors[2] < errors[1], "{errors:?}");
+    // (about 1.1e-3 of the peak, which fem-axisym also leaves at c_max/40): measured 0.52 %,
+    // 0.19 %, 0.10 %, 0.096 % at c_max/4, /6, /10, /14 with the corner multipliers.
+    assert!(errors.windows(2).all(|e| e[1] < e[0]), "{errors:?}");
     assert!(errors[2] < 3e-3, "{errors:?}");
 }
