@@ -87,19 +87,12 @@ impl Surface3 {
         if points.len() < 3 {
             return Measures3::default();
         }
-        let count = points.len() as f64;
-        let (mean_x, mean_y) = points
-            .iter()
-            .fold((0.0, 0.0), |(sx, sy), (x, y)| (sx + x / count, sy + y / count));
-        let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(sxy, sxx), (x, y)| {
-            (
-                sxy + (x - mean_x) * (y - mean_y),
-                sxx + (x - mean_x) * (x - mean_x),
-            )
-        });
-        let slope = sxy / sxx;
-        let a = mean_y - slope * mean_x;
-        if !(slope < 0.0 && a > 0.0 && sxx > 0.0) {
+        // p² = a − b r²: the shared least-squares line of p² against r² ([`crate::fit::Line`]).
+        let Some(line) = crate::fit::Line::fit(&points) else {
+            return Measures3::default();
+        };
+        let (slope, a) = (line.slope, line.mean_y - line.slope * line.mean_x);
+        if !(slope < 0.0 && a > 0.0) {
             return Measures3::default();
         }
         Measures3 {

@@ -50,9 +50,10 @@ use crate::domain::Grip as DomainGrip;
 use crate::driver;
 use crate::external::toolchain::Toolchain;
 use crate::fem::element::tri6::Lame;
+use crate::fem::pole::{self, PoleSized};
 use crate::history::{History, Metadata, StepResult};
 use crate::limits::SOLID_POLE;
-use crate::resolution::{self, ResolutionError};
+use crate::resolution::{PoleLimits, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -160,6 +161,26 @@ fn grip(scene: &Scene) -> Grip {
     }
 }
 
+impl PoleSized for FemSolid3d {
+    const LIMITS: PoleLimits = SOLID_POLE;
+
+    fn sized(&self, h: f64) -> Self {
+        let pole_size = Some(h);
+        FemSolid3d {
+            pole_size,
+            ..self.clone()
+        }
+    }
+
+    fn writing_to(&self, dir: &std::path::Path) -> Self {
+        let vtu_dir = Some(dir.to_path_buf());
+        FemSolid3d {
+            vtu_dir,
+            ..self.clone()
+        }
+    }
+}
+
 impl Solver for FemSolid3d {
     fn name(&self) -> &'static str {
         "fem-3d"
@@ -170,33 +191,17 @@ impl Solver for FemSolid3d {
     }
 
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
-        Some(Box::new(FemSolid3d {
-            vtu_dir: Some(dir.to_path_buf()),
-            ..self.clone()
-        }))
+        pole::writing_fields_to(self, dir)
+    }
+
+    /// A pole element size: `c/N` or a length, within [`SOLID_POLE`].
+    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
+        pole::at_resolution(self, scene, value)
     }
 
     /// Pole sizes c_max/4 … c_max/14.
-    /// A pole element size: `c/N` or a length, within [`SOLID_POLE`].
-    fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
-        let h = resolution::pole_size(self.name(), scene, value, SOLID_POLE)?;
-        Ok(Box::new(FemSolid3d {
-            pole_size: Some(h),
-            ..self.clone()
-        }))
-    }
-
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
-        [4.0, 6.0, 10.0, 14.0]
-            .into_iter()
-            .map(|divisions| {
-                let rung = FemSolid3d {
-                    pole_size: Some(scene.max_contact_radius() / divisions),
-                    ..self.clone()
-                };
-                Box::new(rung) as Box<dyn Solver>
-            })
-            .collect()
+        pole::ladder(self, scene, &[4.0, 6.0, 10.0, 14.0])
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
