@@ -108,6 +108,19 @@ fn q_along_the_paper_path_converges_and_meets_the_finite_body_reference() {
 }
 
 #[test]
+fn without_friction_q_is_zero_exactly() {
+    let mut scene = cattaneo();
+    scene.friction = 0.0;
+    let h = run(
+        &FemAxisym::with_pole_size(scene.max_contact_radius() / 10.0),
+        &scene,
+    )
+    .unwrap();
+    assert!(h.steps.iter().all(|r| r.tangential_force == Some(0.0)));
+    assert_eq!(h.metadata.extra["fourier_modes"], serde_json::json!([0]));
+}
+
+#[test]
 fn dissimilar_bodies_leave_the_tangential_columns_empty_with_the_reason() {
     // Aluminium 100 mm on steel 50 mm (Dundurs β ≠ 0): the normal and tangential problems
     // couple, which the uncoupled n = 1 model does not capture; the normal problem (both
