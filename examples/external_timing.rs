@@ -10,6 +10,7 @@ use std::path::Path;
 use spherecontact::case::Case;
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
+use spherecontact::external::geo::MeshFiles;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
 use spherecontact::history::History;
@@ -113,7 +114,7 @@ fn main() {
     }
 }
 
-fn boxed<D: Deck + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
+fn boxed<D: Deck<Mesh = MeshFiles> + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
     let mut solver = AxisymSolver::new(deck);
     solver.options.resolution = Some(h);
     Box::new(solver)

@@ -4,10 +4,10 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use super::geo::MeshFiles;
-use super::process::{Ending, Job};
+use super::process::{Ending, Job, Run};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
+use crate::solver::SolveError;
 
 /// The numbers a deck template is filled with: mm, N, MPa (the decks' units). The computed
 /// steps go into a separate file ([`PATH_FILE`]): a path has more steps than FreeFEM accepts in
@@ -137,8 +137,11 @@ pub trait Deck: Send + Sync + Clone {
     fn template(&self) -> &'static str;
     /// The deck's file name in the run directory.
     fn file_name(&self) -> &'static str;
-    /// The mesh file it reads.
-    fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path;
+    /// The meshes gmsh writes for it (the meridian's [`MeshFiles`], the solid's
+    /// [`super::solid_geo::SolidMeshFiles`]).
+    type Mesh;
+    /// The mesh file it reads, of those.
+    fn mesh_file<'a>(&self, mesh: &'a Self::Mesh) -> &'a Path;
     /// The job that runs the deck file `deck` in the run directory.
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job;
     /// What an exit code of this program means.
@@ -148,6 +151,64 @@ pub trait Deck: Send + Sync + Clone {
 /// The reason a finished run failed, in words, or `None` if it succeeded.
 pub fn failure(deck: &impl Deck, ending: &Ending, timeout: Duration) -> Option<String> {
     ending.failure(deck.tool().name(), timeout, |code| deck.exit_code_meaning(code))
+}
+
+/// How long a deck may run when its options set no time limit: start-up (imports, form
+/// compilation), set-up (assembly, factorisation, condensation), and a time per computed step.
+#[derive(Clone, Copy, Debug)]
+pub struct TimeBudget {
+    /// Start-up.
+    pub start: Duration,
+    /// Set-up.
+    pub setup: Duration,
+    /// Per computed step.
+    pub per_step: Duration,
+}
+
+impl TimeBudget {
+    /// The limit for `steps` computed steps.
+    pub fn limit(&self, steps: usize) -> Duration {
+        self.start + self.setup + self.per_step * u32::try_from(steps).unwrap_or(u32::MAX)
+    }
+}
+
+/// Writes the filled deck `text` and the list of `steps` into `dir`, runs the deck there within
+/// `timeout`, and returns the finished run; a run that failed (exit code, signal, timeout) is an
+/// error with the reason and the last lines of its log.
+pub fn launch(
+    deck: &impl Deck,
+    toolchain: &Toolchain,
+    dir: &Path,
+    text: &str,
+    steps: &[ComputedStep],
+    timeout: Duration,
+) -> Result<Run, SolveError> {
+    let write = |name: &str, text: &str| {
+        std::fs::write(dir.join(name), text).map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
+    };
+    write(deck.file_name(), text)?;
+    write(PATH_FILE, &path_file(steps))?;
+    let job = deck.job(toolchain, &dir.join(deck.file_name()), timeout);
+    let run = super::process::run(&job, dir, "deck")
+        .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
+    match failure(deck, &run.ending, timeout) {
+        Some(why) => Err(SolveError::Failed(format!("{why}; last output:\n{}", run.tail(12)))),
+        None => Ok(run),
+    }
+}
+
+/// Runs `work` in a fresh run directory named after `prefix`: removed when `work` succeeds,
+/// kept when it fails (its path appended to the error) for the deck, mesh and logs.
+pub fn in_run_dir<T>(prefix: &str, work: impl FnOnce(&RunDir) -> Result<T, SolveError>) -> Result<T, SolveError> {
+    let mut dir =
+        RunDir::new(prefix).map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
+    match work(&dir) {
+        Err(SolveError::Failed(message)) => Err(SolveError::Failed(format!(
+            "{message} (deck, mesh, stdout and stderr kept in {})",
+            dir.keep().display()
+        ))),
+        other => other,
+    }
 }
 
 /// A run directory whose files are removed on success and kept on failure.

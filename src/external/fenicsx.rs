@@ -39,6 +39,8 @@ impl Deck for Fenicsx {
         "deck.py"
     }
 
+    type Mesh = MeshFiles;
+
     fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
         &mesh.msh41
     }
