@@ -41,6 +41,7 @@ fn main() {
             Domain {
                 kind: DomainKind::Cap { height: 0.02 },
                 grip: Grip::Rigid,
+                ..Domain::default()
             },
         ),
     ];

@@ -11,6 +11,7 @@
 //! kind = "cap"        # "hemisphere" (default) or "cap"
 //! height = 0.02       # cap only: the body cut this far from the pole [m]
 //! grip = "rigid"      # "rigid" (default) or "axial"
+//! mesher = "gmsh"     # "in-crate" (default) or "gmsh"
 //! ```
 //!
 //! - `hemisphere`: each sphere's half on the contact side, held on its flat equatorial face;
@@ -22,6 +23,15 @@
 //! - `axial`: the far face follows the approach along the axis and is free radially (the
 //!   loading of the original external decks); frictionless scenes only, since a face free to
 //!   slide cannot be shifted.
+//!
+//! - `mesher`: who meshes the meridian of the axisymmetric FEM solvers. The external decks always
+//!   mesh with gmsh from the `.geo` that `spherecontact mesh` writes (`src/external/geo.rs`);
+//!   `fem-axisym` by default generates its own graded mesh in-crate (no external tool, fast,
+//!   the same numbers on every machine). With `mesher = "gmsh"` it meshes the same `.geo` at its
+//!   pole size with the same gmsh, so that every axisymmetric FEM solver of the case — fem-axisym,
+//!   freefem-axisym, fenicsx-axisym — runs on one mesh, and their differences measure the solvers
+//!   alone. It then needs gmsh: without it, fem-axisym is unavailable (N/A with the reason), never
+//!   quietly run on its own mesh, which would change the numbers the case's checks compare.
 //!
 //! A flat body (R = ∞) is always the region within [`crate::fem::axisym::model::FLAT_DOMAIN`]
 //! contact radii of its pole, held on that arc with the case's grip.
@@ -69,6 +79,27 @@ impl Grip {
     }
 }
 
+/// Who meshes the meridian of the axisymmetric FEM solvers (the decks always use gmsh).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mesher {
+    /// fem-axisym generates its own graded mesh (`fem::mesh::meridian`).
+    #[default]
+    InCrate,
+    /// fem-axisym meshes the decks' `.geo` with gmsh: one mesh for every axisymmetric FEM solver.
+    Gmsh,
+}
+
+impl Mesher {
+    /// The name used in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mesher::InCrate => "in-crate",
+            Mesher::Gmsh => "gmsh",
+        }
+    }
+}
+
 /// The modelled finite body of a scene.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Domain {
@@ -76,14 +107,17 @@ pub struct Domain {
     pub kind: DomainKind,
     /// How its far face is held.
     pub grip: Grip,
+    /// Who meshes it for the axisymmetric FEM solvers.
+    pub mesher: Mesher,
 }
 
 impl Default for Domain {
-    /// The hemisphere, gripped rigidly.
+    /// The hemisphere, gripped rigidly, meshed in-crate by fem-axisym.
     fn default() -> Self {
         Self {
             kind: DomainKind::Hemisphere,
             grip: Grip::Rigid,
+            mesher: Mesher::InCrate,
         }
     }
 }

@@ -40,6 +40,7 @@ fn cap() -> Domain {
     Domain {
         kind: DomainKind::Cap { height: 0.02 },
         grip: Grip::Rigid,
+        ..Domain::default()
     }
 }
 

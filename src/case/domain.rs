@@ -2,12 +2,12 @@
 
 use super::raw::RawDomain;
 use super::{CaseError, Validator};
-use crate::domain::{Domain, DomainKind, Grip, MIN_CAP_HEIGHT};
+use crate::domain::{Domain, DomainKind, Grip, Mesher, MIN_CAP_HEIGHT};
 use crate::scene::Scene;
 
 impl Validator<'_> {
     /// The `[domain]` table: kind, cap height within [10 c_max, smallest finite radius], grip
-    /// (axial only where the tangential problem is void).
+    /// (axial only where the tangential problem is void), mesher.
     pub(super) fn domain(&self, raw: &RawDomain, scene: &Scene) -> Result<Domain, CaseError> {
         let c_max = scene.max_contact_radius();
         let kind = match (raw.kind.as_ref().map(|k| k.get_ref().as_str()), &raw.height) {
@@ -67,14 +67,25 @@ impl Validator<'_> {
                 ))
             }
         };
-        Ok(Domain { kind, grip })
+        let mesher = match raw.mesher.as_ref().map(|m| (m, m.get_ref().as_str())) {
+            None | Some((_, "in-crate")) => Mesher::InCrate,
+            Some((_, "gmsh")) => Mesher::Gmsh,
+            Some((at, other)) => {
+                return Err(self.error(
+                    at,
+                    "domain.mesher",
+                    format!("unknown mesher `{other}` (allowed: in-crate, gmsh)"),
+                ))
+            }
+        };
+        Ok(Domain { kind, grip, mesher })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use crate::case::Case;
-    use crate::domain::{DomainKind, Grip};
+    use crate::domain::{DomainKind, Grip, Mesher};
     use std::path::Path;
 
     /// The paper's spheres to δn = 17 µm (c_max = 0.922 mm), optionally sheared, with `domain`.
@@ -97,6 +108,9 @@ mod tests {
     fn the_default_is_the_hemisphere_gripped_rigidly() {
         let d = case("", true).unwrap().scene.domain;
         assert_eq!((d.kind, d.grip), (DomainKind::Hemisphere, Grip::Rigid));
+        assert_eq!(d.mesher, Mesher::InCrate);
+        let d = case("[domain]\nmesher = \"gmsh\"", true).unwrap().scene.domain;
+        assert_eq!(d.mesher, Mesher::Gmsh);
         let d = case("[domain]\nkind = \"cap\"\nheight = 0.02\ngrip = \"axial\"", false)
             .unwrap()
             .scene
@@ -117,6 +131,8 @@ mod tests {
         assert!(message("[domain]\nheight = 0.02", false).contains("cap\" only"));
         assert!(message("[domain]\nkind = \"cube\"", false).contains("hemisphere, cap"));
         assert!(message("[domain]\ngrip = \"glue\"", false).contains("rigid, axial"));
+        let m = message("[domain]\nmesher = \"netgen\"", false);
+        assert!(m.contains("domain.mesher") && m.contains("in-crate, gmsh"), "{m}");
         let m = message("[domain]\ngrip = \"axial\"", true);
         assert!(m.contains("domain.grip") && m.contains("friction = 0"), "{m}");
         let e = case("[domain]\nshape = 1", false).unwrap_err();

@@ -57,6 +57,7 @@ pub struct RawDomain {
     pub kind: Option<Spanned<String>>,
     pub height: Option<Spanned<f64>>,
     pub grip: Option<Spanned<String>>,
+    pub mesher: Option<Spanned<String>>,
 }
 
 /// A body as written.

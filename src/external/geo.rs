@@ -301,6 +301,7 @@ mod tests {
         scene.domain = Domain {
             kind: DomainKind::Cap { height: 0.02 },
             grip: Grip::Axial,
+            ..Domain::default()
         };
         let geo = geo_for_scene(&scene, h).unwrap();
         // The cap's rim at √(H(2R − H)) = 0.06 m on the cut face y = H, its axis point on the face.

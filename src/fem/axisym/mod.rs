@@ -3,6 +3,7 @@
 //! | file | concept |
 //! |---|---|
 //! | [`model`] | the scene's reduction (symmetric or two bodies), its discrete model and its contact (the shared engine, [`crate::contact`]) |
+//! | [`meshing`] | the model's mesh: generated in-crate, read from a file, or gmsh's from the decks' `.geo` |
 //! | [`compliance`] | the modelled domain's far-field compliances relative to the half-space |
 //! | [`pressure`] | nodal pressure, p0 and c from the contact forces |
 //! | [`output`] | displacement and stress fields, VTU files |
@@ -12,6 +13,7 @@
 //! | [`reference`] | `mdr-domain`: MDR in series with the domain's compliances, the finite-body reference |
 
 pub mod compliance;
+pub mod meshing;
 pub mod model;
 pub mod output;
 pub mod output_n1;

@@ -12,17 +12,16 @@ use std::time::Instant;
 
 use serde_json::json;
 
-use super::model::{AxisymContact, Model, Reduction, Settings};
+use super::meshing::{self, Origin};
+use super::model::{AxisymContact, Model, Settings};
 use super::output;
 use super::output_n1::{self, TangentialState};
 use super::pressure::{self, Profile};
 use super::tangential::{self, Mode};
-use crate::domain::Grip;
 use crate::driver;
-use crate::fem::element::tri6::{Integration, Lame};
+use crate::external::toolchain::Toolchain;
+use crate::fem::element::tri6::Integration;
 use crate::fem::factor::Ordering;
-use crate::fem::mesh::meridian::Mesh;
-use crate::fem::mesh::msh;
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{self, ResolutionError};
@@ -57,6 +56,9 @@ pub struct FemAxisym {
     /// A gmsh MSH 4.1 mesh of the sphere to use instead of the generated one (symmetric
     /// reduction only; see [`crate::fem::mesh::msh`] for its conventions).
     pub mesh_file: Option<PathBuf>,
+    /// The external tools, for a case whose `[domain]` asks for `mesher = "gmsh"`
+    /// ([`super::meshing`]).
+    pub toolchain: Toolchain,
     /// Growth of the element size away from the contact's fine zone (`None`:
     /// [`super::model::GROWTH`]); smaller refines the far field, which the finite body's
     /// compliance depends on.
@@ -102,47 +104,6 @@ impl FemAxisym {
             growth: self.growth.unwrap_or(super::model::GROWTH),
         })
     }
-}
-
-impl FemAxisym {
-    /// The symmetric model on the sphere mesh in `file`.
-    fn read_model(
-        &self,
-        scene: &Scene,
-        file: &std::path::Path,
-        settings: &Settings,
-    ) -> Result<Model, String> {
-        if Reduction::of(scene) != Reduction::Symmetric {
-            return Err("a mesh file is supported for identical spheres (one body) only".into());
-        }
-        let mesh = msh::read(file).map_err(|e| e.to_string())?;
-        matches_domain(&mesh, scene, file)?;
-        let lame = Lame::of(&scene.pair.body1.material);
-        Model::from_meshes(Reduction::Symmetric, vec![mesh], vec![lame], settings)
-    }
-}
-
-/// Refuses a mesh file made for another grip or another cut than the scene's domain.
-fn matches_domain(mesh: &Mesh, scene: &Scene, file: &std::path::Path) -> Result<(), String> {
-    let grip = scene.domain.grip;
-    if mesh.grip != Some(grip) {
-        let declared = mesh.grip.map_or("none", Grip::name);
-        return Err(format!(
-            "{}: the mesh is made for the {declared} grip (far-face tag) but the case asks for the {} grip",
-            file.display(),
-            grip.name()
-        ));
-    }
-    let height = scene.domain.height(scene.pair.body1.radius);
-    let far_height = mesh.far.iter().map(|&n| mesh.nodes[n][1]).fold(0.0, f64::max);
-    // The cut face is flat at z = H: its nodes lie there to the file's rounding.
-    if (far_height - height).abs() > 1e-6 * height {
-        return Err(format!(
-            "{}: the far face lies {far_height:e} m from the pole but the case's domain is cut at {height:e} m",
-            file.display()
-        ));
-    }
-    Ok(())
 }
 
 impl Solver for FemAxisym {
@@ -199,11 +160,7 @@ impl Solver for FemAxisym {
             return Ok(history);
         }
         let settings = self.settings(scene)?;
-        let model = match &self.mesh_file {
-            None => Model::generate(scene, &settings),
-            Some(file) => self.read_model(scene, file, &settings),
-        }
-        .map_err(SolveError::Failed)?;
+        let (model, origin) = meshing::model(scene, &settings, self.mesh_file.as_deref(), &self.toolchain)?;
         let mode = Mode::of(scene);
         let t = Instant::now();
         let model = if mode == Mode::Solved {
@@ -218,7 +175,7 @@ impl Solver for FemAxisym {
             run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
         }
         let contact_time = t.elapsed().as_secs_f64();
-        Ok(run.finish(&model, &settings, [shear_time, contact_time]))
+        Ok(run.finish(&model, &settings, &origin, [shear_time, contact_time]))
     }
 }
 
@@ -403,7 +360,13 @@ impl Run {
         }
     }
 
-    fn finish(self, model: &Model, settings: &Settings, [shear_time, contact_time]: [f64; 2]) -> History {
+    fn finish(
+        self,
+        model: &Model,
+        settings: &Settings,
+        origin: &Origin,
+        [shear_time, contact_time]: [f64; 2],
+    ) -> History {
         let mut warnings = Vec::new(); // the scene's own warnings are reported by verify
         if let (Some(first), Some(last)) = (self.unresolved.first(), self.unresolved.last()) {
             warnings.push(format!(
@@ -443,6 +406,8 @@ impl Run {
                 }),
             ),
             ("domain", json!(settings.domain)),
+            ("mesh", json!(origin.description)),
+            ("gmsh_s", json!(origin.gmsh_s)),
             ("dofs", json!(dofs)),
             (
                 "nodes",
@@ -509,10 +474,11 @@ impl Run {
                     super::model::FLAT_DOMAIN
                 ),
                 resolution: format!(
-                    "6-node triangles, pole size {:.3e} m, {} DOFs, {} candidate contact nodes",
+                    "6-node triangles, pole size {:.3e} m, {} DOFs, {} candidate contact nodes; mesh {}",
                     settings.pole_size,
                     dofs,
-                    model.radii.len()
+                    model.radii.len(),
+                    origin.description
                 ),
                 warnings,
                 extra,

@@ -220,6 +220,7 @@ fn fem_normal_force_on_caps(run: &CaseRun) -> Claim {
             height: PAPER_CAP_HEIGHT,
         },
         grip: Grip::Rigid,
+        ..Domain::default()
     };
     let solve =
         |name: &str| registry::by_name(name).and_then(|s| crate::solver::run(s.as_ref(), &scene).ok());
