@@ -125,6 +125,16 @@ pub fn single_threaded() -> Vec<(String, String)> {
         .to_vec()
 }
 
+/// `python3 deck` (the toolchain's Python, one BLAS thread): how a dolfinx deck runs serially.
+pub fn python_job(toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
+    Job {
+        program: toolchain.python.clone(),
+        args: vec![deck.display().to_string()],
+        env: single_threaded(),
+        timeout,
+    }
+}
+
 /// One external deck: its template, its program, and the meaning of its exit codes.
 pub trait Deck: Send + Sync + Clone {
     /// The solver name (`freefem-axisym`, …).
@@ -172,6 +182,16 @@ impl TimeBudget {
     }
 }
 
+/// Writes the filled deck `text` (as the deck's file name) and the list of `steps`
+/// ([`PATH_FILE`]) into `dir`.
+pub fn write_deck(deck: &impl Deck, dir: &Path, text: &str, steps: &[ComputedStep]) -> Result<(), SolveError> {
+    let write = |name: &str, text: &str| {
+        std::fs::write(dir.join(name), text).map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
+    };
+    write(deck.file_name(), text)?;
+    write(PATH_FILE, &path_file(steps))
+}
+
 /// Writes the filled deck `text` and the list of `steps` into `dir`, runs the deck there within
 /// `timeout`, and returns the finished run; a run that failed (exit code, signal, timeout) is an
 /// error with the reason and the last lines of its log.
@@ -183,11 +203,7 @@ pub fn launch(
     steps: &[ComputedStep],
     timeout: Duration,
 ) -> Result<Run, SolveError> {
-    let write = |name: &str, text: &str| {
-        std::fs::write(dir.join(name), text).map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
-    };
-    write(deck.file_name(), text)?;
-    write(PATH_FILE, &path_file(steps))?;
+    write_deck(deck, dir, text, steps)?;
     let job = deck.job(toolchain, &dir.join(deck.file_name()), timeout);
     let run = super::process::run(&job, dir, "deck")
         .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;

@@ -47,12 +47,7 @@ impl Deck for Fenicsx {
 
     /// Serial, no `mpirun` (faster than 2 ranks on 2 cores; mpirun as root needs extra flags).
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
-        Job {
-            program: toolchain.python.clone(),
-            args: vec![deck.display().to_string()],
-            env: super::deck::single_threaded(),
-            timeout,
-        }
+        super::deck::python_job(toolchain, deck, timeout)
     }
 
     fn exit_code_meaning(&self, code: i32) -> &'static str {

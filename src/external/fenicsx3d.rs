@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use super::axisym::{deck_input, Options, Plan, KFAC};
-use super::deck::{self, Deck, RunDir, TimeBudget};
+use super::deck::{self, Deck, RunDir, TimeBudget, PATH_FILE};
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};
@@ -91,16 +91,11 @@ impl Deck for Fenicsx3d {
     /// `python3 deck3d.py` on one rank; `mpirun -np N python3 deck3d.py` on more, with the two
     /// variables OpenMPI needs to run as root, and `--oversubscribe` beyond the machine's cores.
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
+        if self.ranks <= 1 {
+            return deck::python_job(toolchain, deck, timeout);
+        }
         let python = toolchain.python.display().to_string();
         let deck = deck.display().to_string();
-        if self.ranks <= 1 {
-            return Job {
-                program: toolchain.python.clone(),
-                args: vec![deck],
-                env: deck::single_threaded(),
-                timeout,
-            };
-        }
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         let mut args = vec!["-np".to_owned(), self.ranks.to_string()];
         if usize::try_from(self.ranks).unwrap_or(usize::MAX) > cores {
@@ -146,10 +141,9 @@ struct Run3 {
     rows: Vec<DeckRow>,
     surfaces: Vec<Surface3>,
     triangles: Vec<[usize; 3]>,
-    mesh: SolidMeshFiles,
     resolution: f64,
-    solving_s: f64,
-    reading_s: f64,
+    /// Wall seconds of gmsh, the deck and the reading back.
+    wall_s: [f64; 3],
     timing: Vec<(String, f64)>,
 }
 
@@ -164,38 +158,94 @@ impl Solid3dDeck {
 
     /// Meshes, runs the deck and reads back, in `dir`.
     fn run_in(&self, scene: &Scene, plan: &Plan, resolution: f64, dir: &RunDir) -> Result<Run3, SolveError> {
+        let (text, mesh_s) = self.prepare(scene, plan, resolution, dir.path())?;
+        let timeout = self.options.timeout.unwrap_or(BUDGET.limit(plan.steps.len()));
         let toolchain = &self.options.toolchain;
+        let run = deck::launch(&self.deck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
+        let mut read = read_outputs(dir.path(), plan, resolution)?;
+        read.wall_s[0] = mesh_s;
+        read.wall_s[1] = run.wall_s;
+        Ok(read)
+    }
+
+    /// Meshes the body into `dir` (`body.geo`, `body.msh`): the filled deck's text and gmsh's
+    /// wall time [s].
+    fn prepare(&self, scene: &Scene, plan: &Plan, resolution: f64, dir: &Path) -> Result<(String, f64), SolveError> {
         let zones = Zones::new(scene.max_contact_radius(), resolution);
         let r = scene.pair.body1.radius;
         let geometry = solid_geo::geometry(r, scene.domain.height(r), resolution, zones);
-        let mesh = solid_geo::mesh(&geometry, dir.path(), "body", toolchain)?;
+        let mesh = solid_geo::mesh(&geometry, dir, "body", &self.options.toolchain)?;
         let max_iterations = self.options.max_iterations.unwrap_or(MAX_ITERATIONS);
         let text = self.options.deck_text.clone().unwrap_or_else(|| {
             deck::fill(TEMPLATE, &deck_input(&self.deck, scene, resolution, plan, &mesh, max_iterations))
         });
-        let timeout = self.options.timeout.unwrap_or(BUDGET.limit(plan.steps.len()));
-        let run = deck::launch(&self.deck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
-        let start = Instant::now();
-        let read = |name: &str| readback::read_output(dir.path(), name).map_err(SolveError::Failed);
-        let rows = readback::parse_steps(&read("steps.csv")?, &plan.steps).map_err(SolveError::Failed)?;
-        let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
-        let surfaces =
-            surface3d::parse_surface3(&read("surface.csv")?, &indices).map_err(SolveError::Failed)?;
-        check_consistency(&rows, &surfaces, resolution)?;
-        let nodes = surfaces.first().map_or(0, |s| s.nodes.len());
-        let triangles = surface3d::parse_triangles(&read("triangles.csv")?, nodes).map_err(SolveError::Failed)?;
-        let timing = read("timing.csv").map(|t| parse_phases(&t)).unwrap_or_default();
-        Ok(Run3 {
-            rows,
-            surfaces,
-            triangles,
-            mesh,
-            resolution,
-            solving_s: run.wall_s,
-            reading_s: start.elapsed().as_secs_f64(),
-            timing,
-        })
+        Ok((text, mesh.wall_s))
     }
+
+    /// Writes everything the deck needs to run elsewhere (a cluster: docs/external-decks.md, "On a
+    /// cluster") into the existing folder `dir`, without running it: `body.geo`, `body.msh`,
+    /// `deck3d.py` and `path.txt`.
+    pub fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
+        let (resolution, plan) = self.plan(scene);
+        let (text, _) = self.prepare(scene, &plan, resolution, dir)?;
+        deck::write_deck(&self.deck, dir, &text, &plan.steps)
+    }
+
+    /// The pole size and plan of `scene` for this deck.
+    fn plan(&self, scene: &Scene) -> (f64, Plan) {
+        let c_max = scene.max_contact_radius();
+        let resolution = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
+        let mut plan = Plan::of(scene, resolution);
+        plan.candidate_radius = Zones::new(c_max, resolution).candidate_radius;
+        (resolution, plan)
+    }
+
+    /// The history of a run directory that the deck finished elsewhere (on a cluster, by hand:
+    /// docs/external-decks.md, "On a cluster"), read back as after the solver's own run. The
+    /// directory's `path.txt` must list `scene`'s computed steps; the pole size is this solver's
+    /// (its resolution option, or the default), for the metadata and the edge check.
+    pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
+        let (resolution, plan) = self.plan(scene);
+        let listed = readback::read_output(dir, PATH_FILE).map_err(SolveError::Failed)?;
+        if listed != deck::path_file(&plan.steps) {
+            return Err(SolveError::Failed(format!(
+                "{}: the steps it lists are not those of scene `{}`",
+                dir.join(PATH_FILE).display(),
+                scene.name
+            )));
+        }
+        let run = read_outputs(dir, &plan, resolution)?;
+        let ranks = run
+            .timing
+            .iter()
+            .find(|(phase, _)| phase == "ranks")
+            .map_or(self.deck.ranks, |(_, n)| n.round() as u32);
+        let mut history = history(scene, "(run elsewhere)", &plan, &run, ranks);
+        history.metadata.solver = NAME.into();
+        Ok(history)
+    }
+}
+
+/// Reads the deck's output files in `dir` (steps.csv, surface.csv, triangles.csv, timing.csv)
+/// and checks them against each other; the wall times of meshing and solving are left at zero.
+fn read_outputs(dir: &Path, plan: &Plan, resolution: f64) -> Result<Run3, SolveError> {
+    let start = Instant::now();
+    let read = |name: &str| readback::read_output(dir, name).map_err(SolveError::Failed);
+    let rows = readback::parse_steps(&read("steps.csv")?, &plan.steps).map_err(SolveError::Failed)?;
+    let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
+    let surfaces = surface3d::parse_surface3(&read("surface.csv")?, &indices).map_err(SolveError::Failed)?;
+    check_consistency(&rows, &surfaces, resolution)?;
+    let nodes = surfaces.first().map_or(0, |s| s.nodes.len());
+    let triangles = surface3d::parse_triangles(&read("triangles.csv")?, nodes).map_err(SolveError::Failed)?;
+    let timing = read("timing.csv").map(|t| parse_phases(&t)).unwrap_or_default();
+    Ok(Run3 {
+        rows,
+        surfaces,
+        triangles,
+        resolution,
+        wall_s: [0.0, 0.0, start.elapsed().as_secs_f64()],
+        timing,
+    })
 }
 
 /// Largest disagreement between the deck's P and the nodal sum of surface.csv, relative to the
@@ -285,10 +335,7 @@ impl Solver for Solid3dDeck {
                 "mpirun not found on PATH; install: apt-get install openmpi-bin (or scripts/setup.sh)".into(),
             ));
         }
-        let c_max = scene.max_contact_radius();
-        let resolution = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
-        let mut plan = Plan::of(scene, resolution);
-        plan.candidate_radius = Zones::new(c_max, resolution).candidate_radius;
+        let (resolution, plan) = self.plan(scene);
         let run = deck::in_run_dir("spherecontact-fenicsx-3d-", |dir| self.run_in(scene, &plan, resolution, dir))?;
         Ok(history(scene, &version, &plan, &run, self.deck.ranks))
     }
@@ -354,7 +401,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
     let facts = RunFacts {
         candidate_nodes: run.surfaces.first().map_or(0, |s| s.nodes.len()),
         capped: &capped,
-        wall_s: [run.mesh.wall_s, run.solving_s, run.reading_s],
+        wall_s: run.wall_s,
     };
     record_run(&mut metadata, plan, &facts);
     let extra = &mut metadata.extra;
@@ -372,7 +419,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::external::deck::{DeckInput, PATH_FILE};
+    use crate::external::deck::DeckInput;
 
     #[test]
     fn one_rank_runs_python_and_more_run_mpirun_as_root() {
