@@ -43,8 +43,11 @@ fn main() -> ExitCode {
         [command, case, dir, rest @ ..] if command == "write" && rest.len() <= 1 => {
             deck_for(case, rest.first()).and_then(|(deck, scene)| {
                 std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
-                deck.write_run(&scene, Path::new(dir)).map_err(|e| e.to_string())?;
-                Ok(format!("deck, mesh and path written to {dir}: run `mpirun -np N python3 deck3d.py` there"))
+                deck.write_run(&scene, Path::new(dir))
+                    .map_err(|e| e.to_string())?;
+                Ok(format!(
+                    "deck, mesh and path written to {dir}: run `mpirun -np N python3 deck3d.py` there"
+                ))
             })
         }
         [command, case, dir, out, rest @ ..] if command == "read" && rest.len() <= 1 => {
@@ -54,7 +57,10 @@ fn main() -> ExitCode {
                     .map_err(anyhow::Error::from)
                     .and_then(|()| history_files::write(Path::new(out), &history))
                     .map_err(|e| format!("{out}: {e}"))?;
-                Ok(format!("{} steps read back from {dir} into {out}/{NAME}.csv", history.steps.len()))
+                Ok(format!(
+                    "{} steps read back from {dir} into {out}/{NAME}.csv",
+                    history.steps.len()
+                ))
             })
         }
         _ => {

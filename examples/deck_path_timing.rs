@@ -100,7 +100,11 @@ fn main() {
         .iter()
         .flatten()
         .map(|t| (t.solver.clone(), t.history.clone()))
-        .chain([("mdr", &mdr), ("mdr-domain", &domain)].into_iter().filter_map(|(n, h)| Some((n.to_owned(), h.clone()?))))
+        .chain(
+            [("mdr", &mdr), ("mdr-domain", &domain)]
+                .into_iter()
+                .filter_map(|(n, h)| Some((n.to_owned(), h.clone()?))),
+        )
         .collect();
     println!("\nQ [N] at the path positions");
     print!("{:<15}", "position");

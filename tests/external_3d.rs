@@ -62,11 +62,7 @@ fn fem_3d_on_the_deck_mesh(scene: &Scene) -> History {
 
 /// The surface field of path position `position`.
 fn field(history: &History, position: usize) -> &SurfaceField {
-    history
-        .fields
-        .iter()
-        .find(|f| f.position == position)
-        .unwrap()
+    history.fields.iter().find(|f| f.position == position).unwrap()
 }
 
 /// The largest |q_y| of a surface field [Pa].
@@ -109,23 +105,39 @@ fn the_3d_deck_agrees_with_fem_3d_on_the_same_mesh_at_positions_1_to_5() {
     if !tools_present("the_3d_deck_agrees_with_fem_3d_on_the_same_mesh_at_positions_1_to_5") {
         return;
     }
-    let _heavy = ONE_AT_A_TIME.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let _heavy = ONE_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let scene = paper_path_to_position_5(5);
     let deck = solver::run(&Solid3dDeck::new(1), &scene).unwrap();
     let fem = fem_3d_on_the_deck_mesh(&scene);
-    let (p_peak, q_peak) = (fem.peak(Quantity::NormalForce), fem.peak(Quantity::TangentialForce));
+    let (p_peak, q_peak) = (
+        fem.peak(Quantity::NormalForce),
+        fem.peak(Quantity::TangentialForce),
+    );
     let worst_p = worst(&deck, &fem, |r| r.normal_force, p_peak);
     let worst_q = worst(&deck, &fem, |r| r.tangential_force, q_peak);
-    eprintln!("fenicsx-3d against fem-3d, every step: worst P {worst_p:.2e}, worst Q {worst_q:.2e} of the peaks");
+    eprintln!(
+        "fenicsx-3d against fem-3d, every step: worst P {worst_p:.2e}, worst Q {worst_q:.2e} of the peaks"
+    );
     assert!(worst_p < TOLERANCE_P, "P: {worst_p:e} of the peak");
     assert!(worst_q < TOLERANCE_Q, "Q: {worst_q:e} of the peak");
     assert_eq!(deck.metadata.extra["capped_steps"], serde_json::json!([]));
-    eprintln!("position | P deck, fem-3d [N] | Q deck, fem-3d [N] | max|q_y| deck, fem-3d [MPa] | p RMS (of p0)");
+    eprintln!(
+        "position | P deck, fem-3d [N] | Q deck, fem-3d [N] | max|q_y| deck, fem-3d [MPa] | p RMS (of p0)"
+    );
     for position in 1..=5 {
-        let (a, b) = (deck.at_position(position).unwrap(), fem.at_position(position).unwrap());
+        let (a, b) = (
+            deck.at_position(position).unwrap(),
+            fem.at_position(position).unwrap(),
+        );
         let (fa, fb) = (field(&deck, position), field(&fem, position));
         let to_fem = same_points(fa, fb);
-        assert_eq!(fa.points.len(), fb.points.len(), "position {position}: the candidates");
+        assert_eq!(
+            fa.points.len(),
+            fb.points.len(),
+            "position {position}: the candidates"
+        );
         assert_eq!(
             fa.triangles.as_ref().map(Vec::len),
             fb.triangles.as_ref().map(Vec::len),
@@ -151,7 +163,10 @@ fn the_3d_deck_agrees_with_fem_3d_on_the_same_mesh_at_positions_1_to_5() {
             qy * 1e-6,
             qy_ref * 1e-6
         );
-        assert!(p_rms < TOLERANCE_P_FIELD, "position {position}: p RMS {p_rms:e} of p0");
+        assert!(
+            p_rms < TOLERANCE_P_FIELD,
+            "position {position}: p RMS {p_rms:e} of p0"
+        );
         assert!(
             (qy - qy_ref).abs() < TOLERANCE_QY * scene.friction * p0,
             "position {position}: max |q_y| {qy} against {qy_ref}"
@@ -171,10 +186,14 @@ fn the_3d_deck_agrees_with_fem_3d_on_the_same_mesh_at_positions_1_to_5() {
 #[test]
 #[ignore = "heavy: a 3D dolfinx run on 2 MPI ranks; cargo test --release --test external_3d -- --ignored"]
 fn the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_fem_3d_and_the_axisymmetric_deck() {
-    if !tools_present("the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_fem_3d_and_the_axisymmetric_deck") {
+    if !tools_present(
+        "the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_fem_3d_and_the_axisymmetric_deck",
+    ) {
         return;
     }
-    let _heavy = ONE_AT_A_TIME.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let _heavy = ONE_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let scene = frictional_scene();
     let history = solver::run(&Solid3dDeck::new(2), &scene).unwrap();
     assert_eq!(history.metadata.extra["ranks"], 2);
@@ -201,7 +220,11 @@ fn the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_fem_3d_and_the_axisym
              fem-3d − fenicsx-axisym {mesh_offset:.2e} of the peak",
             quantity.name()
         );
-        assert!(against_fem < tolerance, "{}: {against_fem:e} from fem-3d", quantity.name());
+        assert!(
+            against_fem < tolerance,
+            "{}: {against_fem:e} from fem-3d",
+            quantity.name()
+        );
         assert!(
             against_axisym < mesh_offset + tolerance,
             "{}: {against_axisym:e} from fenicsx-axisym, fem-3d on the same mesh {mesh_offset:e}",

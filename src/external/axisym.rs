@@ -217,7 +217,6 @@ impl<D: Deck<Mesh = MeshFiles>> AxisymSolver<D> {
             deck_clock,
         })
     }
-
 }
 
 /// The numbers a deck's template is filled with (mm, N, MPa): the scene's sphere, the pole size

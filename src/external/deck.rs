@@ -135,18 +135,45 @@ pub fn python_job(toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job 
     }
 }
 
-/// One external deck: its template, its program, and the meaning of its exit codes.
-pub trait Deck: Send + Sync + Clone {
+/// What names a deck: a table row, the same fields for every deck.
+#[derive(Clone, Copy, Debug)]
+pub struct DeckKind {
     /// The solver name (`freefem-axisym`, …).
-    fn name(&self) -> &'static str;
+    pub name: &'static str,
     /// One line: model and method.
-    fn description(&self) -> &'static str;
+    pub description: &'static str,
     /// The tool that runs it.
-    fn tool(&self) -> Tool;
+    pub tool: Tool,
     /// The deck template (kept beside the code, `templates/`).
-    fn template(&self) -> &'static str;
+    pub template: &'static str,
     /// The deck's file name in the run directory.
-    fn file_name(&self) -> &'static str;
+    pub file_name: &'static str,
+}
+
+/// One external deck: what names it, its mesh, its program, and the meaning of its exit codes.
+pub trait Deck: Send + Sync + Clone {
+    /// What names it.
+    const KIND: DeckKind;
+    /// The solver name.
+    fn name(&self) -> &'static str {
+        Self::KIND.name
+    }
+    /// One line: model and method.
+    fn description(&self) -> &'static str {
+        Self::KIND.description
+    }
+    /// The tool that runs it.
+    fn tool(&self) -> Tool {
+        Self::KIND.tool
+    }
+    /// The deck template.
+    fn template(&self) -> &'static str {
+        Self::KIND.template
+    }
+    /// The deck's file name in the run directory.
+    fn file_name(&self) -> &'static str {
+        Self::KIND.file_name
+    }
     /// The meshes gmsh writes for it (the meridian's [`MeshFiles`], the solid's
     /// [`super::solid_geo::SolidMeshFiles`]).
     type Mesh;
@@ -184,7 +211,12 @@ impl TimeBudget {
 
 /// Writes the filled deck `text` (as the deck's file name) and the list of `steps`
 /// ([`PATH_FILE`]) into `dir`.
-pub fn write_deck(deck: &impl Deck, dir: &Path, text: &str, steps: &[ComputedStep]) -> Result<(), SolveError> {
+pub fn write_deck(
+    deck: &impl Deck,
+    dir: &Path,
+    text: &str,
+    steps: &[ComputedStep],
+) -> Result<(), SolveError> {
     let write = |name: &str, text: &str| {
         std::fs::write(dir.join(name), text).map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
     };
@@ -208,14 +240,20 @@ pub fn launch(
     let run = super::process::run(&job, dir, "deck")
         .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
     match failure(deck, &run.ending, timeout) {
-        Some(why) => Err(SolveError::Failed(format!("{why}; last output:\n{}", run.tail(12)))),
+        Some(why) => Err(SolveError::Failed(format!(
+            "{why}; last output:\n{}",
+            run.tail(12)
+        ))),
         None => Ok(run),
     }
 }
 
 /// Runs `work` in a fresh run directory named after `prefix`: removed when `work` succeeds,
 /// kept when it fails (its path appended to the error) for the deck, mesh and logs.
-pub fn in_run_dir<T>(prefix: &str, work: impl FnOnce(&RunDir) -> Result<T, SolveError>) -> Result<T, SolveError> {
+pub fn in_run_dir<T>(
+    prefix: &str,
+    work: impl FnOnce(&RunDir) -> Result<T, SolveError>,
+) -> Result<T, SolveError> {
     let mut dir =
         RunDir::new(prefix).map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
     match work(&dir) {

@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::time::Duration;
 
-use super::deck::Deck;
+use super::deck::{Deck, DeckKind};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::toolchain::{Tool, Toolchain};
@@ -19,25 +19,13 @@ pub const TEMPLATE: &str = include_str!("templates/fenicsx_axisym.py");
 pub struct Fenicsx;
 
 impl Deck for Fenicsx {
-    fn name(&self) -> &'static str {
-        "fenicsx-axisym"
-    }
-
-    fn description(&self) -> &'static str {
-        "FEniCSx (dolfinx) axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history"
-    }
-
-    fn tool(&self) -> Tool {
-        Tool::Dolfinx
-    }
-
-    fn template(&self) -> &'static str {
-        TEMPLATE
-    }
-
-    fn file_name(&self) -> &'static str {
-        "deck.py"
-    }
+    const KIND: DeckKind = DeckKind {
+        name: "fenicsx-axisym",
+        description: "FEniCSx (dolfinx) axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history",
+        tool: Tool::Dolfinx,
+        template: TEMPLATE,
+        file_name: "deck.py",
+    };
 
     type Mesh = MeshFiles;
 

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use super::axisym::{deck_input, Options, Plan, KFAC};
-use super::deck::{self, Deck, RunDir, TimeBudget, PATH_FILE};
+use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget, PATH_FILE};
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};
@@ -62,25 +62,13 @@ pub struct Fenicsx3d {
 }
 
 impl Deck for Fenicsx3d {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn description(&self) -> &'static str {
-        "FEniCSx (dolfinx) 3D FEM on quadratic tetrahedra, half of one sphere on its symmetry plane, penalty, Coulomb with history on the disc, MPI (heavy)"
-    }
-
-    fn tool(&self) -> Tool {
-        Tool::Dolfinx
-    }
-
-    fn template(&self) -> &'static str {
-        TEMPLATE
-    }
-
-    fn file_name(&self) -> &'static str {
-        "deck3d.py"
-    }
+    const KIND: DeckKind = DeckKind {
+        name: NAME,
+        description: "FEniCSx (dolfinx) 3D FEM on quadratic tetrahedra, half of one sphere on its symmetry plane, penalty, Coulomb with history on the disc, MPI (heavy)",
+        tool: Tool::Dolfinx,
+        template: TEMPLATE,
+        file_name: "deck3d.py",
+    };
 
     type Mesh = SolidMeshFiles;
 
@@ -170,14 +158,23 @@ impl Solid3dDeck {
 
     /// Meshes the body into `dir` (`body.geo`, `body.msh`): the filled deck's text and gmsh's
     /// wall time [s].
-    fn prepare(&self, scene: &Scene, plan: &Plan, resolution: f64, dir: &Path) -> Result<(String, f64), SolveError> {
+    fn prepare(
+        &self,
+        scene: &Scene,
+        plan: &Plan,
+        resolution: f64,
+        dir: &Path,
+    ) -> Result<(String, f64), SolveError> {
         let zones = Zones::new(scene.max_contact_radius(), resolution);
         let r = scene.pair.body1.radius;
         let geometry = solid_geo::geometry(r, scene.domain.height(r), resolution, zones);
         let mesh = solid_geo::mesh(&geometry, dir, "body", &self.options.toolchain)?;
         let max_iterations = self.options.max_iterations.unwrap_or(MAX_ITERATIONS);
         let text = self.options.deck_text.clone().unwrap_or_else(|| {
-            deck::fill(TEMPLATE, &deck_input(&self.deck, scene, resolution, plan, &mesh, max_iterations))
+            deck::fill(
+                TEMPLATE,
+                &deck_input(&self.deck, scene, resolution, plan, &mesh, max_iterations),
+            )
         });
         Ok((text, mesh.wall_s))
     }
@@ -336,7 +333,9 @@ impl Solver for Solid3dDeck {
             ));
         }
         let (resolution, plan) = self.plan(scene);
-        let run = deck::in_run_dir("spherecontact-fenicsx-3d-", |dir| self.run_in(scene, &plan, resolution, dir))?;
+        let run = deck::in_run_dir("spherecontact-fenicsx-3d-", |dir| {
+            self.run_in(scene, &plan, resolution, dir)
+        })?;
         Ok(history(scene, &version, &plan, &run, self.deck.ranks))
     }
 }
