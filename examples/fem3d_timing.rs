@@ -20,7 +20,8 @@
 use std::time::Instant;
 
 use spherecontact::case::Case;
-use spherecontact::contact::{Method, Settings as ContactSettings};
+use spherecontact::contact::operator::work;
+use spherecontact::contact::{Compliance, Method, Settings as ContactSettings};
 use spherecontact::external::toolchain::Toolchain;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::mesh::solid::SolidMesh;
@@ -84,7 +85,31 @@ fn normal_increments(model: &Model) {
     );
 }
 
+/// The largest eigenvalue of `op` in its work product by 200 power iterations (a lower
+/// estimate), against the Gershgorin bound the engine steps by.
+fn spectrum(label: &str, op: &mut dyn Compliance) {
+    let a = op.weights().to_vec();
+    let n = a.len() * op.components();
+    let mut x: Vec<f64> = (0..n).map(|i| 1.0 + 0.1 * (i % 7) as f64).collect();
+    let mut y = vec![0.0; n];
+    let mut estimate = 0.0;
+    for _ in 0..200 {
+        op.apply(&x, &mut y);
+        estimate = work(&a, &x, &y) / work(&a, &x, &x);
+        let norm = work(&a, &y, &y).sqrt();
+        x.iter_mut().zip(&y).for_each(|(x, y)| *x = y / norm);
+    }
+    println!(
+        "    {label} compliance: Gershgorin bound {:.4e}, power iteration {:.4e} (bound / estimate {:.3})",
+        op.largest_eigenvalue(),
+        estimate,
+        op.largest_eigenvalue() / estimate
+    );
+}
+
 fn report(label: &str, model: &Model, pair: &ContactPair, friction: bool) {
+    spectrum("normal", &mut contact::normal(model).unwrap());
+    spectrum("tangential", &mut contact::tangential(model).unwrap());
     normal_increments(model);
     let t = model.times;
     let hertz = spherecontact::hertz::Hertz::of(pair);

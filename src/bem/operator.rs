@@ -133,11 +133,16 @@ impl Compliance for FftCompliance {
                 let kernel = &self.kernels[ci * k + cj];
                 let out = &mut out[ci * len..(ci + 1) * len];
                 for iy in 0..n {
-                    // Offset (ix − jx, iy − jy) wraps into the circulant layout.
-                    let row = (iy + side - jy) % side * side;
-                    let target = &mut out[iy * n..(iy + 1) * n];
-                    for (ix, o) in target.iter_mut().enumerate() {
-                        *o += kernel[row + (ix + side - jx) % side] * delta;
+                    // Offset (ix − jx, iy − jy) wraps into the circulant layout: negative x offsets
+                    // (ix < jx) at the end of the kernel's row, the others from its start; two
+                    // contiguous runs.
+                    let row = &kernel[(iy + side - jy) % side * side..][..side];
+                    let (before, after) = out[iy * n..(iy + 1) * n].split_at_mut(jx);
+                    for (o, k) in before.iter_mut().zip(&row[side - jx..]) {
+                        *o += k * delta;
+                    }
+                    for (o, k) in after.iter_mut().zip(row) {
+                        *o += k * delta;
                     }
                 }
             }

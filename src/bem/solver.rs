@@ -199,18 +199,11 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
         position: fields.position,
         points: s.grid.centres(),
         pressure: s.pressure.clone(),
-        traction: Some(
-            s.traction
-                .x
-                .iter()
-                .zip(&s.traction.y)
-                .map(|(&x, &y)| [x, y])
-                .collect(),
-        ),
+        traction: Some(s.traction.clone()),
         stick: Some(s.stick.clone()),
         // The engine's accumulated slip: the grid carries the pair's compliance and the relative
         // shift, so it is the relative slip (body 1 − body 2), as fem-axisym and fem-3d report it.
-        slip: Some(s.slip.x.iter().zip(&s.slip.y).map(|(&x, &y)| [x, y]).collect()),
+        slip: Some(s.slip.clone()),
         triangles: None,
     }
 }

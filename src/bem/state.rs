@@ -9,39 +9,13 @@ use super::grid::Grid;
 use super::influence::PairCompliance;
 use super::operator::FftCompliance;
 
-/// A tangential traction or displacement field: x and y components per panel.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Vector2Field {
-    /// x components.
-    pub x: Vec<f64>,
-    /// y components.
-    pub y: Vec<f64>,
-}
-
-impl Vector2Field {
-    /// A zero field of `len` panels.
-    pub fn zeros(len: usize) -> Self {
-        Self {
-            x: vec![0.0; len],
-            y: vec![0.0; len],
-        }
+/// Per-panel vectors (x, y) of a component-major engine vector (x of every panel, then y);
+/// zeros when the engine carries none (no friction).
+fn panel_vectors(values: &[f64], len: usize) -> Vec<[f64; 2]> {
+    if values.is_empty() {
+        return vec![[0.0; 2]; len];
     }
-
-    /// The field of a component-major engine vector (x of every panel, then y); zeros when empty.
-    fn of(values: &[f64], len: usize) -> Self {
-        if values.is_empty() {
-            return Self::zeros(len);
-        }
-        Self {
-            x: values[..len].to_vec(),
-            y: values[len..].to_vec(),
-        }
-    }
-
-    /// |v_i|.
-    pub fn magnitude(&self, i: usize) -> f64 {
-        (self.x[i] * self.x[i] + self.y[i] * self.y[i]).sqrt()
-    }
+    (0..len).map(|k| [values[k], values[len + k]]).collect()
 }
 
 /// Solver settings that an increment needs.
@@ -63,12 +37,12 @@ pub struct Snapshot {
     pub grid: Grid,
     /// Pressure p [Pa] per panel.
     pub pressure: Vec<f64>,
-    /// Traction q on body 1 [Pa] per panel.
-    pub traction: Vector2Field,
+    /// Traction (q_x, q_y) on body 1 [Pa] per panel.
+    pub traction: Vec<[f64; 2]>,
     /// Stick (true) or slip (false) for panels in contact; false outside.
     pub stick: Vec<bool>,
-    /// Slip accumulated since the panel last came into contact [m]; zero outside.
-    pub slip: Vector2Field,
+    /// Slip (x, y) accumulated since the panel last came into contact [m]; zero outside.
+    pub slip: Vec<[f64; 2]>,
     /// The friction coefficient μ that bounds the traction.
     pub friction: f64,
 }
@@ -86,7 +60,7 @@ impl Snapshot {
 
     /// Q = Σ q_x h² [N].
     pub fn tangential_force(&self) -> f64 {
-        self.traction.x.iter().sum::<f64>() * self.grid.panel_area()
+        self.traction.iter().map(|q| q[0]).sum::<f64>() * self.grid.panel_area()
     }
 
     /// Where a field that vanishes like a square root at an edge (p at the contact edge, μp − |q|
@@ -140,6 +114,12 @@ impl Snapshot {
         self.contact_radius() * (stick as f64 / contact as f64).sqrt()
     }
 
+    /// |q| at panel `k` [Pa].
+    pub fn traction_magnitude(&self, k: usize) -> f64 {
+        let [x, y] = self.traction[k];
+        x.hypot(y)
+    }
+
     /// The largest panel pressure [Pa] (the centre panel's, for a Hertz contact).
     pub fn peak_pressure(&self) -> f64 {
         self.pressure.iter().copied().fold(0.0, f64::max)
@@ -153,7 +133,7 @@ impl Snapshot {
     pub fn stick_semi_axes(&self) -> Option<[f64; 2]> {
         let deficit = |k: usize| {
             if self.stick[k] {
-                self.friction * self.pressure[k] - self.traction.magnitude(k)
+                self.friction * self.pressure[k] - self.traction_magnitude(k)
             } else {
                 0.0
             }
@@ -231,9 +211,9 @@ impl ContactState {
             snapshot: Snapshot {
                 grid,
                 pressure: vec![0.0; len],
-                traction: Vector2Field::zeros(len),
+                traction: vec![[0.0; 2]; len],
                 stick: vec![false; len],
-                slip: Vector2Field::zeros(len),
+                slip: vec![[0.0; 2]; len],
                 friction: scene.friction,
             },
             grid,
@@ -249,10 +229,9 @@ impl ContactState {
     pub fn release(&mut self) {
         self.contact.release();
         let s = &mut self.snapshot;
-        let len = s.pressure.len();
         s.pressure.fill(0.0);
-        s.traction = Vector2Field::zeros(len);
-        s.slip = Vector2Field::zeros(len);
+        s.traction.fill([0.0; 2]);
+        s.slip.fill([0.0; 2]);
         s.stick.fill(false);
     }
 
@@ -265,8 +244,8 @@ impl ContactState {
         let len = self.grid.len();
         let s = &mut self.snapshot;
         s.pressure.copy_from_slice(self.contact.pressure());
-        s.traction = Vector2Field::of(self.contact.traction(), len);
-        s.slip = Vector2Field::of(self.contact.slip(), len);
+        s.traction = panel_vectors(self.contact.traction(), len);
+        s.slip = panel_vectors(self.contact.slip(), len);
         s.stick = if s.friction > 0.0 && self.contact.traction().is_empty() {
             // Friction without a tangential path (no Cerruti operator built): nothing loads the
             // traction, so every panel in contact sticks.

@@ -146,7 +146,7 @@ fn slip_zone_carries_mu_p_and_stick_zone_is_the_central_disc() {
     for k in 0..s.grid.len() {
         let [x, y] = s.grid.centre(k);
         let r = x.hypot(y);
-        let q = s.traction.magnitude(k);
+        let q = s.traction_magnitude(k);
         if r > cs + 2.0 * h && r < c - 2.0 * h {
             // Cattaneo's annulus, two panels clear of both boundaries: slip at the Coulomb bound.
             assert!(!s.stick[k], "panel at r = {r} should slip");

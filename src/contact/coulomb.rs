@@ -18,11 +18,11 @@
 //! contact starts at q = 0 and sticks with the relative displacement it arrives with.
 //!
 //! Two algorithms, one answer:
-//! - [`solve_iterative`], for any operator: the accelerated projected gradient method (FISTA with
+//! - [`CoulombProblem::solve_iterative`], for any operator: the accelerated projected gradient method (FISTA with
 //!   adaptive restart) in the work product, one product a step. Measured on the BEM's Cattaneo
 //!   problem it needs 90–130 steps from 32² to 256² panels, where conjugate gradients on the
 //!   stick set, restarted at every change of the sets, needed thousands (`examples/bem_timing.rs`).
-//! - [`solve_direct`], for an operator that holds its matrix: an active-set method on the same
+//! - [`CoulombProblem::solve_direct`], for an operator that holds its matrix: an active-set method on the same
 //!   sets — free (stick) points, where G = 0 is solved for, and bound (slip) points, where
 //!   q_i = g_i n_i is held with the direction n_i of the slip — each pair of sets solved exactly by
 //!   faer's dense Cholesky of the free block, the sets updated until they repeat (for the interval
@@ -40,9 +40,10 @@ use faer::{Col, Mat, Side};
 use super::operator::{update_after_changes, Compliance};
 use super::set::{dot_at, norm_at, scale_at};
 
-/// One increment's data.
-#[derive(Clone, Copy, Debug)]
+/// One increment: the operator and the data.
 pub struct CoulombProblem<'a> {
+    /// The tangential compliance C.
+    pub op: &'a mut dyn Compliance,
     /// g_i = μ p_i ≥ 0 at the end of the increment (one a point).
     pub bound: &'a [f64],
     /// q at the start of the increment (component-major).
@@ -67,6 +68,9 @@ pub struct CoulombState {
     pub displacement: Vec<f64>,
     /// Points on the bound (slip); on exit exactly the solver's bound set.
     pub slipping: Vec<bool>,
+    /// The iterative solver's curvature estimate L (see [`CoulombProblem::solve_iterative`]),
+    /// carried to the next increment; `None`: not yet measured.
+    pub curvature: Option<f64>,
 }
 
 impl CoulombState {
@@ -76,6 +80,7 @@ impl CoulombState {
             traction: vec![0.0; m * k],
             displacement: vec![0.0; m * k],
             slipping: vec![false; m],
+            curvature: None,
         }
     }
 }
@@ -181,223 +186,254 @@ fn project_at(q: &mut [f64], m: usize, i: usize, g: f64) -> bool {
 /// puts slipping points exactly on it, so this only absorbs rounding.
 const STICK_MARGIN: f64 = 1e-6;
 
-/// Solves the increment by the accelerated projected gradient method (Nesterov 1983; Beck &
-/// Teboulle 2009, FISTA) with the adaptive restart of O'Donoghue & Candès (2015, eq. 12), in the
-/// work product, from the guess in `state` (`state.displacement` must be C times
-/// `state.traction`).
-///
-/// Step 1/λ_max: q ← P(y − G(y)/λ_max), P the projection onto the scaled sets (point by point,
-/// since the work product weighs a point's components alike), y the extrapolated iterate. One
-/// product a step, on the new iterate (C y is the same combination of the two last products).
-/// Stops when the step moves no point by more than `tolerance · g_max` (a condition on G of
-/// `tolerance · λ_max · g_max`, as in the module doc); the points within [`STICK_MARGIN`] of
-/// their bound slip.
-pub fn solve_iterative(
-    op: &mut dyn Compliance,
-    problem: &CoulombProblem,
-    state: &mut CoulombState,
-) -> Result<CoulombCost, CoulombError> {
-    let a = op.weights().to_vec();
-    let (m, k) = (a.len(), op.components());
-    let n = m * k;
-    let g_max = problem.bound.iter().copied().fold(0.0, f64::max);
-    let step = 1.0 / op.largest_eigenvalue();
-    let tolerance = problem.tolerance * g_max;
-    let mut cost = CoulombCost::default();
-    let changes = classify(problem, state, k);
-    cost.products += usize::from(update_after_changes(
-        op,
-        &changes,
-        &state.traction,
-        &mut state.displacement,
-    ));
-    // x: the last iterate (state.traction, its product state.displacement); y, C y: the
-    // extrapolated point; next, C next: the new iterate. Points out of contact (g = 0) hold
-    // q = 0 in every iterate (the classification and every projection put them there), so the
-    // loops run over the contact only; the products stay whole (the displacement everywhere is
-    // the next increment's C q_prev).
-    let contact: Vec<usize> = (0..m).filter(|&i| problem.bound[i] > 0.0).collect();
-    let (mut y, mut y_product) = (state.traction.clone(), state.displacement.clone());
-    let (mut next, mut next_product) = (state.traction.clone(), vec![0.0; n]);
-    let (mut momentum, mut residual) = (1.0_f64, f64::INFINITY);
-    while cost.iterations < problem.max_iterations {
-        cost.iterations += 1;
-        // One pass: the projected step, how far it moves, and ⟨y − next, next − x⟩ (the
-        // restart test, below).
-        let (mut largest_move, mut against) = (0.0_f64, 0.0);
-        for &i in &contact {
-            let g = problem.bound[i];
-            let mut point = [0.0; 2];
-            for (c, value) in point.iter_mut().enumerate().take(k) {
-                let j = c * m + i;
-                let gradient = y_product[j] - problem.previous_displacement[j] - problem.shift[c];
-                *value = y[j] - step * gradient;
-            }
-            let norm = point[..k].iter().map(|v| v * v).sum::<f64>().sqrt();
-            let scale = if norm > g { g / norm } else { 1.0 };
-            let mut moved = 0.0;
-            for (c, value) in point.iter().enumerate().take(k) {
-                let j = c * m + i;
-                next[j] = value * scale;
-                moved += (next[j] - y[j]).powi(2);
-                against += a[i] * (y[j] - next[j]) * (next[j] - state.traction[j]);
-            }
-            largest_move = largest_move.max(moved);
-        }
-        op.apply(&next, &mut next_product);
-        cost.products += 1;
-        residual = largest_move.sqrt();
-        if residual <= tolerance {
-            state.traction.copy_from_slice(&next);
-            state.displacement.copy_from_slice(&next_product);
-            for i in 0..m {
-                state.slipping[i] =
-                    problem.bound[i] > 0.0 && project_at(&mut state.traction, m, i, problem.bound[i]);
-            }
-            return Ok(cost);
-        }
-        // Restart when the step works against the momentum: ⟨y − next, next − x⟩ > 0.
-        let weight = if against > 0.0 {
-            momentum = 1.0;
-            0.0
-        } else {
-            let following = 0.5 * (1.0 + (1.0 + 4.0 * momentum * momentum).sqrt());
-            let w = (momentum - 1.0) / following;
-            momentum = following;
-            w
-        };
-        // y and C y are needed on the contact only (the gradient is read there).
-        for c in 0..k {
-            for &i in &contact {
-                let j = c * m + i;
-                y[j] = next[j] + weight * (next[j] - state.traction[j]);
-                y_product[j] = next_product[j] + weight * (next_product[j] - state.displacement[j]);
-            }
-        }
-        std::mem::swap(&mut state.traction, &mut next);
-        std::mem::swap(&mut state.displacement, &mut next_product);
-    }
-    Err(CoulombError::NotConverged {
-        iterations: cost.iterations,
-        residual: residual / g_max.max(f64::MIN_POSITIVE),
-    })
-}
+/// The first curvature estimate of an iterative solve is λ_max over this (backtracking raises it
+/// where it is too small, at the cost of one product a raise).
+const FIRST_CURVATURE: f64 = 4.0;
 
-/// Solves the increment exactly on each pair of sets by dense Cholesky (see the module doc); at
-/// slipping points of a disc the direction is solved for along the circle's tangent and put back
-/// on the circle (a Newton step on the direction, converging quadratically).
-///
-/// # Panics
-/// When `op` holds no matrix (see [`Compliance::matrix`]).
-pub fn solve_direct(
-    op: &mut dyn Compliance,
-    problem: &CoulombProblem,
-    state: &mut CoulombState,
-) -> Result<CoulombCost, CoulombError> {
-    let a = op.weights().to_vec();
-    let (m, k) = (a.len(), op.components());
-    let n = m * k;
-    let g_max = problem.bound.iter().copied().fold(0.0, f64::max);
-    let tolerance = problem.tolerance * op.largest_eigenvalue() * g_max;
-    let mut cost = CoulombCost::default();
-    classify(problem, state, k);
-    let mut grad = vec![0.0; n];
-    let mut fixed_displacement = vec![0.0; n];
-    while cost.iterations < problem.max_iterations {
-        cost.iterations += 1;
-        // The free directions B: each component of a free point, the tangent of a slipping point
-        // of a disc. Solve BᵀaC B x = Bᵀa (w + C q_prev − C q_fixed), q = q_fixed + B x.
-        // The circle's curvature stiffens the tangent of a slipping point by κ_i = (slip pressing
-        // outward)/g_i: the Newton step on the circle (without it the tangent-line step overshoots).
-        op.apply(&state.traction, &mut state.displacement);
-        cost.products += 1;
-        gradient(problem, m, state, &mut grad);
-        let mut columns: Vec<Vec<(usize, f64)>> = Vec::new();
-        let mut curvature = Vec::new();
-        for i in (0..m).filter(|&i| problem.bound[i] > 0.0) {
-            if !state.slipping[i] {
-                for c in 0..k {
-                    state.traction[c * m + i] = 0.0;
-                    columns.push(vec![(c * m + i, 1.0)]);
+/// A step found too curved is taken again with L this many times its curvature: a margin over the
+/// curvature seen, so that the next steps, in other directions, rarely need another raise.
+const CURVATURE_MARGIN: f64 = 1.2;
+
+impl CoulombProblem<'_> {
+    /// The point weights a, the components k a point and the largest bound g_max.
+    fn sizes(&self) -> (Vec<f64>, usize, f64) {
+        let g_max = self.bound.iter().copied().fold(0.0, f64::max);
+        (self.op.weights().to_vec(), self.op.components(), g_max)
+    }
+
+    /// Solves the increment by the accelerated projected gradient method (Nesterov 1983; Beck &
+    /// Teboulle 2009, FISTA, with backtracking) with the adaptive restart of O'Donoghue & Candès
+    /// (2015, eq. 12), in the work product, from the guess in `state` (`state.displacement` must
+    /// be C times `state.traction`).
+    ///
+    /// Step 1/L: q ← P(y − G(y)/L), P the projection onto the scaled sets (point by point, since
+    /// the work product weighs a point's components alike), y the extrapolated iterate. One
+    /// product a step, on the new iterate (C y is the same combination of the two last products).
+    ///
+    /// L: the step is sound (FISTA's sufficient decrease) when L bounds the curvature of the
+    /// objective along the step Δ = next − y, ⟨Δ, CΔ⟩ ≤ L ⟨Δ, Δ⟩, which the product of the new
+    /// iterate gives for free (CΔ = C next − C y). C's largest eigenvalue λ_max always is such an
+    /// L, but it is that of the whole padded grid; on the contact alone the curvature is smaller
+    /// (a contact of diameter 0.9 of the BEM window: about 2.5 times), and the iterations fall as
+    /// √L. So L starts from the last increment's (or λ_max/[`FIRST_CURVATURE`]), and a step whose
+    /// curvature exceeds it is taken again with L raised to [`CURVATURE_MARGIN`] times that
+    /// curvature (capped at λ_max, where every step is sound).
+    ///
+    /// Stops when the step moves no point by more than `tolerance · g_max · λ_max / L` (the
+    /// condition on G of `tolerance · λ_max · g_max` of the module doc, whatever L); the points
+    /// within [`STICK_MARGIN`] of their bound slip.
+    pub fn solve_iterative(&mut self, state: &mut CoulombState) -> Result<CoulombCost, CoulombError> {
+        let (a, k, g_max) = self.sizes();
+        let (m, n) = (a.len(), a.len() * k);
+        let largest = self.op.largest_eigenvalue();
+        let mut curvature = state.curvature.unwrap_or(largest / FIRST_CURVATURE).min(largest);
+        let tolerance = self.tolerance * g_max;
+        let mut cost = CoulombCost::default();
+        let changes = classify(self, state, k);
+        cost.products += usize::from(update_after_changes(
+            self.op,
+            &changes,
+            &state.traction,
+            &mut state.displacement,
+        ));
+        // x: the last iterate (state.traction, its product state.displacement); y, C y: the
+        // extrapolated point; next, C next: the new iterate. Points out of contact (g = 0) hold
+        // q = 0 in every iterate (the classification and every projection put them there), so the
+        // loops run over the contact only; the products stay whole (the displacement everywhere is
+        // the next increment's C q_prev).
+        let contact: Vec<usize> = (0..m).filter(|&i| self.bound[i] > 0.0).collect();
+        let (mut y, mut y_product) = (state.traction.clone(), state.displacement.clone());
+        let (mut next, mut next_product) = (state.traction.clone(), vec![0.0; n]);
+        let (mut momentum, mut residual) = (1.0_f64, f64::INFINITY);
+        while cost.iterations < self.max_iterations {
+            cost.iterations += 1;
+            let step = 1.0 / curvature;
+            // One pass: the projected step, how far it moves, and ⟨y − next, next − x⟩ (the
+            // restart test, below).
+            let (mut largest_move, mut against) = (0.0_f64, 0.0);
+            for &i in &contact {
+                let g = self.bound[i];
+                let mut point = [0.0; 2];
+                for (c, value) in point.iter_mut().enumerate().take(k) {
+                    let j = c * m + i;
+                    let gradient = y_product[j] - self.previous_displacement[j] - self.shift[c];
+                    *value = y[j] - step * gradient;
                 }
-            } else if k == 2 {
-                let g = problem.bound[i];
-                let (x, y) = (state.traction[i] / g, state.traction[m + i] / g);
-                curvature.push((
-                    columns.len(),
-                    a[i] * (-dot_at(&grad, &state.traction, m, i) / g).max(0.0) / g,
-                ));
-                columns.push(vec![(i, -y), (m + i, x)]);
+                let norm = point[..k].iter().map(|v| v * v).sum::<f64>().sqrt();
+                let scale = if norm > g { g / norm } else { 1.0 };
+                let mut moved = 0.0;
+                for (c, value) in point.iter().enumerate().take(k) {
+                    let j = c * m + i;
+                    next[j] = value * scale;
+                    moved += (next[j] - y[j]).powi(2);
+                    against += a[i] * (y[j] - next[j]) * (next[j] - state.traction[j]);
+                }
+                largest_move = largest_move.max(moved);
             }
+            self.op.apply(&next, &mut next_product);
+            cost.products += 1;
+            // The curvature along the step, ⟨Δ, CΔ⟩ / ⟨Δ, Δ⟩ (Δ vanishes off the contact).
+            let (mut bent, mut length) = (0.0, 0.0);
+            for c in 0..k {
+                for &i in &contact {
+                    let j = c * m + i;
+                    let delta = next[j] - y[j];
+                    bent += a[i] * delta * (next_product[j] - y_product[j]);
+                    length += a[i] * delta * delta;
+                }
+            }
+            if curvature < largest && bent > curvature * length {
+                curvature = (CURVATURE_MARGIN * bent / length).min(largest);
+                continue;
+            }
+            residual = largest_move.sqrt() * curvature / largest;
+            if residual <= tolerance {
+                state.traction.copy_from_slice(&next);
+                state.displacement.copy_from_slice(&next_product);
+                for i in 0..m {
+                    state.slipping[i] =
+                        self.bound[i] > 0.0 && project_at(&mut state.traction, m, i, self.bound[i]);
+                }
+                state.curvature = Some(curvature);
+                return Ok(cost);
+            }
+            // Restart when the step works against the momentum: ⟨y − next, next − x⟩ > 0.
+            let weight = if against > 0.0 {
+                momentum = 1.0;
+                0.0
+            } else {
+                let following = 0.5 * (1.0 + (1.0 + 4.0 * momentum * momentum).sqrt());
+                let w = (momentum - 1.0) / following;
+                momentum = following;
+                w
+            };
+            // y and C y are needed on the contact only (the gradient is read there).
+            for c in 0..k {
+                for &i in &contact {
+                    let j = c * m + i;
+                    y[j] = next[j] + weight * (next[j] - state.traction[j]);
+                    y_product[j] = next_product[j] + weight * (next_product[j] - state.displacement[j]);
+                }
+            }
+            std::mem::swap(&mut state.traction, &mut next);
+            std::mem::swap(&mut state.displacement, &mut next_product);
         }
-        op.apply(&state.traction, &mut fixed_displacement);
-        cost.products += 1;
-        if !columns.is_empty() {
-            let matrix = op
-                .matrix()
-                .expect("the direct solver needs the operator's matrix");
-            let mut block = Mat::from_fn(columns.len(), columns.len(), |r, c| {
-                let mut sum = 0.0;
-                for &(j1, b1) in &columns[r] {
-                    for &(j2, b2) in &columns[c] {
-                        sum += a[j1 % m] * b1 * matrix[(j1, j2)] * b2;
+        Err(CoulombError::NotConverged {
+            iterations: cost.iterations,
+            residual: residual / g_max.max(f64::MIN_POSITIVE),
+        })
+    }
+
+    /// Solves the increment exactly on each pair of sets by dense Cholesky (see the module doc); at
+    /// slipping points of a disc the direction is solved for along the circle's tangent and put back
+    /// on the circle (a Newton step on the direction, converging quadratically).
+    ///
+    /// # Panics
+    /// When `op` holds no matrix (see [`Compliance::matrix`]).
+    pub fn solve_direct(&mut self, state: &mut CoulombState) -> Result<CoulombCost, CoulombError> {
+        let (a, k, g_max) = self.sizes();
+        let (m, n) = (a.len(), a.len() * k);
+        let tolerance = self.tolerance * self.op.largest_eigenvalue() * g_max;
+        let mut cost = CoulombCost::default();
+        classify(self, state, k);
+        let mut grad = vec![0.0; n];
+        let mut fixed_displacement = vec![0.0; n];
+        while cost.iterations < self.max_iterations {
+            cost.iterations += 1;
+            // The free directions B: each component of a free point, the tangent of a slipping point
+            // of a disc. Solve BᵀaC B x = Bᵀa (w + C q_prev − C q_fixed), q = q_fixed + B x.
+            // The circle's curvature stiffens the tangent of a slipping point by κ_i = (slip pressing
+            // outward)/g_i: the Newton step on the circle (without it the tangent-line step overshoots).
+            self.op.apply(&state.traction, &mut state.displacement);
+            cost.products += 1;
+            gradient(self, m, state, &mut grad);
+            let mut columns: Vec<Vec<(usize, f64)>> = Vec::new();
+            let mut curvature = Vec::new();
+            for i in (0..m).filter(|&i| self.bound[i] > 0.0) {
+                if !state.slipping[i] {
+                    for c in 0..k {
+                        state.traction[c * m + i] = 0.0;
+                        columns.push(vec![(c * m + i, 1.0)]);
+                    }
+                } else if k == 2 {
+                    let g = self.bound[i];
+                    let (x, y) = (state.traction[i] / g, state.traction[m + i] / g);
+                    curvature.push((
+                        columns.len(),
+                        a[i] * (-dot_at(&grad, &state.traction, m, i) / g).max(0.0) / g,
+                    ));
+                    columns.push(vec![(i, -y), (m + i, x)]);
+                }
+            }
+            self.op.apply(&state.traction, &mut fixed_displacement);
+            cost.products += 1;
+            if !columns.is_empty() {
+                let matrix = self
+                    .op
+                    .matrix()
+                    .expect("the direct solver needs the operator's matrix");
+                let mut block = Mat::from_fn(columns.len(), columns.len(), |r, c| {
+                    let mut sum = 0.0;
+                    for &(j1, b1) in &columns[r] {
+                        for &(j2, b2) in &columns[c] {
+                            sum += a[j1 % m] * b1 * matrix[(j1, j2)] * b2;
+                        }
+                    }
+                    sum
+                });
+                for &(r, kappa) in &curvature {
+                    block[(r, r)] += kappa;
+                }
+                let mut rhs = Col::from_fn(columns.len(), |r| {
+                    columns[r]
+                        .iter()
+                        .map(|&(j, b)| {
+                            a[j % m]
+                                * b
+                                * (self.shift[j / m] + self.previous_displacement[j] - fixed_displacement[j])
+                        })
+                        .sum::<f64>()
+                });
+                let llt = block
+                    .llt(Side::Lower)
+                    .map_err(|_| CoulombError::NotPositiveDefinite)?;
+                llt.solve_in_place(rhs.as_mat_mut());
+                for (r, column) in columns.iter().enumerate() {
+                    for &(j, b) in column {
+                        state.traction[j] += b * rhs[r];
                     }
                 }
-                sum
-            });
-            for &(r, kappa) in &curvature {
-                block[(r, r)] += kappa;
             }
-            let mut rhs = Col::from_fn(columns.len(), |r| {
-                columns[r]
-                    .iter()
-                    .map(|&(j, b)| {
-                        a[j % m]
-                            * b
-                            * (problem.shift[j / m] + problem.previous_displacement[j]
-                                - fixed_displacement[j])
-                    })
-                    .sum::<f64>()
-            });
-            let llt = block
-                .llt(Side::Lower)
-                .map_err(|_| CoulombError::NotPositiveDefinite)?;
-            llt.solve_in_place(rhs.as_mat_mut());
-            for (r, column) in columns.iter().enumerate() {
-                for &(j, b) in column {
-                    state.traction[j] += b * rhs[r];
+            // Slipping points back onto their circle, free points beyond the bound onto it.
+            let mut changed = false;
+            for i in (0..m).filter(|&i| self.bound[i] > 0.0) {
+                let g = self.bound[i];
+                let norm = norm_at(&state.traction, m, i);
+                if state.slipping[i] || norm > g * (1.0 + 1e-12) {
+                    changed |= !state.slipping[i];
+                    scale_at(&mut state.traction, m, i, g / norm);
+                    state.slipping[i] = true;
                 }
             }
-        }
-        // Slipping points back onto their circle, free points beyond the bound onto it.
-        let mut changed = false;
-        for i in (0..m).filter(|&i| problem.bound[i] > 0.0) {
-            let g = problem.bound[i];
-            let norm = norm_at(&state.traction, m, i);
-            if state.slipping[i] || norm > g * (1.0 + 1e-12) {
-                changed |= !state.slipping[i];
-                scale_at(&mut state.traction, m, i, g / norm);
-                state.slipping[i] = true;
-            }
-        }
-        op.apply(&state.traction, &mut state.displacement);
-        cost.products += 1;
-        gradient(problem, m, state, &mut grad);
-        for i in 0..m {
-            if state.slipping[i] {
-                let (violation, reversing) = bound_violation(&grad, &state.traction, problem.bound[i], m, i);
-                if reversing > tolerance {
-                    state.slipping[i] = false;
+            self.op.apply(&state.traction, &mut state.displacement);
+            cost.products += 1;
+            gradient(self, m, state, &mut grad);
+            for i in 0..m {
+                if state.slipping[i] {
+                    let (violation, reversing) = bound_violation(&grad, &state.traction, self.bound[i], m, i);
+                    if reversing > tolerance {
+                        state.slipping[i] = false;
+                    }
+                    changed |= violation > tolerance;
                 }
-                changed |= violation > tolerance;
+            }
+            if !changed {
+                return Ok(cost);
             }
         }
-        if !changed {
-            return Ok(cost);
-        }
+        Err(CoulombError::NotConverged {
+            iterations: cost.iterations,
+            residual: 1.0,
+        })
     }
-    Err(CoulombError::NotConverged {
-        iterations: cost.iterations,
-        residual: 1.0,
-    })
 }

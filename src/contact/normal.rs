@@ -7,13 +7,13 @@
 //! solution is unique), and g is the gradient.
 //!
 //! Two algorithms, one answer:
-//! - [`solve_iterative`], for any operator: the constrained conjugate gradient of Polonsky &
+//! - [`NormalProblem::solve_iterative`], for any operator: the constrained conjugate gradient of Polonsky &
 //!   Keer (1999, Wear 231, 206–219) in its displacement-controlled form (Bugnicourt et al. 2018,
 //!   Tribol. Lett. 66:29): CG on the points in contact, negative multipliers clamped to zero,
 //!   penetrating points re-admitted (restarting the conjugate directions). One product with C a
 //!   step; the displacement u = Cλ is carried between calls, and changes at a few points are
 //!   added column by column where the operator makes that cheaper.
-//! - [`solve_direct`], for an operator that holds its matrix: the primal–dual active set method
+//! - [`NormalProblem::solve_direct`], for an operator that holds its matrix: the primal–dual active set method
 //!   (Hintermüller, Ito & Kunisch 2003, a semi-smooth Newton method), C_AA λ_A = −o_A on the
 //!   active set A by faer's dense Cholesky, λ = 0 off it, until A repeats: exact to round-off.
 
@@ -50,9 +50,10 @@ impl NormalState {
     }
 }
 
-/// One normal problem.
-#[derive(Clone, Copy, Debug)]
+/// One normal problem: the operator and the data.
 pub struct NormalProblem<'a> {
+    /// The compliance C.
+    pub op: &'a mut dyn Compliance,
     /// o_i = h_i − δ [m].
     pub opening: &'a [f64],
     /// The length the tolerance is relative to (the approach δ) [m].
@@ -88,153 +89,145 @@ pub enum NormalError {
     NotPositiveDefinite,
 }
 
-/// Solves by Polonsky–Keer constrained CG from `state` (updated in place, `state.displacement`
-/// must be C times `state.multipliers`); returns the products with C spent.
-pub fn solve_iterative(
-    op: &mut dyn Compliance,
-    problem: &NormalProblem,
-    state: &mut NormalState,
-) -> Result<usize, NormalError> {
-    let a = op.weights().to_vec();
-    let m = a.len();
-    let (p, u) = (&mut state.multipliers, &mut state.displacement);
-    let tolerance = problem.tolerance * problem.scale;
-    let mut direction = vec![0.0; m];
-    let mut product = vec![0.0; m];
-    let mut gap = vec![0.0; m];
-    let mut changes: Vec<(usize, f64)> = Vec::new();
-    let (mut previous_norm, mut restart, mut residual) = (1.0, true, f64::INFINITY);
-    let mut products = 0;
-    for _ in 0..problem.max_iterations {
-        let (mut norm, mut active) = (0.0, 0.0);
-        for i in 0..m {
-            gap[i] = u[i] + problem.opening[i];
-            if p[i] > 0.0 {
-                norm += a[i] * gap[i] * gap[i];
-                active += a[i];
-            }
-        }
-        if active == 0.0 {
-            // Nothing in contact: done unless a point penetrates, which seeds the contact.
-            if gap.iter().all(|&g| g >= 0.0) {
-                return Ok(products);
-            }
-            for (p, g) in p.iter_mut().zip(&gap) {
-                *p = (-g).max(0.0) * problem.seed_stiffness;
-            }
-            op.apply(p, u);
-            products += 1;
-            restart = true;
-            continue;
-        }
-        residual = (norm / active).sqrt();
-        let penetrates = (0..m).any(|i| p[i] == 0.0 && gap[i] < -tolerance);
-        if residual < tolerance && !penetrates {
-            return Ok(products);
-        }
-        // Conjugate direction on the contact set (Polonsky & Keer, eq. 10).
-        let beta = if restart { 0.0 } else { norm / previous_norm };
-        for i in 0..m {
-            direction[i] = if p[i] > 0.0 {
-                gap[i] + beta * direction[i]
-            } else {
-                0.0
-            };
-        }
-        previous_norm = norm;
-        op.apply(&direction, &mut product);
-        products += 1;
-        let (num, den) = (0..m).filter(|&i| p[i] > 0.0).fold((0.0, 0.0), |(x, y), i| {
-            (
-                x + a[i] * gap[i] * direction[i],
-                y + a[i] * product[i] * direction[i],
-            )
-        });
-        let step = if den > 0.0 { num / den } else { 0.0 };
-        changes.clear();
-        for i in 0..m {
-            if p[i] > 0.0 {
-                let next = p[i] - step * direction[i];
-                if next < 0.0 {
-                    changes.push((i, -next)); // clamped to zero: λ changed by −next more
-                }
-                p[i] = next.max(0.0);
-            }
-        }
-        // Points out of contact that penetrate re-enter (P&K, eq. 13), restarting the CG.
-        restart = false;
-        for i in 0..m {
-            if p[i] == 0.0 && gap[i] < 0.0 {
-                p[i] = -step * gap[i];
-                changes.push((i, p[i]));
-                restart = true;
-            }
-        }
-        u.iter_mut().zip(&product).for_each(|(u, r)| *u -= step * r);
-        products += usize::from(update_after_changes(op, &changes, p, u));
-    }
-    Err(NormalError::NotConverged {
-        iterations: problem.max_iterations,
-        residual: residual / problem.scale.max(f64::MIN_POSITIVE),
-    })
-}
-
 /// Iteration cap of the active set method; it settles in a few iterations when warm-started.
 const MAX_ACTIVE_SET_ITERATIONS: usize = 200;
 
-/// Solves by the primal–dual active set method with dense Cholesky on the active block, starting
-/// from the contact set of `state` (updated in place); returns the iterations.
-///
-/// # Panics
-/// When `op` holds no matrix (see [`Compliance::matrix`]).
-pub fn solve_direct(
-    op: &mut dyn Compliance,
-    problem: &NormalProblem,
-    state: &mut NormalState,
-) -> Result<usize, NormalError> {
-    let a = op.weights().to_vec();
-    let m = a.len();
-    // Gaps below this count as penetration: round-off of C λ relative to the problem's lengths.
-    let scale = problem
-        .opening
-        .iter()
-        .fold(problem.scale.abs(), |s, o| s.max(o.abs()));
-    let tolerance = 1e-12 * scale;
-    let mut active: Vec<bool> = state.multipliers.iter().map(|&p| p > 0.0).collect();
-    for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
-        let set: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
-        let matrix = op
-            .matrix()
-            .expect("the direct solver needs the operator's matrix");
-        // a_A C_AA is symmetric positive definite; (a_A C_AA) λ_A = −a_A o_A.
-        let block = Mat::from_fn(set.len(), set.len(), |r, c| a[set[r]] * matrix[(set[r], set[c])]);
-        let mut rhs = Col::from_fn(set.len(), |r| -a[set[r]] * problem.opening[set[r]]);
-        if !set.is_empty() {
-            let llt = block
-                .llt(Side::Lower)
-                .map_err(|_| NormalError::NotPositiveDefinite)?;
-            llt.solve_in_place(rhs.as_mat_mut());
-        }
-        state.multipliers.fill(0.0);
-        for (r, &i) in set.iter().enumerate() {
-            state.multipliers[i] = rhs[r];
-        }
-        op.apply(&state.multipliers, &mut state.displacement);
-        let next: Vec<bool> = (0..m)
-            .map(|i| {
-                if active[i] {
-                    state.multipliers[i] > 0.0
-                } else {
-                    problem.opening[i] + state.displacement[i] < -tolerance
+impl NormalProblem<'_> {
+    /// Solves by Polonsky–Keer constrained CG from `state` (updated in place, `state.displacement`
+    /// must be C times `state.multipliers`); returns the products with C spent.
+    pub fn solve_iterative(&mut self, state: &mut NormalState) -> Result<usize, NormalError> {
+        let a = self.op.weights().to_vec();
+        let m = a.len();
+        let (p, u) = (&mut state.multipliers, &mut state.displacement);
+        let tolerance = self.tolerance * self.scale;
+        let mut direction = vec![0.0; m];
+        let mut product = vec![0.0; m];
+        let mut gap = vec![0.0; m];
+        let mut changes: Vec<(usize, f64)> = Vec::new();
+        let (mut previous_norm, mut restart, mut residual) = (1.0, true, f64::INFINITY);
+        let mut products = 0;
+        for _ in 0..self.max_iterations {
+            let (mut norm, mut active) = (0.0, 0.0);
+            for i in 0..m {
+                gap[i] = u[i] + self.opening[i];
+                if p[i] > 0.0 {
+                    norm += a[i] * gap[i] * gap[i];
+                    active += a[i];
                 }
-            })
-            .collect();
-        if next == active {
-            return Ok(iteration);
+            }
+            if active == 0.0 {
+                // Nothing in contact: done unless a point penetrates, which seeds the contact.
+                if gap.iter().all(|&g| g >= 0.0) {
+                    return Ok(products);
+                }
+                for (p, g) in p.iter_mut().zip(&gap) {
+                    *p = (-g).max(0.0) * self.seed_stiffness;
+                }
+                self.op.apply(p, u);
+                products += 1;
+                restart = true;
+                continue;
+            }
+            residual = (norm / active).sqrt();
+            let penetrates = (0..m).any(|i| p[i] == 0.0 && gap[i] < -tolerance);
+            if residual < tolerance && !penetrates {
+                return Ok(products);
+            }
+            // Conjugate direction on the contact set (Polonsky & Keer, eq. 10).
+            let beta = if restart { 0.0 } else { norm / previous_norm };
+            for i in 0..m {
+                direction[i] = if p[i] > 0.0 {
+                    gap[i] + beta * direction[i]
+                } else {
+                    0.0
+                };
+            }
+            previous_norm = norm;
+            self.op.apply(&direction, &mut product);
+            products += 1;
+            let (num, den) = (0..m).filter(|&i| p[i] > 0.0).fold((0.0, 0.0), |(x, y), i| {
+                (
+                    x + a[i] * gap[i] * direction[i],
+                    y + a[i] * product[i] * direction[i],
+                )
+            });
+            let step = if den > 0.0 { num / den } else { 0.0 };
+            changes.clear();
+            for i in 0..m {
+                if p[i] > 0.0 {
+                    let next = p[i] - step * direction[i];
+                    if next < 0.0 {
+                        changes.push((i, -next)); // clamped to zero: λ changed by −next more
+                    }
+                    p[i] = next.max(0.0);
+                }
+            }
+            // Points out of contact that penetrate re-enter (P&K, eq. 13), restarting the CG.
+            restart = false;
+            for i in 0..m {
+                if p[i] == 0.0 && gap[i] < 0.0 {
+                    p[i] = -step * gap[i];
+                    changes.push((i, p[i]));
+                    restart = true;
+                }
+            }
+            u.iter_mut().zip(&product).for_each(|(u, r)| *u -= step * r);
+            products += usize::from(update_after_changes(self.op, &changes, p, u));
         }
-        active = next;
+        Err(NormalError::NotConverged {
+            iterations: self.max_iterations,
+            residual: residual / self.scale.max(f64::MIN_POSITIVE),
+        })
     }
-    Err(NormalError::NotSettled {
-        iterations: MAX_ACTIVE_SET_ITERATIONS,
-    })
+
+    /// Solves by the primal–dual active set method with dense Cholesky on the active block, starting
+    /// from the contact set of `state` (updated in place); returns the iterations.
+    ///
+    /// # Panics
+    /// When `op` holds no matrix (see [`Compliance::matrix`]).
+    pub fn solve_direct(&mut self, state: &mut NormalState) -> Result<usize, NormalError> {
+        let a = self.op.weights().to_vec();
+        let m = a.len();
+        // Gaps below this count as penetration: round-off of C λ relative to the problem's lengths.
+        let scale = self.opening.iter().fold(self.scale.abs(), |s, o| s.max(o.abs()));
+        let tolerance = 1e-12 * scale;
+        let mut active: Vec<bool> = state.multipliers.iter().map(|&p| p > 0.0).collect();
+        for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
+            let set: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
+            let matrix = self
+                .op
+                .matrix()
+                .expect("the direct solver needs the operator's matrix");
+            // a_A C_AA is symmetric positive definite; (a_A C_AA) λ_A = −a_A o_A.
+            let block = Mat::from_fn(set.len(), set.len(), |r, c| a[set[r]] * matrix[(set[r], set[c])]);
+            let mut rhs = Col::from_fn(set.len(), |r| -a[set[r]] * self.opening[set[r]]);
+            if !set.is_empty() {
+                let llt = block
+                    .llt(Side::Lower)
+                    .map_err(|_| NormalError::NotPositiveDefinite)?;
+                llt.solve_in_place(rhs.as_mat_mut());
+            }
+            state.multipliers.fill(0.0);
+            for (r, &i) in set.iter().enumerate() {
+                state.multipliers[i] = rhs[r];
+            }
+            self.op.apply(&state.multipliers, &mut state.displacement);
+            let next: Vec<bool> = (0..m)
+                .map(|i| {
+                    if active[i] {
+                        state.multipliers[i] > 0.0
+                    } else {
+                        self.opening[i] + state.displacement[i] < -tolerance
+                    }
+                })
+                .collect();
+            if next == active {
+                return Ok(iteration);
+            }
+            active = next;
+        }
+        Err(NormalError::NotSettled {
+            iterations: MAX_ACTIVE_SET_ITERATIONS,
+        })
+    }
 }

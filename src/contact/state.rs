@@ -10,7 +10,7 @@
 //! the products with C are carried, so an increment that changes nothing costs no product.
 
 use super::coulomb::{self, CoulombCost, CoulombError, CoulombProblem, CoulombState};
-use super::normal::{self, NormalError, NormalProblem, NormalState};
+use super::normal::{NormalError, NormalProblem, NormalState};
 use super::operator::{resultant, update_after_changes, Compliance};
 use super::set::{norm_at, FrictionSet};
 
@@ -214,20 +214,22 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
             if !direct {
                 self.predict_normal(step);
             }
-            let problem = NormalProblem {
+            let seed_stiffness = self
+                .settings
+                .seed_stiffness
+                .unwrap_or(1.0 / self.normal.largest_eigenvalue());
+            let mut problem = NormalProblem {
+                op: &mut self.normal,
                 opening: &opening,
                 scale: approach.abs().max(f64::MIN_POSITIVE),
                 tolerance: self.settings.normal_tolerance,
                 max_iterations: self.settings.max_iterations,
-                seed_stiffness: self
-                    .settings
-                    .seed_stiffness
-                    .unwrap_or(1.0 / self.normal.largest_eigenvalue()),
+                seed_stiffness,
             };
             if direct {
-                normal::solve_direct(&mut self.normal, &problem, &mut self.state)?
+                problem.solve_direct(&mut self.state)?
             } else {
-                normal::solve_iterative(&mut self.normal, &problem, &mut self.state)?
+                problem.solve_iterative(&mut self.state)?
             }
         };
         for i in 0..self.change.len() {
@@ -289,7 +291,8 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
             if !direct {
                 predict_tangential(t, shift);
             }
-            let problem = CoulombProblem {
+            let mut problem = CoulombProblem {
+                op: &mut t.op,
                 bound: &bound,
                 previous: &previous.traction,
                 previous_displacement: &previous.displacement,
@@ -298,9 +301,9 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
                 max_iterations: self.settings.max_iterations,
             };
             let cost = if direct {
-                coulomb::solve_direct(&mut t.op, &problem, &mut t.state)?
+                problem.solve_direct(&mut t.state)?
             } else {
-                coulomb::solve_iterative(&mut t.op, &problem, &mut t.state)?
+                problem.solve_iterative(&mut t.state)?
             };
             // Slipping points accumulate their slip; sticking points take the shift up
             // elastically (their residual slip is not accumulated).

@@ -2,6 +2,7 @@
 #![allow(dead_code)] // each test binary uses a different subset
 
 pub mod decks;
+pub mod friction;
 
 use spherecontact::case::Case;
 use spherecontact::check::Reference;

@@ -22,9 +22,10 @@ use crate::driver;
 use crate::external::toolchain::Toolchain;
 use crate::fem::element::tri6::Integration;
 use crate::fem::factor::Ordering;
+use crate::fem::pole::{self, PoleSized};
 use crate::history::{History, Metadata, StepResult, SurfaceField};
 use crate::limits::MERIDIAN_POLE;
-use crate::resolution::{self, ResolutionError};
+use crate::resolution::{PoleLimits, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -106,6 +107,26 @@ impl FemAxisym {
     }
 }
 
+impl PoleSized for FemAxisym {
+    const LIMITS: PoleLimits = MERIDIAN_POLE;
+
+    fn sized(&self, h: f64) -> Self {
+        let pole_size = Some(h);
+        FemAxisym {
+            pole_size,
+            ..self.clone()
+        }
+    }
+
+    fn writing_to(&self, dir: &std::path::Path) -> Self {
+        let vtu_dir = Some(dir.to_path_buf());
+        FemAxisym {
+            vtu_dir,
+            ..self.clone()
+        }
+    }
+}
+
 impl Solver for FemAxisym {
     fn name(&self) -> &'static str {
         "fem-axisym"
@@ -116,33 +137,17 @@ impl Solver for FemAxisym {
     }
 
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
-        Some(Box::new(FemAxisym {
-            vtu_dir: Some(dir.to_path_buf()),
-            ..self.clone()
-        }))
+        pole::writing_fields_to(self, dir)
     }
 
     /// A pole element size: `c/N` or a length, within [`MERIDIAN_POLE`].
     fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
-        let h = resolution::pole_size(self.name(), scene, value, MERIDIAN_POLE)?;
-        Ok(Box::new(FemAxisym {
-            pole_size: Some(h),
-            ..self.clone()
-        }))
+        pole::at_resolution(self, scene, value)
     }
 
     /// Pole sizes c_max/5 … c_max/80, halving (the external decks' ladder and beyond).
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
-        [5.0, 10.0, 20.0, 40.0, 80.0]
-            .into_iter()
-            .map(|divisions| {
-                let rung = FemAxisym {
-                    pole_size: Some(scene.max_contact_radius() / divisions),
-                    ..self.clone()
-                };
-                Box::new(rung) as Box<dyn Solver>
-            })
-            .collect()
+        pole::ladder(self, scene, &[5.0, 10.0, 20.0, 40.0, 80.0])
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {

@@ -14,6 +14,20 @@ pub mod tri6_n1;
 
 use tri6::{Coords, Integration, Lame};
 
+/// The Jacobian J_ab = ∂x_a/∂ξ_b = Σ_i x_i,a ∂N_i/∂ξ_b of an isoparametric element of dimension
+/// D from its nodes `x` and its shape functions' reference gradients `dn` (one row a node).
+pub fn jacobian<const D: usize>(x: &[[f64; D]], dn: &[[f64; D]]) -> [[f64; D]; D] {
+    let mut j = [[0.0; D]; D];
+    for (xi, dni) in x.iter().zip(dn) {
+        for (row, xa) in j.iter_mut().zip(xi) {
+            for (entry, db) in row.iter_mut().zip(dni) {
+                *entry += xa * db;
+            }
+        }
+    }
+    j
+}
+
 /// A Fourier mode of the 6-node meridian triangle, as the assembly sees it.
 pub trait Mode {
     /// Displacement components per node (their amplitudes are the DOFs, node-major).

@@ -85,15 +85,8 @@ impl Mapped {
 /// degenerate there.
 pub fn map(x: &Coords, at: [f64; 3]) -> Option<Mapped> {
     let (n, dn) = shape(at);
-    let mut j = [[0.0; 3]; 3]; // j[a][b] = ∂x_a/∂ξ_b
-    for (xi, dni) in x.iter().zip(&dn) {
-        for a in 0..3 {
-            for b in 0..3 {
-                j[a][b] += xi[a] * dni[b];
-            }
-        }
-    }
-    // Cofactors: (J⁻¹)_ba = cof_ab / det, and ∇_x N = J⁻ᵀ ∇_ξ N.
+    let j = super::jacobian(x, &dn); // j[a][b] = ∂x_a/∂ξ_b
+                                     // Cofactors: (J⁻¹)_ba = cof_ab / det, and ∇_x N = J⁻ᵀ ∇_ξ N.
     let cof = |a: usize, b: usize| {
         let (r0, r1) = ((a + 1) % 3, (a + 2) % 3);
         let (c0, c1) = ((b + 1) % 3, (b + 2) % 3);

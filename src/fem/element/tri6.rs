@@ -108,14 +108,7 @@ pub struct Mapped {
 /// or degenerate there.
 pub fn map(x: &Coords, at: [f64; 2]) -> Option<Mapped> {
     let (n, dn) = shape(at);
-    let mut j = [[0.0; 2]; 2]; // j[a][b] = ∂x_a/∂ξ_b
-    for (xi, dni) in x.iter().zip(&dn) {
-        for a in 0..2 {
-            for b in 0..2 {
-                j[a][b] += xi[a] * dni[b];
-            }
-        }
-    }
+    let j = super::jacobian(x, &dn); // j[a][b] = ∂x_a/∂ξ_b
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     if det.is_nan() || det <= 0.0 {
         return None;

@@ -143,14 +143,8 @@ mod tests {
     #[test]
     fn strain_of_a_rigid_motion_vanishes_also_on_the_axis() {
         // An element with an edge on the axis: the limits B/r → ∂B/∂r, W/r → ∂W/∂r are used there.
-        let x = [
-            [0.0, 0.0],
-            [1.0, 0.0],
-            [0.0, 1.0],
-            [0.5, 0.0],
-            [0.5, 0.5],
-            [0.0, 0.5],
-        ];
+        // The reference triangle itself: its edge ξ = 0 lies on the axis.
+        let x = tri6::NODES;
         let u = x.map(|p| [0.3 + 2.0 * p[1], 0.0, -2.0 * p[0]]);
         for at in tri6::NODES {
             let e = strain(&x, &u, at).unwrap();

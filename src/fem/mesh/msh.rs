@@ -25,6 +25,33 @@ pub const FAR_RIGID: i32 = 4;
 /// Physical curve tag of the symmetry axis.
 pub const AXIS: i32 = 3;
 
+/// The nodes of an MSH file: each node's coordinates as `point` takes them (the meridian mesh its
+/// x and y, the solid mesh all three), and the lookup from a node tag to its index (tags explicit
+/// per block, or consecutive from `min_node_tag`), which names an unknown tag.
+pub fn node_table<P>(
+    nodes: &mshio::Nodes<u64, i32, f64>,
+    point: impl Fn(&mshio::Node<f64>) -> P,
+) -> (Vec<P>, impl Fn(&u64) -> Result<usize, String>) {
+    let mut index: HashMap<u64, usize> = HashMap::new();
+    let mut coords = Vec::new();
+    for block in &nodes.node_blocks {
+        let base = coords.len();
+        match &block.node_tags {
+            Some(tags) => index.extend(tags.iter().map(|(&t, &i)| (t, base + i))),
+            None => index
+                .extend((0..block.nodes.len()).map(|i| (nodes.min_node_tag + (base + i) as u64, base + i))),
+        }
+        coords.extend(block.nodes.iter().map(&point));
+    }
+    let lookup = move |tag: &u64| {
+        index
+            .get(tag)
+            .copied()
+            .ok_or_else(|| format!("unknown node tag {tag}"))
+    };
+    (coords, lookup)
+}
+
 /// Reads the MSH 4.1 file at `path`.
 pub fn read(path: &Path) -> Result<Mesh, MeshError> {
     let bytes =
@@ -41,29 +68,13 @@ pub fn parse(bytes: &[u8]) -> Result<Mesh, MeshError> {
             "needs $Entities, $Nodes and $Elements sections".into(),
         ));
     };
-    // Node tags to indices: explicit per block, or consecutive from min_node_tag.
-    let mut index: HashMap<u64, usize> = HashMap::new();
-    let mut coords = Vec::new();
-    for block in &nodes.node_blocks {
-        let base = coords.len();
-        match &block.node_tags {
-            Some(tags) => index.extend(tags.iter().map(|(&t, &i)| (t, base + i))),
-            None => index
-                .extend((0..block.nodes.len()).map(|i| (nodes.min_node_tag + (base + i) as u64, base + i))),
-        }
-        coords.extend(block.nodes.iter().map(|n| [n.x, n.y]));
-    }
+    let (coords, lookup) = node_table(&nodes, |n| [n.x, n.y]);
     let physical: HashMap<i32, Vec<i32>> = entities
         .curves
         .iter()
         .map(|c| (c.tag, c.physical_tags.clone()))
         .collect();
-    let node = |tag: &u64| {
-        index
-            .get(tag)
-            .copied()
-            .ok_or_else(|| MeshError::File(format!("unknown node tag {tag}")))
-    };
+    let node = |tag: &u64| lookup(tag).map_err(MeshError::File);
     let mut mesh = Mesh {
         nodes: coords,
         ..Mesh::default()

@@ -92,17 +92,7 @@ pub fn parse(bytes: &[u8]) -> Result<SolidMesh, String> {
     let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements) else {
         return Err("needs $Entities, $Nodes and $Elements sections".into());
     };
-    let mut index: HashMap<u64, usize> = HashMap::new();
-    let mut coords = Vec::new();
-    for block in &nodes.node_blocks {
-        let base = coords.len();
-        match &block.node_tags {
-            Some(tags) => index.extend(tags.iter().map(|(&t, &i)| (t, base + i))),
-            None => index
-                .extend((0..block.nodes.len()).map(|i| (nodes.min_node_tag + (base + i) as u64, base + i))),
-        }
-        coords.extend(block.nodes.iter().map(|n| [n.x, n.y, n.z]));
-    }
+    let (coords, node) = super::msh::node_table(&nodes, |n| [n.x, n.y, n.z]);
     let surface_groups: HashMap<i32, Vec<i32>> = entities
         .surfaces
         .iter()
@@ -113,12 +103,6 @@ pub fn parse(bytes: &[u8]) -> Result<SolidMesh, String> {
         .iter()
         .map(|v| (v.tag, v.physical_tags.clone()))
         .collect();
-    let node = |tag: &u64| {
-        index
-            .get(tag)
-            .copied()
-            .ok_or_else(|| format!("unknown node tag {tag}"))
-    };
     let mut mesh = SolidMesh {
         nodes: coords,
         ..SolidMesh::default()
@@ -135,14 +119,14 @@ pub fn parse(bytes: &[u8]) -> Result<SolidMesh, String> {
                     continue;
                 }
                 for e in &block.elements {
-                    let t: Vec<usize> = e.nodes.iter().map(node).collect::<Result<_, _>>()?;
+                    let t: Vec<usize> = e.nodes.iter().map(&node).collect::<Result<_, _>>()?;
                     mesh.tetrahedra.push(std::array::from_fn(|k| t[k]));
                 }
             }
             ElementType::Tri6 => {
                 for group in surface_groups.get(&block.entity_tag).into_iter().flatten() {
                     for e in &block.elements {
-                        let f: Vec<usize> = e.nodes.iter().map(node).collect::<Result<_, _>>()?;
+                        let f: Vec<usize> = e.nodes.iter().map(&node).collect::<Result<_, _>>()?;
                         faces
                             .entry(*group)
                             .or_default()

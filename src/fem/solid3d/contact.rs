@@ -20,10 +20,12 @@
 use faer::Mat;
 
 use super::model::Model;
+use super::operator::LoadedColumns;
 use crate::contact::{Contact, ContactError, DenseCompliance, DenseError, FrictionSet, Settings};
 
-/// The model's contact: the engine over its dense condensed compliances.
-pub type SolidContact = Contact<DenseCompliance, DenseCompliance>;
+/// The model's contact: the engine over its dense condensed compliances, multiplied by their
+/// loaded columns only ([`LoadedColumns`]).
+pub type SolidContact = Contact<LoadedColumns, LoadedColumns>;
 
 /// Point weights a_j = 2 w_j (see the module doc).
 fn weights(model: &Model) -> Vec<f64> {
@@ -78,9 +80,11 @@ pub fn engine(
     with_friction: bool,
     settings: Settings,
 ) -> Result<SolidContact, SetupError> {
-    let contact: SolidContact = Contact::new(normal(model)?, model.surface.heights(), settings)?;
+    let normal = LoadedColumns::new(normal(model)?);
+    let contact: SolidContact = Contact::new(normal, model.surface.heights(), settings)?;
     if !with_friction {
         return Ok(contact);
     }
-    Ok(contact.with_friction(tangential(model)?, FrictionSet::Disc, friction)?)
+    let tangential = LoadedColumns::new(tangential(model)?);
+    Ok(contact.with_friction(tangential, FrictionSet::Disc, friction)?)
 }

@@ -14,7 +14,7 @@ use crate::fem::mesh::solid::SolidMesh;
 /// The candidate surface.
 #[derive(Clone, Debug)]
 pub struct Surface {
-    /// Candidate nodes (mesh node indices).
+    /// Candidate nodes (mesh node indices), by increasing distance from the pole.
     pub nodes: Vec<usize>,
     /// Their coordinates [m].
     pub points: Vec<[f64; 3]>,
@@ -41,7 +41,10 @@ impl Surface {
             .filter(|f| f.iter().all(|&n| r(n) <= radius))
             .copied()
             .collect();
-        let nodes = SolidMesh::nodes_of(&faces);
+        // Sorted by distance from the pole: a contact's points lead, so the engine's products
+        // read only the loaded columns ([`super::operator`]).
+        let mut nodes = SolidMesh::nodes_of(&faces);
+        nodes.sort_by(|&a, &b| r(a).total_cmp(&r(b)).then(a.cmp(&b)));
         if nodes.is_empty() {
             return Err(format!("no contact face lies within {radius:e} m of the pole"));
         }

@@ -1,0 +1,204 @@
+//! The transverse traction q_y at the paper's position 5 (δn = 17 µm after the shifts 1, 2,
+//! 3 µm), fem-3d against the BEM, under refinement of the mesh (the panels) and of the increments.
+//!
+//! Run: `cargo run --release --example fem3d_transverse -- [RUN…]`, each RUN `fem-3d:N:S[:T]`
+//! (pole size c_max/N, the engine's tangential tolerance T) or `bem:N:S` (an N × N grid), S
+//! increments a segment; default: the BEM at 64 and 128 panels and fem-3d at c_max/10, each at
+//! 10 and 20 increments a segment.
+//!
+//! For each run, at position 5: the sample spacing h/c; max|q_y|/max|q_x| read pointwise (the
+//! measure of the reports, `report::claims::measure`); the same ratio of the RMS over the
+//! contact; the same ratio of the largest averages over square boxes of side c/5 on one grid
+//! centred on the contact (a measure both discretisations share: each box holds several of
+//! either's samples); ∫ q_y dA over the first quadrant; the stick semi-axes along x and y; and
+//! where max|q_y| lies (x/c, y/c, stick or slip) with its value against the mean of its
+//! neighbours (a node-to-node oscillation shows as a peak far above its neighbours).
+
+use spherecontact::fem::FemSolid3d;
+use spherecontact::history::History;
+use spherecontact::registry;
+use spherecontact::report::claims::study;
+use spherecontact::report::figures::surface::{FieldView, Layout};
+use spherecontact::scene::Scene;
+use spherecontact::solver;
+
+/// The paper's scene cut at position 5, `substeps` increments a segment.
+fn scene(substeps: usize) -> Scene {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/paper-fig7.toml");
+    let mut scene = spherecontact::case::Case::load(&file)
+        .expect("the paper case")
+        .scene;
+    let positions = scene.path.positions()[..6].to_vec();
+    scene.path = spherecontact::path::LoadingPath::try_new(positions, vec![substeps; 5]).expect("path");
+    scene
+}
+
+/// The history of `solver` at `n` (fem-3d: pole size c_max/n, also beyond the case files'
+/// finest c_max/14, with the engine's tangential tolerance `tolerance` if given; bem: n × n
+/// panels) on `scene`.
+fn solve(solver: &str, n: f64, tolerance: Option<f64>, scene: &Scene) -> History {
+    let rung: Box<dyn solver::Solver> = if solver == "fem-3d" {
+        let mut fem = FemSolid3d::with_pole_size(scene.max_contact_radius() / n);
+        if let Some(t) = tolerance {
+            fem.contact.tangential_tolerance = t;
+        }
+        Box::new(fem)
+    } else {
+        let base = registry::by_name(solver).expect("registered");
+        base.at_resolution(scene, &n.to_string()).expect("resolution")
+    };
+    solver::run(rung.as_ref(), scene).unwrap_or_else(|e| panic!("{solver}: {e}"))
+}
+
+/// Each sample's neighbours: the triangles' other corners, or the grid's four neighbours.
+fn neighbours(view: &FieldView) -> Vec<Vec<usize>> {
+    let n = view.len();
+    let mut around = vec![Vec::new(); n];
+    match &view.layout {
+        Layout::Triangles(triangles) => {
+            for t in triangles {
+                for &a in t {
+                    around[a].extend(t.iter().copied().filter(|&b| b != a));
+                }
+            }
+        }
+        Layout::Grid { spacing } => {
+            for (i, list) in around.iter_mut().enumerate() {
+                let p = view.point(i);
+                list.extend((0..n).filter(|&j| {
+                    let q = view.point(j);
+                    let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+                    d > 0.0 && d < 1.01 * spacing
+                }));
+            }
+        }
+        Layout::Profile => {}
+    }
+    for list in &mut around {
+        list.sort_unstable();
+        list.dedup();
+    }
+    around
+}
+
+/// The largest |box average| of q_x and of q_y over boxes of side `side` on the grid centred
+/// at the origin (area-weighted averages of the samples in contact within each box).
+fn box_maxima(view: &FieldView, areas: &[f64], side: f64) -> [f64; 2] {
+    let mut boxes: std::collections::HashMap<(i64, i64), [f64; 3]> = Default::default();
+    for i in (0..view.len()).filter(|&i| view.in_contact(i)) {
+        let [x, y] = view.point(i);
+        let key = ((x / side).floor() as i64, (y / side).floor() as i64);
+        let q = view.traction(i).unwrap_or([0.0; 2]);
+        let b = boxes.entry(key).or_insert([0.0; 3]);
+        b[0] += q[0] * areas[i];
+        b[1] += q[1] * areas[i];
+        b[2] += areas[i];
+    }
+    boxes.values().fold([0.0, 0.0], |m, b| {
+        [m[0].max((b[0] / b[2]).abs()), m[1].max((b[1] / b[2]).abs())]
+    })
+}
+
+fn report(label: &str, history: &History, friction: f64) {
+    let (m, c) = study::measure(history, 5, friction, None).expect("a map at position 5");
+    let view = FieldView::at_position(history, 5).expect("a field at position 5");
+    let areas = view.areas().expect("a map");
+    let contact: Vec<usize> = (0..view.len()).filter(|&i| view.in_contact(i)).collect();
+    let q = |i: usize| view.traction(i).unwrap_or([0.0; 2]);
+    let rms = |a: usize| {
+        let s: f64 = contact.iter().map(|&i| q(i)[a].powi(2) * areas[i]).sum();
+        let area: f64 = contact.iter().map(|&i| areas[i]).sum();
+        (s / area).sqrt()
+    };
+    let boxed = box_maxima(&view, &areas, c / 5.0);
+    let around = neighbours(&view);
+    let k = *contact
+        .iter()
+        .max_by(|&&a, &&b| q(a)[1].abs().total_cmp(&q(b)[1].abs()))
+        .expect("contact");
+    let mean_around = around[k].iter().map(|&j| q(j)[1]).sum::<f64>() / around[k].len().max(1) as f64;
+    // Node-to-node roughness of p, q_x, q_y: the largest departure of a sample from the mean of
+    // its neighbours, over the largest |value| (contact samples whose neighbours are all in
+    // contact, so that the contact edge does not count).
+    let roughness = |value: &dyn Fn(usize) -> f64| {
+        let scale = contact.iter().map(|&i| value(i).abs()).fold(0.0, f64::max);
+        contact
+            .iter()
+            .filter(|&&i| !around[i].is_empty() && around[i].iter().all(|&j| view.in_contact(j)))
+            .map(|&i| {
+                let mean = around[i].iter().map(|&j| value(j)).sum::<f64>() / around[i].len() as f64;
+                (value(i) - mean).abs()
+            })
+            .fold(0.0, f64::max)
+            / scale
+    };
+    println!(
+        "  roughness (largest |v − neighbours' mean| / max|v|): p {:.3}, q_x {:.3}, q_y {:.3}",
+        roughness(&|i| view.pressure(i)),
+        roughness(&|i| q(i)[0]),
+        roughness(&|i| q(i)[1])
+    );
+    let [x, y] = view.point(k);
+    println!(
+        "{label}: h = c/{:.0}; max|q_y|/max|q_x| {:.4}; RMS ratio {:.4}; box (c/5) ratio {:.4}; \
+         ∫q_y dA (x, y > 0) {:+.4} N; stick semi-axes x/y {}; max|q_y| {:.3e} Pa at ({:.2}, {:.2}) c, {}, \
+         its neighbours' mean {:+.3e} Pa ({} neighbours)",
+        c / m.spacing,
+        m.qy_max / m.qx_max,
+        rms(1) / rms(0),
+        boxed[1] / boxed[0],
+        m.quadrants[0].total,
+        m.stick_axes.map_or("—".into(), |a| format!(
+            "{:.1}/{:.1} µm",
+            1e6 * a[0],
+            1e6 * a[1]
+        )),
+        q(k)[1],
+        x / c,
+        y / c,
+        if view.stick(k) == Some(true) {
+            "stick"
+        } else {
+            "slip"
+        },
+        mean_around,
+        around[k].len()
+    );
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let runs: Vec<String> = if args.is_empty() {
+        [
+            "bem:64:10",
+            "bem:128:10",
+            "fem-3d:10:10",
+            "bem:64:20",
+            "bem:128:20",
+            "fem-3d:10:20",
+        ]
+        .map(str::to_owned)
+        .to_vec()
+    } else {
+        args
+    };
+    for run in runs {
+        let parts: Vec<&str> = run.split(':').collect();
+        let (solver, n, substeps, tolerance) = match parts[..] {
+            [solver, n, substeps] => (solver, n, substeps, None),
+            [solver, n, substeps, t] => (solver, n, substeps, Some(t.parse().expect("a tolerance"))),
+            _ => panic!("a run is SOLVER:N:S[:TOLERANCE], not {run}"),
+        };
+        let substeps: usize = substeps.parse().expect("increments a segment");
+        let n: f64 = n.parse().expect("a resolution");
+        let scene = scene(substeps);
+        let t = std::time::Instant::now();
+        let history = solve(solver, n, tolerance, &scene);
+        let label = format!(
+            "{solver} {n}, {substeps} increments a segment{} ({:.0} s)",
+            tolerance.map_or(String::new(), |t| format!(", tolerance {t:e}")),
+            t.elapsed().as_secs_f64()
+        );
+        report(&label, &history, scene.friction);
+    }
+}
