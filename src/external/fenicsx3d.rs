@@ -345,7 +345,7 @@ fn history(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) ->
     let mut steps = Vec::with_capacity(run.rows.len());
     let mut fields = Vec::new();
     for ((step, row), surface) in scene.steps().iter().zip(&run.rows).zip(&run.surfaces) {
-        let measures = surface.measures();
+        let measures = surface.measures(&run.triangles);
         if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
             fields.push(surface.field(position, plan.tangential, &run.triangles));
         }

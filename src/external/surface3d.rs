@@ -76,10 +76,11 @@ impl Surface3 {
     }
 
     /// c and p0 by fem-3d's measures ([`surface::measure`]: c from the pressure's second moment,
-    /// p0 from the smooth even fit near the pole).
-    pub fn measures(&self) -> Measures {
-        let (points, weights, pressure) = self.columns();
-        surface::measure(&points, &weights, &pressure)
+    /// integrated over `triangles`, on which the contact rule interpolates p linearly; p0 from the
+    /// smooth even fit near the pole).
+    pub fn measures(&self, triangles: &[[usize; 3]]) -> Measures {
+        let (points, _, pressure) = self.columns();
+        surface::measure(&points, triangles, &pressure)
     }
 
     /// The stick zone by fem-3d's measure ([`surface::stick_zone`]: area-equivalent radius and
