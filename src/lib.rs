@@ -49,6 +49,7 @@ pub mod number;
 pub mod pair;
 pub mod path;
 pub mod profile;
+pub mod quadrature;
 pub mod registry;
 pub mod report;
 pub mod resolution;

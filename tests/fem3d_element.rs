@@ -9,8 +9,8 @@ use spherecontact::fem::element::tet10;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::factor::{Factor, Ordering};
 use spherecontact::fem::mesh::solid::SolidMesh;
-use spherecontact::fem::quadrature;
 use spherecontact::fem::solid3d::system;
+use spherecontact::quadrature;
 
 type Field = dyn Fn([f64; 3]) -> [f64; 3];
 

@@ -9,7 +9,7 @@ use spherecontact::fem::element::tri6::{self, Integration, Lame};
 use spherecontact::fem::element::{tri6_n1, Mode};
 use spherecontact::fem::factor::{Factor, Ordering};
 use spherecontact::fem::mesh::meridian::Mesh;
-use spherecontact::fem::quadrature;
+use spherecontact::quadrature;
 use std::f64::consts::PI;
 
 /// A uniform mesh of n × n squares, each cut into two 6-node triangles, on [r0, r0 + 1] × [0, 1].

@@ -4,7 +4,7 @@
 //! |---|---|
 //! | [`element`] | element kinds: the 6-node axisymmetric triangle (n = 0) |
 //! | [`mesh`] | meshes: the meridian mesh of one body and its graded generator, the gmsh MSH reader |
-//! | [`quadrature`] | Gauss rules |
+//! | [`crate::quadrature`] | Gauss rules (top level: the surface measures of [`crate::fit`] use them too) |
 //! | [`assembly`] | global stiffness of a meridian mesh, Dirichlet elimination, reaction row |
 //! | [`factor`] | sparse Cholesky with a fill-reducing ordering |
 //! | [`ordering`] | the elimination order with the contact DOFs last (their Schur complement is the factor's trailing block) |
@@ -28,7 +28,6 @@ pub mod factor;
 pub mod mesh;
 pub mod ordering;
 pub mod pole;
-pub mod quadrature;
 pub mod solid3d;
 
 pub use axisym::{FemAxisym, MdrDomain};

@@ -16,8 +16,8 @@
 //! p0: the smooth even fit a₀ + a₁ (r/c)² + a₂ (r/c)⁴ to the nodal pressures on 0 < r ≤ c/2, as in
 //! the axisymmetric model (`fem::axisym::pressure`): a fit, not the pole node's value.
 
-use crate::fem::quadrature;
 use crate::fit::profile::peak_pressure;
+use crate::quadrature;
 
 /// c and p0 of one contact state.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -47,8 +47,8 @@ use crate::fem::element::tri6::{Integration, Lame};
 use crate::fem::element::tri6_n1;
 use crate::fem::factor::{Factor, Ordering};
 use crate::fem::mesh::meridian::Mesh;
-use crate::fem::quadrature;
 use crate::pair::Material;
+use crate::quadrature;
 
 /// One body's compliances relative to the half-space at one contact radius [m/N]: positive
 /// when softer.

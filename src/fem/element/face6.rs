@@ -25,7 +25,7 @@
 //! (the patch test in `tests/fem3d_surface.rs`).
 
 use super::tri6;
-use crate::fem::quadrature;
+use crate::quadrature;
 
 /// Node coordinates of one face [m].
 pub type Coords = [[f64; 3]; 6];

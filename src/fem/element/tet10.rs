@@ -16,7 +16,7 @@
 //! as gmsh places them on the sphere) gets the 14-point degree-5 rule.
 
 use super::tri6::Lame;
-use crate::fem::quadrature::{self, Point3};
+use crate::quadrature::{self, Point3};
 
 /// Node coordinates of one element [m].
 pub type Coords = [[f64; 3]; 10];

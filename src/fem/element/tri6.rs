@@ -15,8 +15,8 @@
 //! is too strong); [`Integration::SelectiveReduced`] integrates it with the 3-point rule only
 //! (Hughes 1987, §4.5; Malkus & Hughes 1978), which relieves the constraint.
 
-use crate::fem::quadrature::{self, Point};
 use crate::pair::Material;
+use crate::quadrature::{self, Point};
 use std::f64::consts::PI;
 
 /// Node coordinates (r, z) of one element.

@@ -404,9 +404,9 @@ impl Builder {
 pub fn validate(mesh: &Mesh) -> Result<(), MeshError> {
     for (e, t) in mesh.triangles.iter().enumerate() {
         let x = t.map(|n| mesh.nodes[n]);
-        let ok = crate::fem::quadrature::triangle_degree4()
+        let ok = crate::quadrature::triangle_degree4()
             .iter()
-            .chain(&crate::fem::quadrature::triangle_degree2())
+            .chain(&crate::quadrature::triangle_degree2())
             .all(|p| crate::fem::element::tri6::map(&x, p.at).is_some());
         if !ok {
             return Err(MeshError::Inverted(e));
@@ -425,7 +425,7 @@ mod tests {
             .iter()
             .flat_map(|t| {
                 let x = t.map(|n| mesh.nodes[n]);
-                crate::fem::quadrature::triangle_degree4()
+                crate::quadrature::triangle_degree4()
                     .into_iter()
                     .map(move |p| crate::fem::element::tri6::map(&x, p.at).unwrap().det * p.weight)
             })
