@@ -14,7 +14,7 @@
 //! Units: the file is in mm, MPa; [`Node3`] is SI.
 
 use super::readback;
-use crate::history::SurfaceField;
+use crate::history::{SurfaceField, TangentialComponents};
 
 /// The columns of the 3D `surface.csv`, in order.
 pub const SURFACE3_COLUMNS: [&str; 11] = [
@@ -160,6 +160,7 @@ impl Surface3 {
             }),
             stick: tangential.then(|| mirrored.iter().map(|(n, _)| n.stick).collect()),
             slip: tangential.then(|| mirrored.iter().map(|(n, s)| [n.slip[0], s * n.slip[1]]).collect()),
+            components: TangentialComponents::InPlane,
             triangles: None,
         }
     }
