@@ -3,9 +3,11 @@
 //!
 //! Run: `cargo run --release --example fem3d_timing -- [DIVISIONS…] [--variants] [--cattaneo]`,
 //! or the whole paper path: `cargo run --release --example fem3d_timing -- --path SUBSTEPS
-//! [--iterative]` (the path of cases/paper-fig7.toml with SUBSTEPS increments a segment, the
-//! default mesh; the solver `fem-3d` end to end: mesh, set-up and every increment timed, Q
-//! against mdr-domain and MDR, peak memory; `--iterative`: the engine's iterative algorithm).
+//! [--iterative] [--tolerance T] [--sub-triangles]` (the path of cases/paper-fig7.toml with
+//! SUBSTEPS increments a segment, the default mesh; the solver `fem-3d` end to end: mesh, set-up
+//! and every increment timed, Q against mdr-domain and MDR, peak memory; `--iterative`: the
+//! engine's iterative algorithm; T: its tangential tolerance; `--sub-triangles`: multipliers at
+//! every node on the sub-triangulated faces rather than at the corners).
 //!
 //! Set-up only:
 //! (DIVISIONS: pole size = c_max / DIVISIONS, c_max the contact radius at δn = 20 µm; default 10).
@@ -30,6 +32,7 @@ use spherecontact::fem::solid3d::condense::Condensation;
 use spherecontact::fem::solid3d::contact;
 use spherecontact::fem::solid3d::meshing::{self, Zones};
 use spherecontact::fem::solid3d::model::{Elimination, Model, Settings};
+use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::solid3d::system::Grip;
 use spherecontact::fem::FemSolid3d;
 use spherecontact::history::{History, Quantity};
@@ -172,7 +175,7 @@ fn report(label: &str, model: &Model, pair: &ContactPair, friction: bool) {
 }
 
 /// The whole paper path through the solver `fem-3d` (see the module doc).
-fn paper_path(substeps: usize, method: Method, tolerance: f64) {
+fn paper_path(substeps: usize, method: Method, tolerance: f64, rule: Rule) {
     let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/paper-fig7.toml");
     let mut scene = Case::load(&file).expect("the paper case").scene;
     let positions = scene.path.positions().to_vec();
@@ -185,6 +188,7 @@ fn paper_path(substeps: usize, method: Method, tolerance: f64) {
     let (mdr, corrected) = (run("mdr"), run("mdr-domain"));
     let (start, cpu0) = (Instant::now(), cpu_seconds());
     let solver = FemSolid3d {
+        rule,
         contact: ContactSettings {
             method,
             tangential_tolerance: tolerance,
@@ -207,7 +211,7 @@ fn paper_path(substeps: usize, method: Method, tolerance: f64) {
             / peak
     };
     println!(
-        "paper path, {substeps} increments a segment ({} steps), {method:?}, tangential tolerance {tolerance:e}: {} DOFs, {} candidates",
+        "paper path, {substeps} increments a segment ({} steps), {method:?}, tangential tolerance {tolerance:e}, multipliers {rule:?}: {} DOFs, {} candidates",
         history.steps.len(),
         number("dofs"),
         number("candidates")
@@ -273,7 +277,12 @@ fn main() {
             .position(|a| a == "--tolerance")
             .and_then(|k| args.get(k + 1)?.parse().ok())
             .unwrap_or(ContactSettings::default().tangential_tolerance);
-        paper_path(substeps, method, tolerance);
+        let rule = if args.iter().any(|a| a == "--sub-triangles") {
+            Rule::SubTriangles
+        } else {
+            Rule::Corners
+        };
+        paper_path(substeps, method, tolerance, rule);
         return;
     }
     let variants = args.iter().any(|a| a == "--variants");
@@ -333,6 +342,7 @@ fn main() {
                 elimination,
                 condensation,
                 grip: Grip::Rigid,
+                rule: Rule::Corners,
             };
             let model = Model::build(mesh.clone(), lame, &settings).unwrap();
             println!(

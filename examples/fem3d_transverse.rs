@@ -2,7 +2,8 @@
 //! 3 µm), fem-3d against the BEM, under refinement of the mesh (the panels) and of the increments.
 //!
 //! Run: `cargo run --release --example fem3d_transverse -- [RUN…]`, each RUN `fem-3d:N:S[:T]`
-//! (pole size c_max/N, the engine's tangential tolerance T) or `bem:N:S` (an N × N grid), S
+//! (pole size c_max/N, the engine's tangential tolerance T; `fem-3d-sub`: multipliers at every
+//! node on sub-triangulated faces) or `bem:N:S` (an N × N grid), S
 //! increments a segment; default: the BEM at 64 and 128 panels and fem-3d at c_max/10, each at
 //! 10 and 20 increments a segment.
 //!
@@ -14,6 +15,7 @@
 //! where max|q_y| lies (x/c, y/c, stick or slip) with its value against the mean of its
 //! neighbours (a node-to-node oscillation shows as a peak far above its neighbours).
 
+use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::FemSolid3d;
 use spherecontact::history::History;
 use spherecontact::registry;
@@ -37,8 +39,11 @@ fn scene(substeps: usize) -> Scene {
 /// finest c_max/14, with the engine's tangential tolerance `tolerance` if given; bem: n × n
 /// panels) on `scene`.
 fn solve(solver: &str, n: f64, tolerance: Option<f64>, scene: &Scene) -> History {
-    let rung: Box<dyn solver::Solver> = if solver == "fem-3d" {
+    let rung: Box<dyn solver::Solver> = if solver.starts_with("fem-3d") {
         let mut fem = FemSolid3d::with_pole_size(scene.max_contact_radius() / n);
+        if solver == "fem-3d-sub" {
+            fem.rule = Rule::SubTriangles;
+        }
         if let Some(t) = tolerance {
             fem.contact.tangential_tolerance = t;
         }

@@ -1,5 +1,6 @@
-//! The 3D contact surface: the sub-triangulated contact rule passes the uniform-pressure patch
-//! test node by node (corners included), and the two ways of condensing the contact compliance
+//! The 3D contact surface: both contact rules (multipliers at the corners, linear on the faces;
+//! at every node, linear on the sub-triangles) pass the uniform-pressure patch test point by
+//! point, and the two ways of condensing the contact compliance
 //! agree. Run: `cargo test --test fem3d_surface`.
 
 mod solid_common;
@@ -12,7 +13,7 @@ use spherecontact::fem::factor::Factor;
 use spherecontact::fem::mesh::solid::SolidMesh;
 use spherecontact::fem::ordering::{self, NodeOrder};
 use spherecontact::fem::solid3d::condense::{self, Condensation, Condensed};
-use spherecontact::fem::solid3d::surface::Surface;
+use spherecontact::fem::solid3d::surface::{Rule, Surface};
 use spherecontact::fem::solid3d::system;
 use spherecontact::pair::Material;
 
@@ -21,7 +22,7 @@ const YOUNG: f64 = 2.0;
 /// A bar on its contact face z = 0: u_z = 0 on the top z = 1, rollers on x = 0 and y = 0, the
 /// sides x = 1 and y = 1 free. Pressed by δ onto a frictionless rigid plane, its exact state is
 /// uniaxial: σ_zz = −E δ, a uniform contact pressure p = E δ.
-fn bar(distort: bool) -> (SolidMesh, Surface, Vec<Condensed>) {
+fn bar(distort: bool, rule: Rule) -> (SolidMesh, Surface, Vec<Condensed>) {
     let mesh = solid_common::block(3, [1.0; 3], distort);
     let mut fixed = vec![false; 3 * mesh.nodes.len()];
     for (n, x) in mesh.nodes.iter().enumerate() {
@@ -34,7 +35,7 @@ fn bar(distort: bool) -> (SolidMesh, Surface, Vec<Condensed>) {
         poisson: 0.3,
     });
     let sys = system::assemble(&mesh, lame, Dofs::from_fixed(&fixed)).unwrap();
-    let surface = Surface::new(&mesh, 10.0).unwrap();
+    let surface = Surface::new(&mesh, 10.0, rule).unwrap();
     let order = ordering::contact_last(
         &sys.graph,
         &mesh.nodes,
@@ -53,8 +54,11 @@ fn bar(distort: bool) -> (SolidMesh, Surface, Vec<Condensed>) {
 #[test]
 fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
     let delta = 1e-3;
-    for distort in [false, true] {
-        let (_, surface, condensed) = bar(distort);
+    for (distort, rule) in [false, true]
+        .into_iter()
+        .flat_map(|d| [(d, Rule::Corners), (d, Rule::SubTriangles)])
+    {
+        let (_, surface, condensed) = bar(distort, rule);
         let c = &condensed[0];
         let w = &surface.weights;
         // Multipliers: nodal pressures, acting through the compliance C' W.
@@ -68,7 +72,7 @@ fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
             // Round-off of the factorisation and the dense contact solve.
             assert!(
                 (pj - p).abs() < 1e-9 * p,
-                "node {j} at {:?}: p = {pj}, uniform {p}",
+                "{rule:?}: point {j} at {:?}: p = {pj}, uniform {p}",
                 surface.points[j]
             );
         }
@@ -82,7 +86,7 @@ fn a_uniform_pressure_is_recovered_at_every_node_corners_included() {
 
 #[test]
 fn the_trailing_block_and_the_blocked_solves_give_one_compliance() {
-    let (_, _, condensed) = bar(true);
+    let (_, _, condensed) = bar(true, Rule::Corners);
     let (a, b) = (&condensed[0], &condensed[1]);
     for (x, y) in [(&a.normal, &b.normal), (&a.tangential, &b.tangential)] {
         let scale = (0..x.nrows()).map(|i| x[(i, i)]).fold(0.0, f64::max);

@@ -81,6 +81,25 @@ pub fn coupling(x: &Coords) -> [[f64; 6]; 6] {
     d
 }
 
+/// The coupling D_jk = ∫ L_j N_k dA of one face for multipliers at its corners only (row j:
+/// the linear hat L_j of corner j on the whole face; column k: the quadratic shape function of
+/// node k). Rows sum to ∫ L_j dA = A/3 on a flat face; a uniform pressure Σ_j p L_j = p gives the
+/// consistent load p ∫ N_k dA exactly. Integrated like [`coupling`] (degree 3 on a flat face).
+pub fn corner_coupling(x: &Coords) -> [[f64; 6]; 3] {
+    let mut d = [[0.0; 6]; 3];
+    for p in quadrature::triangle_degree4() {
+        let hat = [1.0 - p.at[0] - p.at[1], p.at[0], p.at[1]];
+        let (_, area) = map(x, p.at);
+        let (n, _) = tri6::shape(p.at);
+        for (j, row) in d.iter_mut().enumerate() {
+            for k in 0..6 {
+                row[k] += p.weight * area * hat[j] * n[k];
+            }
+        }
+    }
+    d
+}
+
 /// The area of a face.
 pub fn area(x: &Coords) -> f64 {
     quadrature::triangle_degree4()
@@ -115,6 +134,25 @@ mod tests {
             assert!(
                 (consistent - expected).abs() < 1e-14,
                 "node {j}: ∫N = {consistent}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_corner_hats_give_the_consistent_load_of_a_uniform_pressure() {
+        let x = flat();
+        let a = area(&x);
+        let d = corner_coupling(&x);
+        for (j, row) in d.iter().enumerate() {
+            let w: f64 = row.iter().sum();
+            assert!((w - a / 3.0).abs() < 1e-14, "corner {j}: ∫L = {w}");
+        }
+        for k in 0..6 {
+            let consistent: f64 = d.iter().map(|r| r[k]).sum();
+            let expected = if k < 3 { 0.0 } else { a / 3.0 };
+            assert!(
+                (consistent - expected).abs() < 1e-14,
+                "node {k}: ∫N = {consistent}"
             );
         }
     }

@@ -63,7 +63,7 @@ fn unknowns(surface: &Surface) -> (Vec<Unknown>, Vec<Unknown>) {
 
 /// The force columns B over the trailing (contact) DOFs for `columns`.
 fn forces(surface: &Surface, order: &ContactLast, columns: &[Unknown]) -> Mat<f64> {
-    let m = surface.len();
+    let m = surface.nodes.len();
     let mut position = vec![usize::MAX; 3 * m];
     for (p, &(k, a)) in order.trailing.iter().enumerate() {
         position[3 * k + a] = p;
@@ -165,8 +165,8 @@ fn reactions(
     let mut rho = Mat::<f64>::from_fn(n, 2, |i, a| system.reaction[a][i]);
     factor.solve_in_place(rho.as_mut());
     let m = surface.len();
-    // ρ at each contact DOF, by (candidate, component); fixed components stay zero.
-    let mut at = vec![[0.0; 3]; m];
+    // ρ at each contact DOF, by (candidate node, component); fixed components stay zero.
+    let mut at = vec![[0.0; 3]; surface.nodes.len()];
     for (&(k, a), &dof) in order.trailing.iter().zip(&order.trailing_dofs) {
         match a {
             0 => at[k][0] = rho[(dof, 0)],

@@ -10,7 +10,7 @@
 use std::time::Instant;
 
 use super::condense::{self, Condensation, Condensed};
-use super::surface::Surface;
+use super::surface::{Rule, Surface};
 use super::system::{self, Grip, System};
 use crate::fem::assembly::Dofs;
 use crate::fem::element::tri6::Lame;
@@ -39,14 +39,17 @@ pub struct Settings {
     pub condensation: Condensation,
     /// How the far face is held.
     pub grip: Grip,
+    /// Where the contact multipliers live.
+    pub rule: Rule,
 }
 
 impl Settings {
-    /// The fastest combination (measured by `examples/fem3d_timing.rs`), for `grip`.
-    pub fn fastest(candidate_radius: f64, grip: Grip) -> Self {
+    /// The fastest combination (measured by `examples/fem3d_timing.rs`), for `grip` and `rule`.
+    pub fn fastest(candidate_radius: f64, grip: Grip, rule: Rule) -> Self {
         Self {
             candidate_radius,
             grip,
+            rule,
             elimination: Elimination::ContactLast(NodeOrder::MinimumDegree),
             condensation: Condensation::TrailingBlock,
         }
@@ -88,7 +91,7 @@ impl Model {
     /// Builds the model of `mesh` (already read or generated) for material `lame`.
     pub fn build(mesh: SolidMesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
         let t0 = Instant::now();
-        let surface = Surface::new(&mesh, settings.candidate_radius)?;
+        let surface = Surface::new(&mesh, settings.candidate_radius, settings.rule)?;
         let fixed = system::fixed_dofs(&mesh, settings.grip);
         if surface.nodes.iter().any(|&n| fixed[3 * n + 2]) {
             return Err(

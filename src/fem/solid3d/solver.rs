@@ -9,21 +9,30 @@
 //! the engine's resultants over the mirrored half (P checked against the far face's reaction);
 //! c and p0 come from [`super::measures`].
 //!
-//! The tangential algorithm is chosen by measurement (`examples/fem3d_timing.rs --path`): the
-//! condensed tangential compliance has 2 m rows (m = 1075 candidates at the default mesh). The
-//! engine's direct active-set solver cycled without converging on the paper path's first
-//! frictional increment (normal load rising with the shift) at the default mesh and at c_max/6,
-//! so fem-3d asks the engine for its iterative algorithms ([`Method::Iterative`], an engine
-//! setting: Polonsky–Keer for the normal problem, accelerated projected gradients for the
-//! tangential one) at every mesh, rather than the automatic switch, which solves a compliance of
-//! at most 1500 rows directly. The products read only the loaded columns and the step is set by
-//! a power estimate of the largest eigenvalue ([`super::operator`]). The tangential tolerance is
-//! 1e-5 (the engine's default is 1e-8), measured on the whole paper path at the default mesh
-//! (shared machine): 45 194 gradient steps at 1e-6, 20 820 at 1e-5, 6 854 at 1e-4, with the
-//! worst |Q − Q_mdr-domain| 0.119 %, 0.120 %, 0.122 % of the peak (the mesh's share: fem-axisym
-//! leaves 0.11 % at c_max/40); at position 5 the stick semi-axes moved by 4.6 µm from 1e-6 to
-//! 1e-5 (a twentieth of an element) and by 2.4 µm more at 1e-4, where the transverse traction's
-//! pointwise maximum moved by a third (`examples/fem3d_transverse.rs`).
+//! The contact multipliers live at the corners of the quadratic faces, linear on each face
+//! ([`Rule::Corners`]), chosen by measurement (`examples/fem3d_transverse.rs`,
+//! `examples/fem3d_timing.rs --path`). With multipliers at every node of the faces, linear on
+//! their sub-triangles ([`Rule::SubTriangles`], as many multipliers as displacement nodes),
+//! p and q oscillated from node to node: at position 5 a sample departed from its neighbours'
+//! mean by 0.23 of max p and 1.08 of max|q_y| (the BEM: 0.04 and 0.21), a single stick node
+//! gave max|q_y|/max|q_x| = 0.155 against the BEM's 0.049 (and grew as the engine's tolerance
+//! tightened: a poorly determined mode), and the engine needed about 450 gradient steps an
+//! increment. With the corners (a multiplier space one order below the displacements', a
+//! quarter of the points: 286 at the default mesh) the ratio is 0.056–0.066, its box averages
+//! over c/5 within 6 % of the BEM's, the whole paper path's contact solves take under a second,
+//! and Q stays within 0.16 % of the corrected reference's peak (0.12 % with every node); p0's
+//! fit of the corner values overshoots by +0.3 % (O(h²)).
+//!
+//! The tangential algorithm: the engine's direct active-set solver cycled without converging on
+//! the paper path's first frictional increment with multipliers at every node, so fem-3d asks
+//! the engine for its iterative algorithms ([`Method::Iterative`]: Polonsky–Keer for the normal
+//! problem, accelerated projected gradients for the tangential one). The products read only the
+//! loaded columns and the step is set by a power estimate of the largest eigenvalue
+//! ([`super::operator`]). The tangential tolerance is 1e-5 (the engine's default is 1e-8),
+//! measured on the whole paper path with multipliers at every node: the worst
+//! |Q − Q_mdr-domain| was 0.119 %, 0.120 %, 0.122 % of the peak at 1e-6, 1e-5, 1e-4; at
+//! position 5 the stick semi-axes moved by 4.6 µm from 1e-6 to 1e-5 (a twentieth of an
+//! element); with the corners, max|q_y|/max|q_x| moved from 0.0559 to 0.0587 from 1e-5 to 1e-7.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -33,6 +42,7 @@ use serde_json::json;
 use super::contact;
 use super::meshing::{self, Zones};
 use super::model::{Model, Settings};
+use super::surface::Rule;
 use super::system::Grip;
 use super::walk::{Record, Tangential, Walker};
 use crate::contact::{Method, Settings as ContactSettings};
@@ -67,6 +77,8 @@ pub struct FemSolid3d {
     /// When set, the volume and the contact surface are written there as VTU at every position
     /// that records fields.
     pub vtu_dir: Option<PathBuf>,
+    /// Where the contact multipliers live (corners by default: see the module doc).
+    pub rule: Rule,
 }
 
 impl Default for FemSolid3d {
@@ -79,6 +91,7 @@ impl Default for FemSolid3d {
                 ..ContactSettings::default()
             },
             vtu_dir: None,
+            rule: Rule::Corners,
         }
     }
 }
@@ -120,7 +133,7 @@ impl FemSolid3d {
     }
 
     /// The model of `scene` at pole size `h`, with its candidate radius and gmsh's time.
-    fn model(scene: &Scene, h: f64) -> Result<(Model, f64, f64), SolveError> {
+    fn model(&self, scene: &Scene, h: f64) -> Result<(Model, f64, f64), SolveError> {
         let radius = scene.pair.body1.radius;
         let zones = Zones::new(scene.max_contact_radius(), h);
         let geometry = meshing::geometry(radius, scene.domain.height(radius), h, zones);
@@ -134,7 +147,7 @@ impl FemSolid3d {
         })?;
         let (mesh, mesh_s) = meshing::generate(&geometry, &Toolchain::default())?;
         let lame = Lame::of(&scene.pair.body1.material);
-        let settings = Settings::fastest(zones.candidate_radius, grip(scene));
+        let settings = Settings::fastest(zones.candidate_radius, grip(scene), self.rule);
         let model = Model::build(mesh, lame, &settings).map_err(SolveError::Failed)?;
         Ok((model, zones.candidate_radius, mesh_s))
     }
@@ -202,7 +215,7 @@ impl Solver for FemSolid3d {
             return Ok(history);
         }
         let h = self.pole_size(scene)?;
-        let (model, candidate_radius, mesh_s) = Self::model(scene, h)?;
+        let (model, candidate_radius, mesh_s) = self.model(scene, h)?;
         let mode = Tangential::of(scene);
         let engine = contact::engine(&model, scene.friction, mode == Tangential::Solved, self.contact)
             .map_err(|e| SolveError::Failed(e.to_string()))?;

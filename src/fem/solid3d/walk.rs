@@ -218,7 +218,7 @@ impl PathModel for Walker<'_> {
         let force = self.engine.normal_force();
         self.check_balance(&pressure, force);
         let surface = &self.model.surface;
-        let found = measures::measure(&surface.points, &surface.weights, &pressure);
+        let found = measures::measure(&surface.points, &surface.triangles, &pressure);
         if force > 0.0 && found.radius.is_none_or(|c| c < 2.0 * self.pole_size) {
             self.record.unresolved.push(step.delta_n);
         }
