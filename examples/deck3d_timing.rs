@@ -29,14 +29,15 @@ fn extra(history: &History, key: &str) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// (set-up, path) wall seconds of a run: the deck's own clock, or fem-3d's phases.
-fn phases(history: &History, wall_s: f64) -> (f64, f64) {
+/// (set-up, path) wall seconds of a run, and the path's CPU seconds: the deck's own clocks (CPU
+/// of rank 0), or fem-3d's phases (its path's CPU is not recorded: NaN).
+fn phases(history: &History, wall_s: f64) -> (f64, f64, f64) {
     let deck_path = extra(history, "deck_path_wall");
     if deck_path.is_finite() {
-        return (wall_s - deck_path, deck_path);
+        return (wall_s - deck_path, deck_path, extra(history, "deck_path"));
     }
     let contact = extra(history, "contact_s");
-    (wall_s - contact, contact)
+    (wall_s - contact, contact, f64::NAN)
 }
 
 fn main() {
@@ -61,7 +62,7 @@ fn main() {
         h * 1e6,
         1.0 / DEFAULT_POLE_FRACTION
     );
-    let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new(); solvers.len()];
+    let mut runs: Vec<Vec<(f64, f64, f64)>> = vec![Vec::new(); solvers.len()];
     let mut histories: Vec<Option<History>> = vec![None; solvers.len()];
     for round in 0..=repeats {
         for (k, (name, solver)) in solvers.iter().enumerate() {
@@ -79,26 +80,35 @@ fn main() {
     }
     let fem = histories[2].clone();
     println!(
-        "{:<20} {:>9} {:>8} {:>14} {:>8} {:>8}",
-        "solver", "set-up s", "path s", "ms/increment", "ΔP/peak", "ΔQ/peak"
+        "{:<20} {:>9} {:>8} {:>14} {:>18} {:>8} {:>8}",
+        "solver", "set-up s", "path s", "ms/increment", "CPU ms/increment", "ΔP/peak", "ΔQ/peak"
     );
     for (k, (name, _)) in solvers.iter().enumerate() {
         let (Some(history), false) = (&histories[k], runs[k].is_empty()) else {
             continue;
         };
-        let sorted_median = |part: fn(&(f64, f64)) -> f64| {
+        let sorted_median = |part: fn(&(f64, f64, f64)) -> f64| {
             let mut values: Vec<f64> = runs[k].iter().map(part).collect();
             values.sort_by(f64::total_cmp);
             median(&values)
         };
-        let (setup, path) = (sorted_median(|r| r.0), sorted_median(|r| r.1));
+        let (setup, path, cpu) = (
+            sorted_median(|r| r.0),
+            sorted_median(|r| r.1),
+            sorted_median(|r| r.2),
+        );
+        let cpu = if cpu.is_finite() {
+            format!("{:.0}", cpu / increments as f64 * 1e3)
+        } else {
+            "—".to_owned()
+        };
         let against = |q: Quantity| {
             fem.as_ref()
                 .and_then(|f| worst_error(history, f, q, true))
                 .map_or_else(|| "—".to_owned(), |e| format!("{e:.1e}"))
         };
         println!(
-            "{name:<20} {setup:>9.1} {path:>8.1} {:>14.0} {:>8} {:>8}",
+            "{name:<20} {setup:>9.1} {path:>8.1} {:>14.0} {cpu:>18} {:>8} {:>8}",
             path / increments as f64 * 1e3,
             against(Quantity::NormalForce),
             against(Quantity::TangentialForce),

@@ -7,7 +7,8 @@
 //! against mdr-domain, the finite-body reference (MDR in series with the case's domain's
 //! compliances, docs/finite-body.md: the discretisation error, so the CPU ratio is at equal error
 //! when these columns match), the raw offset of P from Hertz beside it, and each deck against
-//! fem-axisym. The machine may be shared: compare the solvers within one run.
+//! fem-axisym; then Q at every path position beside mdr and mdr-domain. The machine may be shared:
+//! compare the solvers within one run.
 //!
 //! Run: `cargo run --release --example deck_path_timing [CASE] [REPEATS]` (needs scripts/setup.sh).
 
@@ -46,7 +47,7 @@ fn main() {
         .filter_map(|name| registry::by_name(name))
         .collect();
     let reference = |name: &str| registry::by_name(name).and_then(|s| solver::run(s.as_ref(), &scene).ok());
-    let (hertz, domain) = (reference("hertz"), reference("mdr-domain"));
+    let (hertz, domain, mdr) = (reference("hertz"), reference("mdr-domain"), reference("mdr"));
     println!(
         "{case}: {} steps, c_max = {:.4} mm; medians of {repeats} runs after a warm-up, interleaved; errors in %",
         scene.steps().len(),
@@ -93,5 +94,28 @@ fn main() {
             percent(against(&fem, Quantity::TangentialForce, true)),
             fem_cpu.map_or_else(String::new, |f| format!("   CPU ×{:.0} fem-axisym", cpu / f)),
         );
+    }
+    // Q at every path position, each solver beside the references.
+    let rows: Vec<(String, History)> = timings
+        .iter()
+        .flatten()
+        .map(|t| (t.solver.clone(), t.history.clone()))
+        .chain(
+            [("mdr", &mdr), ("mdr-domain", &domain)]
+                .into_iter()
+                .filter_map(|(n, h)| Some((n.to_owned(), h.clone()?))),
+        )
+        .collect();
+    println!("\nQ [N] at the path positions");
+    print!("{:<15}", "position");
+    rows.iter().for_each(|(name, _)| print!(" {name:>15}"));
+    println!();
+    for position in 0..scene.path.positions().len() {
+        print!("{position:<15}");
+        for (_, h) in &rows {
+            let q = h.at_position(position).and_then(|r| r.tangential_force);
+            print!(" {:>15}", q.map_or_else(|| "—".to_owned(), |q| format!("{q:.3}")));
+        }
+        println!();
     }
 }

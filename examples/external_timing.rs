@@ -12,6 +12,7 @@ use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
+use spherecontact::external::geo::MeshFiles;
 use spherecontact::history::History;
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::registry;
@@ -113,7 +114,7 @@ fn main() {
     }
 }
 
-fn boxed<D: Deck + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
+fn boxed<D: Deck<Mesh = MeshFiles> + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
     let mut solver = AxisymSolver::new(deck);
     solver.options.resolution = Some(h);
     Box::new(solver)

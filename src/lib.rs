@@ -44,6 +44,7 @@ pub mod hertz;
 pub mod history;
 pub mod io;
 pub mod limits;
+pub mod mirror;
 pub mod number;
 pub mod pair;
 pub mod path;

@@ -1,65 +1,249 @@
-//! The dolfinx 3D deck `fenicsx-3d` on a coarse mesh, under MPI, against the axisymmetric deck
-//! on the same frictional path.
+//! The dolfinx 3D deck `fenicsx-3d` on a coarse mesh, under MPI, against `fem-3d` on the same
+//! mesh and against the axisymmetric deck on the same frictional path.
 //!
-//! Heavy (minutes of CPU, a 3D mesh and two ranks): ignored by default. Run it with
+//! Heavy (a minute of CPU or two, a 3D mesh, two ranks): ignored by default. Run it with
 //! `cargo test --release --test external_3d -- --ignored`. It prints why it skips where gmsh,
 //! dolfinx or mpirun are absent (install them with `scripts/setup.sh`).
+//!
+//! The deck and fem-3d mesh the body from `external::solid_geo` at the same pole size (gmsh is
+//! deterministic: the tests check that the candidate nodes coincide) and apply the same contact
+//! rule (multipliers linear on the faces' sub-triangles, the averaged gap); they differ by the
+//! deck's penalty k = 1e3 E/h against the engine's exact constraints and by the algorithms.
 
 use spherecontact::external::fenicsx::Fenicsx;
-use spherecontact::external::fenicsx3d::Solid3dDeck;
-use spherecontact::history::Quantity;
+use spherecontact::external::fenicsx3d::{Solid3dDeck, DEFAULT_POLE_FRACTION};
+use spherecontact::fem::solid3d::solver::FemSolid3d;
+use spherecontact::fem::solid3d::surface::Rule;
+use spherecontact::history::{History, Quantity, StepResult, SurfaceField};
+use spherecontact::scene::Scene;
 use spherecontact::solver;
 
 mod common;
 use common::decks::{at_resolution, frictional_scene, tools_present};
 
-/// The 3D deck on 2 ranks walks the frictional path (δn → 17 µm, δt → 3 µm, back to −3 µm):
-/// P against the axisymmetric deck (the same finite body and grip), Q against it at every
-/// step, Coulomb's bound on the fields, the stick zone shrinking under load and reset by the
-/// reversal, and the whole-plane fields with their odd q_y.
+/// One heavy run at a time: the tests of this file take the lock (the machine's cores go to the
+/// ranks, and CI runs the file once).
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// P of the deck against fem-3d, relative to the peak P. Reason: the penalty lets the surface sink
+/// by p/k ≤ p0 h/(1e3 E) = 1.3 nm at the pole (p0 = 454 MPa, h = 0.2 mm) against the approach
+/// d = 8.5 µm, so P is lower by at most 1.5 × 1.3e-3/8.5 = 2.3e-4 (measured 1.2e-4 at worst over
+/// the paper path to position 5).
+const TOLERANCE_P: f64 = 3e-4;
+/// Q of the deck against fem-3d, relative to the peak |Q|. Reason: the tangential penalty adds
+/// the elastic slip q/k ≤ μ p0 h/(1e3 E) = 0.26 nm per sticking node to the shift t = δt/2 ≥ 0.5 µm
+/// (≤ 5e-4 of it), and the normal penalty's P moves μP by 1.2e-4 (measured 3.0e-4 at worst over
+/// the paper path to position 5, no increment capped).
+const TOLERANCE_Q: f64 = 6e-4;
+/// The largest |q_y| of the deck against fem-3d's, relative to μ p0. Reason: q_y peaks at the
+/// stick–slip edge, where the penalty's elastic slip moves the edge within a node spacing; the
+/// node-wise traction there differs by up to 3 % of μ p0 (measured at positions 2, 4 and 5), the
+/// maximum of |q_y| by 0.2–1.1 % of μ p0 (1.6–6 % of the maximum itself).
+const TOLERANCE_QY: f64 = 2e-2;
+/// RMS over the candidate nodes of the deck's p minus fem-3d's at the same node, relative to p0.
+/// Reason: the penalty smooths the pressure at the contact edge over a node (measured 2.9–3.5e-3;
+/// the largest node-wise difference 1.5–2.1e-2 of p0 lies at the edge).
+const TOLERANCE_P_FIELD: f64 = 1e-2;
+
+/// The paper path to position 5 (δn 0 → 10 → 14 → 17 µm, then δt 1 → 2 → 3 µm at 17 µm), with
+/// `substeps` increments per segment: the state of the paper's Figures 10–12.
+fn paper_path_to_position_5(substeps: usize) -> Scene {
+    let path = std::path::Path::new("cases-heavy/paper-fig7-3d.toml");
+    let mut scene = spherecontact::case::Case::load(path).unwrap().scene;
+    let positions = scene.path.positions().to_vec();
+    scene.path = spherecontact::path::LoadingPath::try_new(positions, vec![substeps; 5]).unwrap();
+    scene
+}
+
+/// fem-3d on the deck's default mesh, with the deck's contact rule: multipliers linear on the
+/// faces' sub-triangles (`Rule::SubTriangles`). fem-3d's default is now the corner rule (linear
+/// multipliers on the faces' corners), which the deck does not implement yet; on one rule the two
+/// differ only by the deck's penalty and the algorithms, which is what this file measures.
+fn fem_3d_on_the_deck_mesh(scene: &Scene) -> History {
+    let h = DEFAULT_POLE_FRACTION * scene.max_contact_radius();
+    let fem = FemSolid3d {
+        rule: Rule::SubTriangles,
+        ..FemSolid3d::with_pole_size(h)
+    };
+    solver::run(&fem, scene).unwrap()
+}
+
+/// The surface field of path position `position`.
+fn field(history: &History, position: usize) -> &SurfaceField {
+    history.fields.iter().find(|f| f.position == position).unwrap()
+}
+
+/// The largest |q_y| of a surface field [Pa].
+fn qy_max(field: &SurfaceField) -> f64 {
+    field
+        .traction
+        .as_ref()
+        .map_or(0.0, |t| t.iter().map(|q| q[1].abs()).fold(0.0, f64::max))
+}
+
+/// For every point of `a`, the index of the same point in `b` (the same mesh: coordinates equal
+/// to 1e-12 m, the files' 17 digits of mm); panics on a point that `b` does not have.
+fn same_points(a: &SurfaceField, b: &SurfaceField) -> Vec<usize> {
+    a.points
+        .iter()
+        .map(|x| {
+            b.points
+                .iter()
+                .position(|y| (x[0] - y[0]).abs() < 1e-12 && (x[1] - y[1]).abs() < 1e-12)
+                .unwrap_or_else(|| panic!("point {x:?} is not a node of fem-3d's surface: not the same mesh"))
+        })
+        .collect()
+}
+
+/// The largest difference of a step quantity over the steps, relative to `peak`.
+fn worst(a: &History, b: &History, value: impl Fn(&StepResult) -> Option<f64>, peak: f64) -> f64 {
+    a.steps
+        .iter()
+        .zip(&b.steps)
+        .map(|(x, y)| (value(x).unwrap() - value(y).unwrap()).abs() / peak)
+        .fold(0.0, f64::max)
+}
+
+/// fenicsx-3d on 1 rank against fem-3d on the same mesh at paper positions 1–5 (5 increments per
+/// segment): P and Q at every step, the largest |q_y| and the pressure field node by node at the
+/// positions, and the fields in fem-3d's layout (the same points, the same number of triangles).
 #[test]
-#[ignore = "heavy: a 3D dolfinx run on 2 MPI ranks; cargo test --release --test external_3d -- --ignored"]
-fn the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_the_axisymmetric_deck() {
-    if !tools_present("the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_the_axisymmetric_deck") {
+#[ignore = "heavy: a 3D dolfinx run and fem-3d at c_max/5; cargo test --release --test external_3d -- --ignored"]
+fn the_3d_deck_agrees_with_fem_3d_on_the_same_mesh_at_positions_1_to_5() {
+    if !tools_present("the_3d_deck_agrees_with_fem_3d_on_the_same_mesh_at_positions_1_to_5") {
         return;
     }
+    let _heavy = ONE_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let scene = paper_path_to_position_5(5);
+    let deck = solver::run(&Solid3dDeck::new(1), &scene).unwrap();
+    let fem = fem_3d_on_the_deck_mesh(&scene);
+    let (p_peak, q_peak) = (
+        fem.peak(Quantity::NormalForce),
+        fem.peak(Quantity::TangentialForce),
+    );
+    let worst_p = worst(&deck, &fem, |r| r.normal_force, p_peak);
+    let worst_q = worst(&deck, &fem, |r| r.tangential_force, q_peak);
+    eprintln!(
+        "fenicsx-3d against fem-3d, every step: worst P {worst_p:.2e}, worst Q {worst_q:.2e} of the peaks"
+    );
+    assert!(worst_p < TOLERANCE_P, "P: {worst_p:e} of the peak");
+    assert!(worst_q < TOLERANCE_Q, "Q: {worst_q:e} of the peak");
+    assert_eq!(deck.metadata.extra["capped_steps"], serde_json::json!([]));
+    eprintln!(
+        "position | P deck, fem-3d [N] | Q deck, fem-3d [N] | max|q_y| deck, fem-3d [MPa] | p RMS (of p0)"
+    );
+    for position in 1..=5 {
+        let (a, b) = (
+            deck.at_position(position).unwrap(),
+            fem.at_position(position).unwrap(),
+        );
+        let (fa, fb) = (field(&deck, position), field(&fem, position));
+        let to_fem = same_points(fa, fb);
+        assert_eq!(
+            fa.points.len(),
+            fb.points.len(),
+            "position {position}: the candidates"
+        );
+        assert_eq!(
+            fa.triangles.as_ref().map(Vec::len),
+            fb.triangles.as_ref().map(Vec::len),
+            "position {position}: the layout"
+        );
+        let p0 = b.peak_pressure.unwrap();
+        let p_rms = (fa
+            .pressure
+            .iter()
+            .zip(&to_fem)
+            .map(|(p, &j)| (p - fb.pressure[j]).powi(2))
+            .sum::<f64>()
+            / fa.pressure.len() as f64)
+            .sqrt()
+            / p0;
+        let (qy, qy_ref) = (qy_max(fa), qy_max(fb));
+        eprintln!(
+            "{position} | {:.3} {:.3} | {:.3} {:.3} | {:.2} {:.2} | {p_rms:.1e}",
+            a.normal_force.unwrap(),
+            b.normal_force.unwrap(),
+            a.tangential_force.unwrap(),
+            b.tangential_force.unwrap(),
+            qy * 1e-6,
+            qy_ref * 1e-6
+        );
+        assert!(
+            p_rms < TOLERANCE_P_FIELD,
+            "position {position}: p RMS {p_rms:e} of p0"
+        );
+        assert!(
+            (qy - qy_ref).abs() < TOLERANCE_QY * scene.friction * p0,
+            "position {position}: max |q_y| {qy} against {qy_ref}"
+        );
+        if position >= 2 {
+            assert!(qy > 0.0, "position {position}: a shifted contact has q_y");
+        }
+    }
+}
+
+/// The 3D deck on 2 ranks walks the frictional path (δn → 17 µm, δt → 3 µm, back to −3 µm)
+/// beside fem-3d on the same mesh (P and Q at every step) and the axisymmetric deck (the same
+/// finite body and grip, a finer meridian mesh: the deck may differ from it by no more than
+/// fem-3d does on the 3D mesh, plus the deck's own tolerance against fem-3d); Coulomb's bound on
+/// the fields, the stick zone shrinking under load and reset by the reversal, and the
+/// whole-plane fields with their odd q_y.
+#[test]
+#[ignore = "heavy: a 3D dolfinx run on 2 MPI ranks; cargo test --release --test external_3d -- --ignored"]
+fn the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_fem_3d_and_the_axisymmetric_deck() {
+    if !tools_present(
+        "the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_fem_3d_and_the_axisymmetric_deck",
+    ) {
+        return;
+    }
+    let _heavy = ONE_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let scene = frictional_scene();
-    let deck = Solid3dDeck::new(2);
-    let history = solver::run(&deck, &scene).unwrap();
+    let history = solver::run(&Solid3dDeck::new(2), &scene).unwrap();
     assert_eq!(history.metadata.extra["ranks"], 2);
     assert_eq!(history.metadata.extra["grip"], "rigid");
+    assert_eq!(history.metadata.extra["capped_steps"], serde_json::json!([]));
+    let fem = fem_3d_on_the_deck_mesh(&scene);
     let axisym = solver::run(
         at_resolution(Fenicsx, scene.max_contact_radius() / 20.0).as_ref(),
         &scene,
     )
     .unwrap();
-    let p_peak = axisym.peak(Quantity::NormalForce);
-    let q_peak = axisym.peak(Quantity::TangentialForce);
-    let (mut worst_p, mut worst_q) = (0.0_f64, 0.0_f64);
-    for (row, reference) in history.steps.iter().zip(&axisym.steps) {
-        let p = row.normal_force.unwrap();
-        let q = row.tangential_force.unwrap();
-        // P: the same finite body and grip; the coarse 3D mesh (pole element c_max/5) against
-        // the axisymmetric c_max/20: measured 1.2e-3 of the peak at worst; 3e-3 = 2.5 times that,
-        // a margin for the mesh's node placement, which the test does not pin.
-        let p_error = (p - reference.normal_force.unwrap()).abs() / p_peak;
-        assert!(p_error < 3e-3, "step {}: P error {p_error}", row.step);
-        // Coulomb's bound on the whole sphere (one rounding of the sums).
-        assert!(q.abs() <= scene.friction * p * (1.0 + 1e-9), "step {}", row.step);
-        // Q: the same model but for what the n = 1 mode cannot show (q_y), on a coarse 3D mesh
-        // whose nodes are c_max/5 apart: measured 1.5e-3 of the peak at worst; 5e-3 for the same
-        // reason as P.
-        let q_error = (q - reference.tangential_force.unwrap()).abs() / q_peak;
-        worst_p = worst_p.max(p_error);
-        worst_q = worst_q.max(q_error);
+    for (quantity, tolerance) in [
+        (Quantity::NormalForce, TOLERANCE_P),
+        (Quantity::TangentialForce, TOLERANCE_Q),
+    ] {
+        let value = |r: &StepResult| quantity.of(r);
+        let peak = fem.peak(quantity);
+        let against_fem = worst(&history, &fem, value, peak);
+        // The 3D mesh's own distance from the axisymmetric deck, measured by fem-3d on it.
+        let mesh_offset = worst(&fem, &axisym, value, peak);
+        let against_axisym = worst(&history, &axisym, value, peak);
+        eprintln!(
+            "{}: fenicsx-3d − fem-3d {against_fem:.2e}, fenicsx-3d − fenicsx-axisym {against_axisym:.2e}, \
+             fem-3d − fenicsx-axisym {mesh_offset:.2e} of the peak",
+            quantity.name()
+        );
         assert!(
-            q_error < 5e-3,
-            "step {}: Q {q} against {} (error {q_error} of the peak)",
-            row.step,
-            reference.tangential_force.unwrap()
+            against_fem < tolerance,
+            "{}: {against_fem:e} from fem-3d",
+            quantity.name()
+        );
+        assert!(
+            against_axisym < mesh_offset + tolerance,
+            "{}: {against_axisym:e} from fenicsx-axisym, fem-3d on the same mesh {mesh_offset:e}",
+            quantity.name()
         );
     }
-    eprintln!("fenicsx-3d against fenicsx-axisym: worst P error {worst_p:.2e}, worst Q error {worst_q:.2e} of the peaks");
+    for row in &history.steps {
+        // Coulomb's bound on the whole sphere (one rounding of the sums).
+        let (p, q) = (row.normal_force.unwrap(), row.tangential_force.unwrap());
+        assert!(q.abs() <= scene.friction * p * (1.0 + 1e-9), "step {}", row.step);
+    }
     let q: Vec<f64> = history
         .steps
         .iter()
@@ -81,10 +265,10 @@ fn the_3d_deck_on_two_ranks_walks_a_frictional_path_beside_the_axisymmetric_deck
     );
     assert!(stick[11] > stick[10], "the reversal sticks again: {stick:?}");
     // The fields at positions: the whole plane, q_y odd in y, |q| ≤ μ p at every node.
-    let field = history.fields.iter().find(|f| f.position == 2).unwrap();
+    let field = field(&history, 2);
     let traction = field.traction.as_ref().unwrap();
     let qy_sum: f64 = traction.iter().map(|t| t[1]).sum();
-    let qy_max = traction.iter().map(|t| t[1].abs()).fold(0.0, f64::max);
+    let qy_max = qy_max(field);
     assert!(qy_max > 0.0 && qy_sum.abs() <= 1e-9 * qy_max * traction.len() as f64);
     // Coulomb's bound node by node: one rounding of μp, and 1 mPa for the round-off of the
     // tractions of nodes out of contact (p = 0, q = −T = 0 up to the sum's round-off).

@@ -12,7 +12,7 @@
 
 use std::time::{Duration, Instant};
 
-use super::deck::{self, ComputedStep, Deck, DeckInput, RunDir, PATH_FILE};
+use super::deck::{self, ComputedStep, Deck, DeckInput, RunDir, TimeBudget};
 use super::geo::{self, MeshFiles};
 use super::readback::{self, DeckRow};
 use super::record::{self, Run};
@@ -40,9 +40,11 @@ pub const CANDIDATE_ZONE: f64 = 1.25;
 /// Time allowed for start-up (imports, dolfinx's form compilation on a first run), for the set-up
 /// (assembly, factorisation and one solve per candidate DOF: 10–40 s at c/40, minutes at c/80),
 /// and per computed step (milliseconds at c/40).
-const TIME_TO_START: Duration = Duration::from_secs(120);
-const TIME_FOR_SETUP: Duration = Duration::from_secs(600);
-const TIME_PER_STEP: Duration = Duration::from_millis(500);
+const BUDGET: TimeBudget = TimeBudget {
+    start: Duration::from_secs(120),
+    setup: Duration::from_secs(600),
+    per_step: Duration::from_millis(500),
+};
 
 /// How a deck (axisymmetric or 3D) is run.
 #[derive(Clone, Debug, Default)]
@@ -71,7 +73,7 @@ pub struct Timing {
 }
 
 /// An external deck as a [`Solver`].
-pub struct AxisymSolver<D: Deck> {
+pub struct AxisymSolver<D: Deck<Mesh = MeshFiles>> {
     /// The deck.
     pub deck: D,
     /// How it is run.
@@ -121,7 +123,7 @@ impl Plan {
     }
 }
 
-impl<D: Deck + 'static> Solver for AxisymSolver<D> {
+impl<D: Deck<Mesh = MeshFiles> + 'static> Solver for AxisymSolver<D> {
     fn name(&self) -> &'static str {
         self.deck.name()
     }
@@ -166,20 +168,14 @@ impl<D: Deck + 'static> Solver for AxisymSolver<D> {
             .resolution
             .unwrap_or_else(|| geo::default_resolution(scene));
         let plan = Plan::of(scene, resolution);
-        let mut dir = RunDir::new(&format!("spherecontact-{}-", self.deck.name()))
-            .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
-        match self.run_in(scene, resolution, &plan, &dir) {
-            Ok(run) => Ok(record::history(&self.deck, scene, &version, &plan, &run)),
-            Err(SolveError::Failed(message)) => Err(SolveError::Failed(format!(
-                "{message} (deck, mesh, stdout and stderr kept in {})",
-                dir.keep().display()
-            ))),
-            Err(other) => Err(other),
-        }
+        let run = deck::in_run_dir(&format!("spherecontact-{}-", self.deck.name()), |dir| {
+            self.run_in(scene, resolution, &plan, dir)
+        })?;
+        Ok(record::history(&self.deck, scene, &version, &plan, &run))
     }
 }
 
-impl<D: Deck> AxisymSolver<D> {
+impl<D: Deck<Mesh = MeshFiles>> AxisymSolver<D> {
     /// A deck with default options.
     pub fn new(deck: D) -> Self {
         Self {
@@ -196,35 +192,16 @@ impl<D: Deck> AxisymSolver<D> {
             meshing_s: mesh.wall_s,
             ..Timing::default()
         };
-        let input = self.input(scene, resolution, plan, &mesh);
+        let max_iterations = self.options.max_iterations.unwrap_or(MAX_ITERATIONS);
+        let input = deck_input(&self.deck, scene, resolution, plan, &mesh, max_iterations);
         let text = self
             .options
             .deck_text
             .clone()
             .unwrap_or_else(|| deck::fill(self.deck.template(), &input));
-        let write = |name: &str, text: &str| {
-            std::fs::write(dir.path().join(name), text)
-                .map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
-        };
-        write(self.deck.file_name(), &text)?;
-        write(PATH_FILE, &deck::path_file(&plan.steps))?;
-        let steps = u32::try_from(plan.steps.len()).unwrap_or(u32::MAX);
-        let timeout = self
-            .options
-            .timeout
-            .unwrap_or(TIME_TO_START + TIME_FOR_SETUP + TIME_PER_STEP * steps);
-        let job = self
-            .deck
-            .job(toolchain, &dir.path().join(self.deck.file_name()), timeout);
-        let run = super::process::run(&job, dir.path(), "deck")
-            .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", self.deck.tool().name())))?;
+        let timeout = self.options.timeout.unwrap_or(BUDGET.limit(plan.steps.len()));
+        let run = deck::launch(&self.deck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
         timing.solving_s = run.wall_s;
-        if let Some(why) = deck::failure(&self.deck, &run.ending, timeout) {
-            return Err(SolveError::Failed(format!(
-                "{why}; last output:\n{}",
-                run.tail(12)
-            )));
-        }
         let start = Instant::now();
         let (rows, surfaces) =
             read_back(dir, plan, input.radius_mm, toolchain).map_err(SolveError::Failed)?;
@@ -240,27 +217,36 @@ impl<D: Deck> AxisymSolver<D> {
             deck_clock,
         })
     }
+}
 
-    /// The template's numbers, converted to mm, N, MPa.
-    fn input(&self, scene: &Scene, resolution: f64, plan: &Plan, mesh: &MeshFiles) -> DeckInput {
-        let body = scene.pair.body1;
-        let mesh_file = self.deck.mesh_file(mesh);
-        DeckInput {
-            scene: scene.name.clone(),
-            mesh: mesh_file
-                .file_name()
-                .map_or_else(String::new, |f| f.to_string_lossy().into_owned()),
-            radius_mm: body.radius * 1e3,
-            young_mpa: body.material.young * 1e-6,
-            poisson: body.material.poisson,
-            h_mm: resolution * 1e3,
-            kfac: KFAC,
-            friction: scene.friction,
-            grip: plan.grip,
-            candidate_radius_mm: plan.candidate_radius * 1e3,
-            tangential: plan.tangential,
-            max_iterations: self.options.max_iterations.unwrap_or(MAX_ITERATIONS),
-        }
+/// The numbers a deck's template is filled with (mm, N, MPa): the scene's sphere, the pole size
+/// `resolution` [m], the plan's grip, candidates and tangential switch, the deck's mesh file of
+/// `mesh`, and the cap on contact iterations.
+pub(crate) fn deck_input<D: Deck>(
+    deck: &D,
+    scene: &Scene,
+    resolution: f64,
+    plan: &Plan,
+    mesh: &D::Mesh,
+    max_iterations: u32,
+) -> DeckInput {
+    let body = scene.pair.body1;
+    DeckInput {
+        scene: scene.name.clone(),
+        mesh: deck
+            .mesh_file(mesh)
+            .file_name()
+            .map_or_else(String::new, |f| f.to_string_lossy().into_owned()),
+        radius_mm: body.radius * 1e3,
+        young_mpa: body.material.young * 1e-6,
+        poisson: body.material.poisson,
+        h_mm: resolution * 1e3,
+        kfac: KFAC,
+        friction: scene.friction,
+        grip: plan.grip,
+        candidate_radius_mm: plan.candidate_radius * 1e3,
+        tangential: plan.tangential,
+        max_iterations,
     }
 }
 
@@ -297,7 +283,7 @@ fn read_back(
     }
     let window_mm = plan.candidate_radius * 1e3;
     let profiles =
-        readback::read_profiles(dir.path(), &files, radius_mm, window_mm, toolchain, TIME_TO_START)?;
+        readback::read_profiles(dir.path(), &files, radius_mm, window_mm, toolchain, BUDGET.start)?;
     for ((file, profile), (_, surface)) in files.iter().zip(&profiles).zip(&at_positions) {
         record::check_field_file(file, profile, surface)?;
     }

@@ -4,10 +4,10 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use super::geo::MeshFiles;
-use super::process::{Ending, Job};
+use super::process::{Ending, Job, Run};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
+use crate::solver::SolveError;
 
 /// The numbers a deck template is filled with: mm, N, MPa (the decks' units). The computed
 /// steps go into a separate file ([`PATH_FILE`]): a path has more steps than FreeFEM accepts in
@@ -125,20 +125,60 @@ pub fn single_threaded() -> Vec<(String, String)> {
         .to_vec()
 }
 
-/// One external deck: its template, its program, and the meaning of its exit codes.
-pub trait Deck: Send + Sync + Clone {
+/// `python3 deck` (the toolchain's Python, one BLAS thread): how a dolfinx deck runs serially.
+pub fn python_job(toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
+    Job {
+        program: toolchain.python.clone(),
+        args: vec![deck.display().to_string()],
+        env: single_threaded(),
+        timeout,
+    }
+}
+
+/// What names a deck: a table row, the same fields for every deck.
+#[derive(Clone, Copy, Debug)]
+pub struct DeckKind {
     /// The solver name (`freefem-axisym`, …).
-    fn name(&self) -> &'static str;
+    pub name: &'static str,
     /// One line: model and method.
-    fn description(&self) -> &'static str;
+    pub description: &'static str,
     /// The tool that runs it.
-    fn tool(&self) -> Tool;
+    pub tool: Tool,
     /// The deck template (kept beside the code, `templates/`).
-    fn template(&self) -> &'static str;
+    pub template: &'static str,
     /// The deck's file name in the run directory.
-    fn file_name(&self) -> &'static str;
-    /// The mesh file it reads.
-    fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path;
+    pub file_name: &'static str,
+}
+
+/// One external deck: what names it, its mesh, its program, and the meaning of its exit codes.
+pub trait Deck: Send + Sync + Clone {
+    /// What names it.
+    const KIND: DeckKind;
+    /// The solver name.
+    fn name(&self) -> &'static str {
+        Self::KIND.name
+    }
+    /// One line: model and method.
+    fn description(&self) -> &'static str {
+        Self::KIND.description
+    }
+    /// The tool that runs it.
+    fn tool(&self) -> Tool {
+        Self::KIND.tool
+    }
+    /// The deck template.
+    fn template(&self) -> &'static str {
+        Self::KIND.template
+    }
+    /// The deck's file name in the run directory.
+    fn file_name(&self) -> &'static str {
+        Self::KIND.file_name
+    }
+    /// The meshes gmsh writes for it (the meridian's [`MeshFiles`], the solid's
+    /// [`super::solid_geo::SolidMeshFiles`]).
+    type Mesh;
+    /// The mesh file it reads, of those.
+    fn mesh_file<'a>(&self, mesh: &'a Self::Mesh) -> &'a Path;
     /// The job that runs the deck file `deck` in the run directory.
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job;
     /// What an exit code of this program means.
@@ -148,6 +188,81 @@ pub trait Deck: Send + Sync + Clone {
 /// The reason a finished run failed, in words, or `None` if it succeeded.
 pub fn failure(deck: &impl Deck, ending: &Ending, timeout: Duration) -> Option<String> {
     ending.failure(deck.tool().name(), timeout, |code| deck.exit_code_meaning(code))
+}
+
+/// How long a deck may run when its options set no time limit: start-up (imports, form
+/// compilation), set-up (assembly, factorisation, condensation), and a time per computed step.
+#[derive(Clone, Copy, Debug)]
+pub struct TimeBudget {
+    /// Start-up.
+    pub start: Duration,
+    /// Set-up.
+    pub setup: Duration,
+    /// Per computed step.
+    pub per_step: Duration,
+}
+
+impl TimeBudget {
+    /// The limit for `steps` computed steps.
+    pub fn limit(&self, steps: usize) -> Duration {
+        self.start + self.setup + self.per_step * u32::try_from(steps).unwrap_or(u32::MAX)
+    }
+}
+
+/// Writes the filled deck `text` (as the deck's file name) and the list of `steps`
+/// ([`PATH_FILE`]) into `dir`.
+pub fn write_deck(
+    deck: &impl Deck,
+    dir: &Path,
+    text: &str,
+    steps: &[ComputedStep],
+) -> Result<(), SolveError> {
+    let write = |name: &str, text: &str| {
+        std::fs::write(dir.join(name), text).map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
+    };
+    write(deck.file_name(), text)?;
+    write(PATH_FILE, &path_file(steps))
+}
+
+/// Writes the filled deck `text` and the list of `steps` into `dir`, runs the deck there within
+/// `timeout`, and returns the finished run; a run that failed (exit code, signal, timeout) is an
+/// error with the reason and the last lines of its log.
+pub fn launch(
+    deck: &impl Deck,
+    toolchain: &Toolchain,
+    dir: &Path,
+    text: &str,
+    steps: &[ComputedStep],
+    timeout: Duration,
+) -> Result<Run, SolveError> {
+    write_deck(deck, dir, text, steps)?;
+    let job = deck.job(toolchain, &dir.join(deck.file_name()), timeout);
+    let run = super::process::run(&job, dir, "deck")
+        .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
+    match failure(deck, &run.ending, timeout) {
+        Some(why) => Err(SolveError::Failed(format!(
+            "{why}; last output:\n{}",
+            run.tail(12)
+        ))),
+        None => Ok(run),
+    }
+}
+
+/// Runs `work` in a fresh run directory named after `prefix`: removed when `work` succeeds,
+/// kept when it fails (its path appended to the error) for the deck, mesh and logs.
+pub fn in_run_dir<T>(
+    prefix: &str,
+    work: impl FnOnce(&RunDir) -> Result<T, SolveError>,
+) -> Result<T, SolveError> {
+    let mut dir =
+        RunDir::new(prefix).map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
+    match work(&dir) {
+        Err(SolveError::Failed(message)) => Err(SolveError::Failed(format!(
+            "{message} (deck, mesh, stdout and stderr kept in {})",
+            dir.keep().display()
+        ))),
+        other => other,
+    }
 }
 
 /// A run directory whose files are removed on success and kept on failure.

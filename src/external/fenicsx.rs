@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::time::Duration;
 
-use super::deck::Deck;
+use super::deck::{Deck, DeckKind};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::toolchain::{Tool, Toolchain};
@@ -19,25 +19,15 @@ pub const TEMPLATE: &str = include_str!("templates/fenicsx_axisym.py");
 pub struct Fenicsx;
 
 impl Deck for Fenicsx {
-    fn name(&self) -> &'static str {
-        "fenicsx-axisym"
-    }
+    const KIND: DeckKind = DeckKind {
+        name: "fenicsx-axisym",
+        description: "FEniCSx (dolfinx) axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history",
+        tool: Tool::Dolfinx,
+        template: TEMPLATE,
+        file_name: "deck.py",
+    };
 
-    fn description(&self) -> &'static str {
-        "FEniCSx (dolfinx) axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history"
-    }
-
-    fn tool(&self) -> Tool {
-        Tool::Dolfinx
-    }
-
-    fn template(&self) -> &'static str {
-        TEMPLATE
-    }
-
-    fn file_name(&self) -> &'static str {
-        "deck.py"
-    }
+    type Mesh = MeshFiles;
 
     fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
         &mesh.msh41
@@ -45,12 +35,7 @@ impl Deck for Fenicsx {
 
     /// Serial, no `mpirun` (faster than 2 ranks on 2 cores; mpirun as root needs extra flags).
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
-        Job {
-            program: toolchain.python.clone(),
-            args: vec![deck.display().to_string()],
-            env: super::deck::single_threaded(),
-            timeout,
-        }
+        super::deck::python_job(toolchain, deck, timeout)
     }
 
     fn exit_code_meaning(&self, code: i32) -> &'static str {

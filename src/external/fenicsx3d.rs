@@ -11,9 +11,8 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use super::axisym::{Options, Plan, KFAC, MAX_ITERATIONS};
-use super::deck::{self, Deck, DeckInput, RunDir, PATH_FILE};
-use super::geo::MeshFiles;
+use super::axisym::{deck_input, Options, Plan, KFAC};
+use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget, PATH_FILE};
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};
@@ -43,9 +42,17 @@ pub use crate::limits::MAX_RANKS;
 /// Time allowed for start-up (imports, form compilation on a first run), for the set-up
 /// (assembly, factorisation, one solve per candidate DOF: minutes at c_max/8) and per computed
 /// step (a dense semi-smooth Newton on the candidates: below a second at c_max/8).
-const TIME_TO_START: Duration = Duration::from_secs(180);
-const TIME_FOR_SETUP: Duration = Duration::from_secs(1800);
-const TIME_PER_STEP: Duration = Duration::from_secs(3);
+const BUDGET: TimeBudget = TimeBudget {
+    start: Duration::from_secs(180),
+    setup: Duration::from_secs(1800),
+    per_step: Duration::from_secs(3),
+};
+
+/// Cap on the tangential Newton iterations per increment: the averaged contact rule couples
+/// neighbouring nodes; measured up to 35 iterations on the frictional path of
+/// `tests/external_3d.rs` (0.5 µm increments of δt at c_max/5). A step that hits the cap is
+/// flagged.
+pub const MAX_ITERATIONS: u32 = 60;
 
 /// The 3D deck run by dolfinx on `ranks` MPI processes (1: plain python, no mpirun).
 #[derive(Clone, Copy, Debug)]
@@ -55,44 +62,28 @@ pub struct Fenicsx3d {
 }
 
 impl Deck for Fenicsx3d {
-    fn name(&self) -> &'static str {
-        NAME
-    }
+    const KIND: DeckKind = DeckKind {
+        name: NAME,
+        description: "FEniCSx (dolfinx) 3D FEM on quadratic tetrahedra, half of one sphere on its symmetry plane, penalty, Coulomb with history on the disc, MPI (heavy)",
+        tool: Tool::Dolfinx,
+        template: TEMPLATE,
+        file_name: "deck3d.py",
+    };
 
-    fn description(&self) -> &'static str {
-        "FEniCSx (dolfinx) 3D FEM on quadratic tetrahedra, half of one sphere on its symmetry plane, penalty, Coulomb with history on the disc, MPI (heavy)"
-    }
+    type Mesh = SolidMeshFiles;
 
-    fn tool(&self) -> Tool {
-        Tool::Dolfinx
-    }
-
-    fn template(&self) -> &'static str {
-        TEMPLATE
-    }
-
-    fn file_name(&self) -> &'static str {
-        "deck3d.py"
-    }
-
-    /// Unused: the 3D mesh is [`SolidMeshFiles`], not the meridian's [`MeshFiles`].
-    fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
-        &mesh.msh41
+    fn mesh_file<'a>(&self, mesh: &'a SolidMeshFiles) -> &'a Path {
+        &mesh.msh
     }
 
     /// `python3 deck3d.py` on one rank; `mpirun -np N python3 deck3d.py` on more, with the two
     /// variables OpenMPI needs to run as root, and `--oversubscribe` beyond the machine's cores.
     fn job(&self, toolchain: &Toolchain, deck: &Path, timeout: Duration) -> Job {
+        if self.ranks <= 1 {
+            return deck::python_job(toolchain, deck, timeout);
+        }
         let python = toolchain.python.display().to_string();
         let deck = deck.display().to_string();
-        if self.ranks <= 1 {
-            return Job {
-                program: toolchain.python.clone(),
-                args: vec![deck],
-                env: deck::single_threaded(),
-                timeout,
-            };
-        }
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         let mut args = vec!["-np".to_owned(), self.ranks.to_string()];
         if usize::try_from(self.ranks).unwrap_or(usize::MAX) > cores {
@@ -137,10 +128,10 @@ pub struct Solid3dDeck {
 struct Run3 {
     rows: Vec<DeckRow>,
     surfaces: Vec<Surface3>,
-    mesh: SolidMeshFiles,
+    triangles: Vec<[usize; 3]>,
     resolution: f64,
-    solving_s: f64,
-    reading_s: f64,
+    /// Wall seconds of gmsh, the deck and the reading back.
+    wall_s: [f64; 3],
     timing: Vec<(String, f64)>,
 }
 
@@ -155,71 +146,103 @@ impl Solid3dDeck {
 
     /// Meshes, runs the deck and reads back, in `dir`.
     fn run_in(&self, scene: &Scene, plan: &Plan, resolution: f64, dir: &RunDir) -> Result<Run3, SolveError> {
+        let (text, mesh_s) = self.prepare(scene, plan, resolution, dir.path())?;
+        let timeout = self.options.timeout.unwrap_or(BUDGET.limit(plan.steps.len()));
         let toolchain = &self.options.toolchain;
-        let c_max = scene.max_contact_radius();
-        let zones = Zones::new(c_max, resolution);
+        let run = deck::launch(&self.deck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
+        let mut read = read_outputs(dir.path(), plan, resolution)?;
+        read.wall_s[0] = mesh_s;
+        read.wall_s[1] = run.wall_s;
+        Ok(read)
+    }
+
+    /// Meshes the body into `dir` (`body.geo`, `body.msh`): the filled deck's text and gmsh's
+    /// wall time [s].
+    fn prepare(
+        &self,
+        scene: &Scene,
+        plan: &Plan,
+        resolution: f64,
+        dir: &Path,
+    ) -> Result<(String, f64), SolveError> {
+        let zones = Zones::new(scene.max_contact_radius(), resolution);
         let r = scene.pair.body1.radius;
         let geometry = solid_geo::geometry(r, scene.domain.height(r), resolution, zones);
-        let mesh = solid_geo::mesh(&geometry, dir.path(), "body", toolchain)?;
-        let input = DeckInput {
-            scene: scene.name.clone(),
-            mesh: "body.msh".into(),
-            radius_mm: r * 1e3,
-            young_mpa: scene.pair.body1.material.young * 1e-6,
-            poisson: scene.pair.body1.material.poisson,
-            h_mm: resolution * 1e3,
-            kfac: KFAC,
-            friction: scene.friction,
-            grip: plan.grip,
-            candidate_radius_mm: plan.candidate_radius * 1e3,
-            tangential: plan.tangential,
-            max_iterations: self.options.max_iterations.unwrap_or(MAX_ITERATIONS),
-        };
-        let write = |name: &str, text: &str| {
-            std::fs::write(dir.path().join(name), text)
-                .map_err(|e| SolveError::Failed(format!("writing {name}: {e}")))
-        };
-        let text = self
-            .options
-            .deck_text
-            .clone()
-            .unwrap_or_else(|| deck::fill(TEMPLATE, &input));
-        write(self.deck.file_name(), &text)?;
-        write(PATH_FILE, &deck::path_file(&plan.steps))?;
-        let steps = u32::try_from(plan.steps.len()).unwrap_or(u32::MAX);
-        let timeout = self
-            .options
-            .timeout
-            .unwrap_or(TIME_TO_START + TIME_FOR_SETUP + TIME_PER_STEP * steps);
-        let job = self
-            .deck
-            .job(toolchain, &dir.path().join(self.deck.file_name()), timeout);
-        let run = super::process::run(&job, dir.path(), "deck")
-            .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
-        if let Some(why) = deck::failure(&self.deck, &run.ending, timeout) {
+        let mesh = solid_geo::mesh(&geometry, dir, "body", &self.options.toolchain)?;
+        let max_iterations = self.options.max_iterations.unwrap_or(MAX_ITERATIONS);
+        let text = self.options.deck_text.clone().unwrap_or_else(|| {
+            deck::fill(
+                TEMPLATE,
+                &deck_input(&self.deck, scene, resolution, plan, &mesh, max_iterations),
+            )
+        });
+        Ok((text, mesh.wall_s))
+    }
+
+    /// Writes everything the deck needs to run elsewhere (a cluster: docs/external-decks.md, "On a
+    /// cluster") into the existing folder `dir`, without running it: `body.geo`, `body.msh`,
+    /// `deck3d.py` and `path.txt`.
+    pub fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
+        let (resolution, plan) = self.plan(scene);
+        let (text, _) = self.prepare(scene, &plan, resolution, dir)?;
+        deck::write_deck(&self.deck, dir, &text, &plan.steps)
+    }
+
+    /// The pole size and plan of `scene` for this deck.
+    fn plan(&self, scene: &Scene) -> (f64, Plan) {
+        let c_max = scene.max_contact_radius();
+        let resolution = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
+        let mut plan = Plan::of(scene, resolution);
+        plan.candidate_radius = Zones::new(c_max, resolution).candidate_radius;
+        (resolution, plan)
+    }
+
+    /// The history of a run directory that the deck finished elsewhere (on a cluster, by hand:
+    /// docs/external-decks.md, "On a cluster"), read back as after the solver's own run. The
+    /// directory's `path.txt` must list `scene`'s computed steps; the pole size is this solver's
+    /// (its resolution option, or the default), for the metadata and the edge check.
+    pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
+        let (resolution, plan) = self.plan(scene);
+        let listed = readback::read_output(dir, PATH_FILE).map_err(SolveError::Failed)?;
+        if listed != deck::path_file(&plan.steps) {
             return Err(SolveError::Failed(format!(
-                "{why}; last output:\n{}",
-                run.tail(12)
+                "{}: the steps it lists are not those of scene `{}`",
+                dir.join(PATH_FILE).display(),
+                scene.name
             )));
         }
-        let start = Instant::now();
-        let read = |name: &str| readback::read_output(dir.path(), name).map_err(SolveError::Failed);
-        let rows = readback::parse_steps(&read("steps.csv")?, &plan.steps).map_err(SolveError::Failed)?;
-        let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
-        let surfaces =
-            surface3d::parse_surface3(&read("surface.csv")?, &indices).map_err(SolveError::Failed)?;
-        check_consistency(&rows, &surfaces, resolution)?;
-        let timing = read("timing.csv").map(|t| parse_phases(&t)).unwrap_or_default();
-        Ok(Run3 {
-            rows,
-            surfaces,
-            mesh,
-            resolution,
-            solving_s: run.wall_s,
-            reading_s: start.elapsed().as_secs_f64(),
-            timing,
-        })
+        let run = read_outputs(dir, &plan, resolution)?;
+        let ranks = run
+            .timing
+            .iter()
+            .find(|(phase, _)| phase == "ranks")
+            .map_or(self.deck.ranks, |(_, n)| n.round() as u32);
+        let mut history = history(scene, "(run elsewhere)", &plan, &run, ranks);
+        history.metadata.solver = NAME.into();
+        Ok(history)
     }
+}
+
+/// Reads the deck's output files in `dir` (steps.csv, surface.csv, triangles.csv, timing.csv)
+/// and checks them against each other; the wall times of meshing and solving are left at zero.
+fn read_outputs(dir: &Path, plan: &Plan, resolution: f64) -> Result<Run3, SolveError> {
+    let start = Instant::now();
+    let read = |name: &str| readback::read_output(dir, name).map_err(SolveError::Failed);
+    let rows = readback::parse_steps(&read("steps.csv")?, &plan.steps).map_err(SolveError::Failed)?;
+    let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
+    let surfaces = surface3d::parse_surface3(&read("surface.csv")?, &indices).map_err(SolveError::Failed)?;
+    check_consistency(&rows, &surfaces, resolution)?;
+    let nodes = surfaces.first().map_or(0, |s| s.nodes.len());
+    let triangles = surface3d::parse_triangles(&read("triangles.csv")?, nodes).map_err(SolveError::Failed)?;
+    let timing = read("timing.csv").map(|t| parse_phases(&t)).unwrap_or_default();
+    Ok(Run3 {
+        rows,
+        surfaces,
+        triangles,
+        resolution,
+        wall_s: [0.0, 0.0, start.elapsed().as_secs_f64()],
+        timing,
+    })
 }
 
 /// Largest disagreement between the deck's P and the nodal sum of surface.csv, relative to the
@@ -309,20 +332,11 @@ impl Solver for Solid3dDeck {
                 "mpirun not found on PATH; install: apt-get install openmpi-bin (or scripts/setup.sh)".into(),
             ));
         }
-        let c_max = scene.max_contact_radius();
-        let resolution = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
-        let mut plan = Plan::of(scene, resolution);
-        plan.candidate_radius = Zones::new(c_max, resolution).candidate_radius;
-        let mut dir = RunDir::new("spherecontact-fenicsx-3d-")
-            .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
-        match self.run_in(scene, &plan, resolution, &dir) {
-            Ok(run) => Ok(history(scene, &version, &plan, &run, self.deck.ranks)),
-            Err(SolveError::Failed(message)) => Err(SolveError::Failed(format!(
-                "{message} (deck, mesh, stdout and stderr kept in {})",
-                dir.keep().display()
-            ))),
-            Err(other) => Err(other),
-        }
+        let (resolution, plan) = self.plan(scene);
+        let run = deck::in_run_dir("spherecontact-fenicsx-3d-", |dir| {
+            self.run_in(scene, &plan, resolution, dir)
+        })?;
+        Ok(history(scene, &version, &plan, &run, self.deck.ranks))
     }
 }
 
@@ -331,19 +345,18 @@ fn history(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) ->
     let mut steps = Vec::with_capacity(run.rows.len());
     let mut fields = Vec::new();
     for ((step, row), surface) in scene.steps().iter().zip(&run.rows).zip(&run.surfaces) {
-        let measures = surface.measures();
+        let measures = surface.measures(&run.triangles);
         if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
-            fields.push(surface.field(position, plan.tangential));
+            fields.push(surface.field(position, plan.tangential, &run.triangles));
         }
         let in_contact = row.force_contact > 0.0;
         steps.push(StepResult {
             normal_force: Some(row.force_contact),
             tangential_force: plan.tangential.then_some(row.tangential_force),
-            contact_radius: measures.contact_radius,
-            peak_pressure: measures.peak_pressure,
+            contact_radius: measures.radius,
+            peak_pressure: measures.peak,
             stick_radius: (plan.tangential && in_contact)
-                .then(|| measures.contact_radius.map(|c| surface.stick_radius(c)))
-                .flatten(),
+                .then(|| surface.stick_zone().map_or(0.0, |z| z.radius)),
             ..StepResult::at(step)
         });
     }
@@ -366,8 +379,9 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
         version: format!("dolfinx {version}"),
         model: format!(
             "3D, half of one sphere (y ≥ 0; {}) against its symmetry plane, exact for identical \
-             spheres; P2 on quadratic tetrahedra; penalty k = {KFAC:e} E/h with nodal contact \
-             quadrature (sub-triangle lumping), condensed onto the candidate nodes; {}",
+             spheres; P2 on quadratic tetrahedra; penalty k = {KFAC:e} E/h with fem-3d's contact \
+             rule (multipliers linear on the faces' sub-triangles, averaged gap), condensed onto the \
+             candidate nodes; {}",
             scene.domain.describe(),
             if plan.tangential {
                 "Coulomb with history on the disc |q| ≤ μp, all-stick predictor every increment"
@@ -383,26 +397,17 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
         warnings: vec![FINITE_BODY.into()],
         ..Metadata::default()
     };
-    if plan.tangential {
-        metadata.warnings.push(
-            "known defect: the nodal contact quadrature lets corner nodes lift off inside the contact, \
-             so the surface fields oscillate node to node and the stick radius (the innermost slipping \
-             node) is far too small; P and Q agree with fenicsx-axisym within 2.2e-3 of the peaks \
-             (docs/external-decks.md)"
-                .into(),
-        );
-    }
     let facts = RunFacts {
         candidate_nodes: run.surfaces.first().map_or(0, |s| s.nodes.len()),
         capped: &capped,
-        wall_s: [run.mesh.wall_s, run.solving_s, run.reading_s],
+        wall_s: run.wall_s,
     };
     record_run(&mut metadata, plan, &facts);
     let extra = &mut metadata.extra;
     extra.insert("ranks".into(), json!(ranks));
     extra.insert(
         "contact_measures".into(),
-        json!("c and p0 from a least-squares fit of p² = p0²(1 − r²/c²) over the nodes in contact; stick radius midway between the innermost slipping node and the farthest sticking node inside it"),
+        json!("fem-3d's (fit::surface): c from the pressure's second moment, p0 from the smooth even fit on r ≤ c/2, the stick radius √(A/π) of the sticking nodes' area A"),
     );
     for (phase, value) in &run.timing {
         extra.insert(format!("deck_{phase}"), json!(value));
@@ -413,6 +418,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::external::deck::DeckInput;
 
     #[test]
     fn one_rank_runs_python_and_more_run_mpirun_as_root() {

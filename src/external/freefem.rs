@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::time::Duration;
 
-use super::deck::{self, Deck};
+use super::deck::{self, Deck, DeckKind};
 use super::geo::MeshFiles;
 use super::process::Job;
 use super::toolchain::{Tool, Toolchain, FF_LOADPATH};
@@ -19,25 +19,15 @@ pub const TEMPLATE: &str = include_str!("templates/freefem_axisym.edp");
 pub struct FreeFem;
 
 impl Deck for FreeFem {
-    fn name(&self) -> &'static str {
-        "freefem-axisym"
-    }
+    const KIND: DeckKind = DeckKind {
+        name: "freefem-axisym",
+        description: "FreeFEM axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history",
+        tool: Tool::FreeFem,
+        template: TEMPLATE,
+        file_name: "deck.edp",
+    };
 
-    fn description(&self) -> &'static str {
-        "FreeFEM axisymmetric FEM, one sphere on its symmetry plane, Fourier n = 0 and n = 1, P2, penalty, Coulomb with history"
-    }
-
-    fn tool(&self) -> Tool {
-        Tool::FreeFem
-    }
-
-    fn template(&self) -> &'static str {
-        TEMPLATE
-    }
-
-    fn file_name(&self) -> &'static str {
-        "deck.edp"
-    }
+    type Mesh = MeshFiles;
 
     fn mesh_file<'a>(&self, mesh: &'a MeshFiles) -> &'a Path {
         &mesh.msh22_mm

@@ -133,23 +133,33 @@ Physical Surface(\"body\", 10) = {{1}};
 
 Field[1] = Distance;
 Field[1].PointsList = {{1}};
-Field[2] = Threshold;
+{size_field}",
+        size_field = size_field("dfine"),
+        name = scene.name,
+        domain = scene.domain.describe(),
+        grip = scene.domain.grip.name(),
+    ))
+}
+
+/// The end both `.geo` files share (the meridian's and the solid's): size h up to the distance
+/// named `fine` from the contact zone (gmsh field 1), growing linearly to hmax at `dcoarse`, the
+/// triangulation algorithm, and midside nodes on the curved boundary.
+pub(crate) fn size_field(fine: &str) -> String {
+    format!(
+        "Field[2] = Threshold;
 Field[2].InField = 1;
 Field[2].SizeMin = h;
 Field[2].SizeMax = hmax;
-Field[2].DistMin = dfine;
+Field[2].DistMin = {fine};
 Field[2].DistMax = dcoarse;
 Background Field = 2;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeFromCurvature = 0;
 Mesh.Algorithm = 6;            // Frontal-Delaunay (algorithm 8 segfaults in gmsh 4.8.4)
-Mesh.SecondOrderLinear = 0;    // quadratic elements follow the arc
-",
-        name = scene.name,
-        domain = scene.domain.describe(),
-        grip = scene.domain.grip.name(),
-    ))
+Mesh.SecondOrderLinear = 0;    // quadratic elements follow the curved boundary
+"
+    )
 }
 
 /// The mesh files of one scene and resolution.

@@ -120,22 +120,11 @@ Physical Volume(\"body\", 10) = {{3}};
 // Distance from the disc {{z = 0, x² + y² <= rfine²}}.
 Field[1] = MathEval;
 Field[1].F = Sprintf(\"Sqrt(z*z + Max(0, Sqrt(x*x + y*y) - %g)^2)\", rfine);
-Field[2] = Threshold;
-Field[2].InField = 1;
-Field[2].SizeMin = h;
-Field[2].SizeMax = hmax;
-Field[2].DistMin = tfine;
-Field[2].DistMax = dcoarse;
-Background Field = 2;
-Mesh.MeshSizeExtendFromBoundary = 0;
-Mesh.MeshSizeFromPoints = 0;
-Mesh.MeshSizeFromCurvature = 0;
-Mesh.Algorithm = 6;            // Frontal-Delaunay surfaces (algorithm 8 segfaults in gmsh 4.8.4)
-Mesh.Algorithm3D = 1;          // Delaunay
+{size_field}Mesh.Algorithm3D = 1;          // Delaunay
 Mesh.Optimize = 1;
 Mesh.ElementOrder = 2;
-Mesh.SecondOrderLinear = 0;    // midside nodes on the sphere
 ",
+            size_field = super::geo::size_field("tfine"),
             r = self.radius,
             h_far = self.height,
             h = self.pole_size,

@@ -2,19 +2,18 @@
 //! (`surface.csv`: the candidate nodes of the half surface y ≥ 0, P2 vertices and midside nodes),
 //! and what is measured from it.
 //!
-//! The deck applies contact by nodal quadrature: node i carries the force ω_i p_i (ω_i its lumped
-//! area, see docs/external-decks.md), and the half model's forces are doubled for the whole sphere.
-//! Measures, all from the nodes in contact (p > 0):
-//! - contact radius c and peak pressure p0 from a least-squares fit of the Hertz form
-//!   p² = p0² (1 − r²/c²), linear in r² (the form the axisymmetric decks fit at the edge);
-//! - the stick radius: midway between the innermost slipping node and the farthest sticking node
-//!   inside it (c when none slips, 0 when the innermost node in contact slips): the radius of
-//!   the largest centred disc that sticks, within half a node spacing.
+//! The deck applies fem-3d's contact rule: node j's multiplier ω_j p_j (ω_j = ∫ φ_j dA, φ_j its hat
+//! on the faces' sub-triangles, see docs/external-decks.md), and the half model's forces are
+//! doubled for the whole sphere. The measures (c, p0, the stick zone) are fem-3d's
+//! ([`crate::fit::surface`]) on the same weights; the fields read back in fem-3d's layout (the
+//! half's nodes, their mirror images, the sub-triangles: [`Mirror`]).
 //!
 //! Units: the file is in mm, MPa; [`Node3`] is SI.
 
 use super::readback;
+use crate::fit::surface::{self, Measures, StickZone};
 use crate::history::{SurfaceField, TangentialComponents};
+use crate::mirror::Mirror;
 
 /// The columns of the 3D `surface.csv`, in order.
 pub const SURFACE3_COLUMNS: [&str; 11] = [
@@ -36,7 +35,7 @@ pub const SURFACE3_COLUMNS: [&str; 11] = [
 pub struct Node3 {
     /// Position (x, y) on the contact plane [m], y ≥ 0.
     pub point: [f64; 2],
-    /// Nodal quadrature weight (lumped area) [m²].
+    /// The node's weight ω = ∫ φ dA on the faces' sub-triangles [m²].
     pub weight: f64,
     /// Height of the deformed surface above the contact plane [m] (negative: penetration).
     pub gap: f64,
@@ -66,57 +65,30 @@ pub struct Surface3 {
     pub nodes: Vec<Node3>,
 }
 
-/// Contact radius and peak pressure of one step (see the module doc).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Measures3 {
-    /// Contact radius [m].
-    pub contact_radius: Option<f64>,
-    /// Peak pressure p0 [Pa].
-    pub peak_pressure: Option<f64>,
-}
-
 impl Surface3 {
-    /// c and p0 from the least-squares fit of p² = a − b r² over the nodes in contact.
-    pub fn measures(&self) -> Measures3 {
-        let points: Vec<(f64, f64)> = self
-            .nodes
-            .iter()
-            .filter(|n| n.pressure > 0.0)
-            .map(|n| (n.r() * n.r(), n.pressure * n.pressure))
-            .collect();
-        if points.len() < 3 {
-            return Measures3::default();
-        }
-        // p² = a − b r²: the shared least-squares line of p² against r² ([`crate::fit::Line`]).
-        let Some(line) = crate::fit::Line::fit(&points) else {
-            return Measures3::default();
-        };
-        let (slope, a) = (line.slope, line.mean_y - line.slope * line.mean_x);
-        if !(slope < 0.0 && a > 0.0) {
-            return Measures3::default();
-        }
-        Measures3 {
-            contact_radius: Some((a / -slope).sqrt()),
-            peak_pressure: Some(a.sqrt()),
-        }
+    /// The nodes' positions on the contact plane (z = 0), weights and pressures.
+    fn columns(&self) -> (Vec<[f64; 3]>, Vec<f64>, Vec<f64>) {
+        (
+            self.nodes.iter().map(|n| [n.point[0], n.point[1], 0.0]).collect(),
+            self.nodes.iter().map(|n| n.weight).collect(),
+            self.nodes.iter().map(|n| n.pressure).collect(),
+        )
     }
 
-    /// The stick radius (see the module doc), for a step in contact of radius `contact_radius`.
-    pub fn stick_radius(&self, contact_radius: f64) -> f64 {
-        let in_contact = self.nodes.iter().filter(|n| n.pressure > 0.0);
-        let Some(r_slip) = in_contact
-            .clone()
-            .filter(|n| !n.stick)
-            .map(Node3::r)
-            .min_by(f64::total_cmp)
-        else {
-            return contact_radius;
-        };
-        in_contact
-            .filter(|n| n.stick && n.r() < r_slip)
-            .map(Node3::r)
-            .max_by(f64::total_cmp)
-            .map_or(0.0, |r_stick| 0.5 * (r_stick + r_slip))
+    /// c and p0 by fem-3d's measures ([`surface::measure`]: c from the pressure's second moment,
+    /// integrated over `triangles`, on which the contact rule interpolates p linearly; p0 from the
+    /// smooth even fit near the pole).
+    pub fn measures(&self, triangles: &[[usize; 3]]) -> Measures {
+        let (points, _, pressure) = self.columns();
+        surface::measure(&points, triangles, &pressure)
+    }
+
+    /// The stick zone by fem-3d's measure ([`surface::stick_zone`]: area-equivalent radius and
+    /// the semi-axes of the zone's second moments); `None` when no loaded node sticks.
+    pub fn stick_zone(&self) -> Option<StickZone> {
+        let (points, weights, pressure) = self.columns();
+        let stick: Vec<bool> = self.nodes.iter().map(|n| n.stick).collect();
+        surface::stick_zone(&points, &weights, &pressure, &stick)
     }
 
     /// P by the nodal rule, 2 Σ ω p over the half surface [N].
@@ -133,37 +105,73 @@ impl Surface3 {
             .any(|n| n.pressure > 0.0 && n.r() >= outer - band)
     }
 
-    /// The surface field at path position `position` on the whole contact plane: the half
-    /// surface and its mirror image in y = 0 (p, q_x and slip_x even, q_y and slip_y odd in y);
-    /// traction, status and slip when the tangential problem was solved.
-    pub fn field(&self, position: usize, tangential: bool) -> SurfaceField {
-        let mirrored: Vec<(Node3, f64)> = self
-            .nodes
+    /// Whether each node lies on the symmetry plane y = 0 (within 1e-9 of the surface's extent:
+    /// the deck's own test, on coordinates written with 17 digits).
+    pub fn on_plane(&self) -> Vec<bool> {
+        let extent = self.nodes.iter().map(Node3::r).fold(0.0, f64::max);
+        self.nodes
             .iter()
-            .flat_map(|n| {
-                let image = (n.point[1] > 0.0).then_some((*n, -1.0));
-                std::iter::once((*n, 1.0)).chain(image)
-            })
-            .collect();
+            .map(|n| n.point[1].abs() <= 1e-9 * extent)
+            .collect()
+    }
+
+    /// The surface field at path position `position` on the whole contact plane, in fem-3d's
+    /// layout ([`Mirror`]): the half surface, then the mirror images of its nodes off the plane
+    /// (p, q_x and slip_x even, q_y and slip_y odd in y), on the faces' sub-triangles
+    /// `triangles` (indices of the half's nodes) and their images; traction, status and slip
+    /// when the tangential problem was solved.
+    pub fn field(&self, position: usize, tangential: bool, triangles: &[[usize; 3]]) -> SurfaceField {
+        let mirror = Mirror::new(&self.on_plane());
+        let nodes = &self.nodes;
+        let pairs = |f: fn(&Node3) -> [f64; 2]| mirror.odd_y(&nodes.iter().map(f).collect::<Vec<_>>());
         SurfaceField {
             position,
-            points: mirrored
-                .iter()
-                .map(|(n, s)| [n.point[0], s * n.point[1]])
-                .collect(),
-            pressure: mirrored.iter().map(|(n, _)| n.pressure).collect(),
-            traction: tangential.then(|| {
-                mirrored
-                    .iter()
-                    .map(|(n, s)| [n.traction[0], s * n.traction[1]])
-                    .collect()
-            }),
-            stick: tangential.then(|| mirrored.iter().map(|(n, _)| n.stick).collect()),
-            slip: tangential.then(|| mirrored.iter().map(|(n, s)| [n.slip[0], s * n.slip[1]]).collect()),
+            points: pairs(|n| n.point),
+            pressure: mirror.even(&nodes.iter().map(|n| n.pressure).collect::<Vec<_>>()),
+            traction: tangential.then(|| pairs(|n| n.traction)),
+            stick: tangential.then(|| mirror.even(&nodes.iter().map(|n| n.stick).collect::<Vec<_>>())),
+            slip: tangential.then(|| pairs(|n| n.slip)),
             components: TangentialComponents::InPlane,
-            triangles: None,
+            triangles: Some(mirror.triangles(triangles)),
         }
     }
+}
+
+/// The columns of the 3D deck's `triangles.csv`: the candidate faces' sub-triangles, as indices
+/// of the nodes of one step's block of `surface.csv`.
+pub const TRIANGLE_COLUMNS: [&str; 3] = ["a", "b", "c"];
+
+/// Reads `triangles.csv` from `text` for a surface of `nodes` nodes.
+///
+/// Fails, naming the row, on a wrong header, an index that is not a node of the surface, or a
+/// file without triangles.
+pub fn parse_triangles(text: &str, nodes: usize) -> Result<Vec<[usize; 3]>, String> {
+    let records = readback::records(text, "triangles.csv", &TRIANGLE_COLUMNS)?;
+    let triangles = records
+        .iter()
+        .enumerate()
+        .map(|(k, record)| {
+            let index = |i: usize| {
+                record[i]
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|&j| j < nodes)
+                    .ok_or_else(|| {
+                        format!(
+                            "triangles.csv row {}: {} = `{}` is not a node index below {nodes}",
+                            k + 1,
+                            TRIANGLE_COLUMNS[i],
+                            &record[i]
+                        )
+                    })
+            };
+            Ok([index(0)?, index(1)?, index(2)?])
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    if triangles.is_empty() {
+        return Err("triangles.csv has no triangles".into());
+    }
+    Ok(triangles)
 }
 
 /// Reads the 3D `surface.csv` from `text`: one block of candidate nodes per computed step, the
@@ -259,28 +267,21 @@ mod tests {
     }
 
     #[test]
-    fn the_fit_recovers_a_hertz_profile_and_the_stick_radius_lies_between_rings() {
-        let (c, p0) = (1e-3, 4.5e8);
-        let s = hertz_surface(c, p0);
-        let m = s.measures();
-        // p² is exactly linear in r² on the nodes in contact: the fit is exact to round-off.
-        assert!((m.contact_radius.unwrap() - c).abs() < 1e-9 * c, "{m:?}");
-        assert!((m.peak_pressure.unwrap() - p0).abs() < 1e-6 * p0, "{m:?}");
-        // rings every 0.1083 c: the last sticking ring is at 0.433 c, the first slipping at 0.542 c
-        let ring = 1.3 * c / 12.0;
-        assert!((s.stick_radius(c) - 4.5 * ring).abs() < 1e-12);
-    }
-
-    #[test]
     fn the_field_mirrors_the_half_surface_with_odd_transverse_components() {
         let s = hertz_surface(1e-3, 4.5e8);
-        let f = s.field(5, true);
-        let off_plane = s.nodes.iter().filter(|n| n.point[1] > 0.0).count();
+        let f = s.field(5, true, &[[0, 1, 2]]);
+        // the nodes at θ = π have y = r sin π ≈ 1e-16 r: on the plane within the tolerance
+        let off_plane = s.on_plane().iter().filter(|&&on| !on).count();
+        assert_eq!(off_plane, s.nodes.iter().filter(|n| n.point[1] > 1e-12).count());
         assert_eq!(f.points.len(), s.nodes.len() + off_plane);
         let q = f.traction.unwrap();
         let sum_qy: f64 = q.iter().map(|t| t[1]).sum();
         assert!(sum_qy.abs() < 1e-6, "q_y is odd in y: {sum_qy}");
         assert!(f.points.iter().any(|p| p[1] < 0.0));
+        assert_eq!(f.triangles.unwrap().len(), 2);
+        assert_eq!(parse_triangles("a,b,c\n0,1,2\n", 3).unwrap(), [[0, 1, 2]]);
+        let e = parse_triangles("a,b,c\n0,1,3\n", 3).unwrap_err();
+        assert!(e.contains("row 1") && e.contains("c = `3`"), "{e}");
     }
 
     #[test]

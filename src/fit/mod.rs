@@ -2,6 +2,7 @@
 //! convergence tests (observed rates).
 
 pub mod profile;
+pub mod surface;
 
 /// A straight line y = ȳ + slope (x − x̄) fitted by least squares.
 #[derive(Clone, Copy, Debug, PartialEq)]

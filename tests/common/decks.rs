@@ -8,6 +8,7 @@ use spherecontact::case::Case;
 use spherecontact::domain::Grip;
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
+use spherecontact::external::geo::MeshFiles;
 use spherecontact::external::toolchain::Toolchain;
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
@@ -41,14 +42,14 @@ pub fn scene_17um() -> Scene {
     scene
 }
 
-pub fn with_deck_text<D: Deck>(deck: D, text: &str, timeout_s: u64) -> AxisymSolver<D> {
+pub fn with_deck_text<D: Deck<Mesh = MeshFiles>>(deck: D, text: &str, timeout_s: u64) -> AxisymSolver<D> {
     let mut solver = AxisymSolver::new(deck);
     solver.options.deck_text = Some(text.to_owned());
     solver.options.timeout = Some(Duration::from_secs(timeout_s));
     solver
 }
 
-pub fn at_resolution<D: Deck + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
+pub fn at_resolution<D: Deck<Mesh = MeshFiles> + 'static>(deck: D, h: f64) -> Box<dyn Solver> {
     let mut solver = AxisymSolver::new(deck);
     solver.options.resolution = Some(h);
     Box::new(solver)

@@ -8,22 +8,25 @@ traction causes is equal and opposite on the two spheres). The path shifts along
 the sphere, y >= 0, is modelled with u_y = 0 on the plane y = 0. Units mm, N, MPa:
   body:        the half hemisphere (or cap) of the quadratic-tetrahedron gmsh mesh, P2 displacement;
                the far face is gripped rigidly: u = (t, 0, -d), d = delta_n/2, t = delta_t/2;
-  normal:      frictionless penalty contact p_i = k <-(zs_i + w_i)>_+ at the candidate nodes,
-               zs the sphere's height above the plane, w the node's u_z;
+  normal:      frictionless penalty contact p_j = k <-(A (zs + w))_j>_+ at the candidate nodes,
+               zs the sphere's height above the plane, w the nodes' u_z, A the averaging below;
   tangential:  Coulomb's law with history on the contact surface (the disc |q| <= mu p), with p
                from the normal problem: stick is a penalty k on the displacement (u_x, u_y) since
                the last slip s; slip carries |T| = mu p along the trial traction.
-Contact quadrature: nodal. Each 6-node contact triangle is split into its four 3-node
-sub-triangles (corner, mid, mid and the middle one), and each sub-triangle's area is lumped to its
-vertices: a corner node gets A/12, a midside node A/4 of the face's area A; the weights are
-positive (the consistent P2 load gives corners zero) and sum to the area (P exact under a uniform
-pressure). The weights are computed from the mesh file, the contact faces wholly within r_cand of
-the pole being the candidates.
+Contact rule (as fem-3d's, src/fem/solid3d/surface.rs): each 6-node contact triangle is split into
+its four 3-node sub-triangles, on which the multipliers are interpolated linearly (hats phi_j). Node
+j's multiplier lambda_j = om_j p_j, om_j = int phi_j dA > 0 (a corner gets A/12, a midside node
+A/4 of the face's area A), acts on the body as the DOF forces A^T lambda and sees the averaged
+displacement A u, A_jk = int phi_j N_k dA / om_j (N_k the P2 shape functions): rows of A sum to
+one, so P = sum lambda, and a uniform pressure gives the consistent P2 load (corners zero). Plain
+nodal lumping instead lets the corner nodes lift off inside the contact (p ~ 0 there, every
+second node slipping). The faces are read from the mesh file (rank 0, gmsh API); candidates are
+the nodes of the contact faces wholly within r_cand of the pole.
 The stiffness is assembled and factored once (MUMPS, distributed over the MPI ranks) and condensed
 onto the candidates' DOFs by multi-right-hand-side solves (u_z at every candidate; u_x, u_y where
 free): the compliance C and its inverse S. Each path step then solves, on every rank alike,
-  normal:      S_z (w + d) = f(w),       f_i = k om_i <-(zs_i + w_i)>_+   (active-set Newton)
-  tangential:  S_t (v - v_t) = F(v),     F = return mapping of the trial -k om (v - s)
+  normal:      S_z (w + d) = A^T k om <-A (zs + w)>_+                  (active-set Newton)
+  tangential:  S_t (v - v_t) = A^T om T, T = return mapping of the trial -k (A v - s)
 by Newton with the consistent tangent of the disc: an all-stick (elastic) predictor first at every
 increment (so a reversal restarts from stick), then Newton with an Armijo line search on the
 problem's convex energy, and a cap of maxit iterations (a capped increment is flagged, outcome 0).
@@ -55,14 +58,43 @@ def contact_candidates():
     faces = faces[(r <= r_cand).all(axis=1)]
     nodes, local = np.unique(faces, return_inverse=True)
     local = local.reshape(-1, 6)
-    weights = np.zeros(len(nodes))
-    # gmsh's 6-node triangle: corners 0 1 2, midsides 3 (0-1), 4 (1-2), 5 (2-0)
-    for sub in ((0, 3, 5), (3, 1, 4), (5, 4, 2), (3, 4, 5)):
+    area = np.zeros(len(local))
+    for sub in SUBTRIANGLES:
         a, b, c = (xyz[nodes[local[:, i]]] for i in sub)
-        area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-        for i in sub:
-            np.add.at(weights, local[:, i], area / 3.0)
-    return xyz[nodes], weights, local
+        area += 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    coupling = np.zeros((len(nodes), len(nodes)))
+    for face, face_area in zip(local, area):
+        coupling[np.ix_(face, face)] += 2.0 * face_area * REFERENCE_COUPLING
+    weights = coupling.sum(axis=1)
+    return xyz[nodes], weights, coupling / weights[:, None], local
+
+
+def reference_coupling():
+    """M[j, k] = int phi_j N_k over the reference triangle: phi_j the hat of node j on the four
+    sub-triangles, N_k the P2 shape functions (a 6-point degree-4 rule on each sub-triangle:
+    exact for the cubic products)."""
+    corners = np.array([[0, 0], [1, 0], [0, 1], [0.5, 0], [0.5, 0.5], [0, 0.5]])
+
+    def shapes(x):
+        l0, l1, l2 = 1 - x[0] - x[1], x[0], x[1]
+        return np.array([l0 * (2 * l0 - 1), l1 * (2 * l1 - 1), l2 * (2 * l2 - 1),
+                         4 * l0 * l1, 4 * l1 * l2, 4 * l2 * l0])
+
+    a, b = 0.445948490915965, 0.091576213509771
+    rule = [((a, a, 1 - 2 * a), 0.223381589678011), ((b, b, 1 - 2 * b), 0.109951743655322)]
+    M = np.zeros((6, 6))
+    for sub in SUBTRIANGLES:
+        for (l0, l1, l2), weight in rule:
+            for bary in ((l0, l1, l2), (l1, l2, l0), (l2, l0, l1)):
+                x = sum(bj * corners[i] for bj, i in zip(bary, sub))
+                for bj, j in zip(bary, sub):
+                    M[j] += weight * (1.0 / 8.0) * bj * shapes(x)
+    return M
+
+
+# gmsh's 6-node triangle: corners 0 1 2, midsides 3 (0-1), 4 (1-2), 5 (2-0); its sub-triangles
+SUBTRIANGLES = ((0, 3, 5), (3, 1, 4), (5, 4, 2), (3, 4, 5))
+REFERENCE_COUPLING = reference_coupling()
 
 
 gmsh.initialize()
@@ -73,7 +105,7 @@ if root:  # gmshio.read_from_msh is broken in 0.5.2: merge by hand, then model_t
     candidates = contact_candidates()
 msh, _, ftags = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
 gmsh.finalize()
-XC, om, faces = comm.bcast(candidates, root=0)
+XC, om, Avg, faces = comm.bcast(candidates, root=0)
 msh.geometry.x[:, :] *= 1000.0  # m -> mm
 m = len(om)
 rc = np.hypot(XC[:, 0], XC[:, 1])
@@ -99,14 +131,7 @@ far = fem.locate_dofs_topological(V, fdim, ftags.find(FAR))
 sym_y = fem.locate_dofs_topological(V.sub(1), fdim, ftags.find(SYMMETRY))
 bcs = [fem.dirichletbc(np.zeros(3, dtype=PETSc.ScalarType), far, V),
        fem.dirichletbc(PETSc.ScalarType(0.0), sym_y, V.sub(1))]
-K = fem.petsc.assemble_matrix(fem.form(ufl.inner(sig(u), eps(v_)) * dx), bcs=bcs)
-K.assemble()
-ksp = PETSc.KSP().create(comm)
-ksp.setOperators(K)
-ksp.setType("preonly")
-ksp.getPC().setType("lu")
-ksp.getPC().setFactorSolverType("mumps")
-ksp.setUp()
+K, ksp = factored(ufl.inner(sig(u), eps(v_)) * dx, bcs)
 ndofs = V.dofmap.index_map.size_global * 3
 
 # ---------------------------------------- the candidates' DOFs --------------------------------------
@@ -175,6 +200,19 @@ def nodal(v):
     return out
 
 
+def averaged(v):
+    """The averaged displacement (A u_x, A u_y) that each node's multiplier sees; its y part is
+    zero on the symmetry plane, where q_y vanishes by symmetry."""
+    out = Avg @ nodal(v)
+    out[on_sym, 1] = 0.0
+    return out
+
+
+def nodal_forces(T):
+    """The DOF forces A^T (om T) of the nodal tractions T (m x 2), in the unknowns' layout."""
+    return unknowns(Avg.T @ (om[:, None] * T))
+
+
 def unknowns(a):
     """The tangential unknowns of nodal pairs a (m x 2)."""
     return np.concatenate([a[:, 0], a[~on_sym, 1]])
@@ -187,7 +225,7 @@ def tractions(v, s, p, predictor):
     Trial (stick) traction T = -k (v - s); stick where |T| <= mu p (every touching node for the
     elastic predictor): T = trial, tangent I; slip: T = mu p trial/|trial|, tangent
     (mu p/|trial|)(I - n n^T); free nodes: T = 0, tangent 0."""
-    trial = -k * (nodal(v) - nodal(s))
+    trial = -k * (averaged(v) - s)
     norm = np.hypot(trial[:, 0], trial[:, 1])
     touching = p > 0
     stick = touching & (predictor | (norm <= mu * p))
@@ -202,15 +240,22 @@ def tractions(v, s, p, predictor):
 
 
 def jacobian_of_forces(tangent):
-    """k om tangent, scattered on the tangential unknowns (a dense matrix)."""
-    D = np.zeros((n1, n1))
+    """B^T (k om tangent) B, B the map from the unknowns to the averaged pairs (dense)."""
     block = k * om[:, None, None] * tangent
-    D[ix, ix] += block[:, 0, 0]
-    free_y = ~on_sym
-    D[ix[free_y], iy[free_y]] += block[free_y, 0, 1]
-    D[iy[free_y], ix[free_y]] += block[free_y, 1, 0]
-    D[iy[free_y], iy[free_y]] += block[free_y, 1, 1]
-    return D
+    block[on_sym, 1, :] = 0.0
+    block[on_sym, :, 1] = 0.0
+    D = np.zeros((2 * m, 2 * m))
+    for a in range(2):
+        for b in range(2):
+            D[a * m:(a + 1) * m, b * m:(b + 1) * m] = np.diag(block[:, a, b])
+    return B.T @ D @ B
+
+
+# B: the tangential unknowns -> the averaged pairs, x block then y block (y zero on y = 0)
+B = np.zeros((2 * m, n1))
+B[:m, ix] = Avg
+B[m:, iy[~on_sym]] = Avg[:, ~on_sym]
+B[m + np.flatnonzero(on_sym), :] = 0.0
 
 
 def solve_tangential(t, v, s, p):
@@ -221,8 +266,10 @@ def solve_tangential(t, v, s, p):
       psi(x) = k x^2/2 (k x <= mu p), mu p x - (mu p)^2/(2k) (beyond),
     whose gradient is the residual R(v) = St (v - v_t) - om T(v) and whose generalised Hessian is
     St + k om (the return mapping's tangent). Iteration 0 is the elastic predictor (every touching
-    node sticks: one linear solve); then Newton: the full step where it reduces |R|, else an Armijo
-    backtracking on E (a descent method on a convex function: no cycling). Outcome 1: |R| below 1e-10 of its scale; outcome 0: the cap
+    node sticks: one linear solve); then Newton: the full step where it reduces |R| without raising
+    E (beyond E's round-off), else an Armijo backtracking on E (a descent method on a convex
+    function: no cycling; accepting full steps on |R| alone let the iterates wander and hit the
+    cap at 0.5 um increments with the averaged rule). Outcome 1: |R| below 1e-10 of its scale; outcome 0: the cap
     maxit was hit (the increment is flagged; the last iterate is kept)."""
     v_t = unknowns(np.column_stack([np.full(m, t), np.zeros(m)]))
     scale = np.linalg.norm(St @ v_t) + np.linalg.norm(mu * p * om) + 1e-300
@@ -231,10 +278,10 @@ def solve_tangential(t, v, s, p):
 
     def residual(v, predictor):
         T, stick, tangent = tractions(v, s, p, predictor)
-        return St @ (v - v_t) - unknowns(om[:, None] * T), tangent
+        return St @ (v - v_t) - nodal_forces(T), tangent
 
     def energy(v):
-        x = nodal(v) - nodal(s)
+        x = averaged(v) - s
         norm = np.hypot(x[:, 0], x[:, 1])
         psi = np.where(k * norm <= limit, 0.5 * k * norm ** 2, limit * norm - limit ** 2 / (2 * k))
         e = v - v_t
@@ -252,10 +299,12 @@ def solve_tangential(t, v, s, p):
             v = v - delta  # the elastic predictor: a linear solve, no line search
             continue
         alpha = 1.0
-        if np.linalg.norm(residual(v - delta, False)[0]) >= rn:
-            # the full step does not reduce |R|: backtrack on E (near the solution E's decrease
-            # falls below its round-off first, so the full step is taken whenever |R| falls)
-            e0, slope = energy(v), res @ delta
+        e0 = energy(v)
+        if (np.linalg.norm(residual(v - delta, False)[0]) >= rn
+                or energy(v - delta) > e0 + 1e-12 * abs(e0)):
+            # the full step raises |R| or E: backtrack on E (near the solution E's changes fall
+            # below its round-off, 1e-12 of E, so there the full step is taken whenever |R| falls)
+            slope = res @ delta
             while alpha > 1e-6 and energy(v - alpha * delta) > e0 - 1e-4 * alpha * slope:
                 alpha *= 0.5
         v = v - alpha * delta
@@ -281,10 +330,14 @@ def full_field(dof_list, loads, name, rigid):
 clock_path, wall_path = time.process_time(), time.perf_counter()
 w = np.zeros(m)                      # u_z at the candidates
 v = np.zeros(n1)                     # (u_x, u_y) at the candidates, unknowns layout
-s = np.zeros(n1)                     # the history: where each node's stick spring is anchored
+s = np.zeros((m, 2))                 # the history: where each node's stick spring is anchored
 f = np.zeros(m)
 out = nodes = None
 if root:
+    with open("triangles.csv", "w", newline="") as ft:  # the faces' sub-triangles (p is linear
+        # on each), as indices of surface.csv's rows within a step
+        rows = [face[list(sub)].tolist() for face in faces for sub in SUBTRIANGLES]
+        csv.writer(ft).writerows([["a", "b", "c"]] + rows)
     fs, fn = open("steps.csv", "w", newline=""), open("surface.csv", "w", newline="")
     out, nodes = csv.writer(fs), csv.writer(fn)
     out.writerow(["step", "d_mm", "t_mm", "P_contact_N", "P_top_N", "Q_N",
@@ -294,12 +347,13 @@ if root:
 d_prev = None
 for step, d, t, position in zip(steps, dlist, tlist, fields):
     if d != d_prev:
-        w, f, its0, ok0 = solve_normal(Sz, d, w, spd_solve)
+        w, f, its0, ok0 = solve_normal(Sz, d, w, spd_solve, Avg)
         d_prev = d
     else:
         its0, ok0 = 0, True
-    p = np.maximum(-(zs + w), 0.0) * k
-    P = 2 * f.sum()  # both halves y >= 0 and y <= 0
+    gap = Avg @ (zs + w)
+    p = np.maximum(-gap, 0.0) * k
+    P = 2 * f.sum()  # both halves y >= 0 and y <= 0 (the rows of A sum to one: sum f = sum om p)
     Q, its1, outcome1 = 0.0, 0, 1
     q = np.zeros((m, 2))
     stick = p > 0
@@ -307,15 +361,15 @@ for step, d, t, position in zip(steps, dlist, tlist, fields):
     if tangential:
         # nodes out of contact carry no force: their history follows them
         free = p <= 0
-        s = unknowns(np.where(free[:, None], nodal(v), nodal(s)))
+        s = np.where(free[:, None], averaged(v), s)
         v, its1, outcome1 = solve_tangential(t, v, s, p)
         T, stick, _ = tractions(v, s, p, False)
         # return mapping: a slipping node's history moves to where its trial traction is mu p
         slipping = (p > 0) & ~stick
-        s = unknowns(np.where(slipping[:, None], nodal(v) + T / k, nodal(s)))
+        s = np.where(slipping[:, None], averaged(v) + T / k, s)
         q = -T                                   # the traction of the plane on the body is -T
         Q = 2 * (om * q[:, 0]).sum()             # q_y is odd in y: the halves' Q_y cancel
-        slip = 2.0 * nodal(v)                    # relative displacement of the two surfaces
+        slip = 2.0 * averaged(v)                 # relative displacement of the two surfaces
     field = "-"
     if position >= 0:
         field = f"field_{position}.xdmf"
@@ -324,13 +378,13 @@ for step, d, t, position in zip(steps, dlist, tlist, fields):
             xf.write_function(full_field(z_dofs, f, "u_normal", np.array([0.0, 0.0, -d])))
             if tangential:
                 T = -q
-                xf.write_function(full_field(t_dofs, unknowns(om[:, None] * T), "u_tangential",
+                xf.write_function(full_field(t_dofs, nodal_forces(T), "u_tangential",
                                              np.array([t, 0.0, 0.0])))
     if root:
         out.writerow([step, repr(d), repr(t), repr(P), "", repr(Q), its0, its1,
                       outcome1 if ok0 else 0, field])
         for i in range(m):
-            nodes.writerow([step, repr(XC[i, 0]), repr(XC[i, 1]), repr(om[i]), repr(zs[i] + w[i]),
+            nodes.writerow([step, repr(XC[i, 0]), repr(XC[i, 1]), repr(om[i]), repr(gap[i]),
                             repr(p[i]), repr(q[i, 0]), repr(q[i, 1]), int(stick[i] and p[i] > 0),
                             repr(slip[i, 0]), repr(slip[i, 1])])
 if root:

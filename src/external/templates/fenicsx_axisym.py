@@ -68,19 +68,6 @@ def a1(w, v):
             + G * (e[3] * f[3] + e[4] * f[4] + e[5] * f[5]))
 
 
-def factored(a, bcs):
-    """The stiffness of bilinear form a with homogeneous Dirichlet rows bcs, factored (MUMPS)."""
-    A = fem.petsc.assemble_matrix(fem.form(a), bcs=bcs)
-    A.assemble()
-    ksp = PETSc.KSP().create(comm)
-    ksp.setOperators(A)
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
-    ksp.setUp()
-    return A, ksp
-
-
 def dofs(space, tag):
     return fem.locate_dofs_topological(space, fdim, ftags.find(tag))
 

@@ -37,16 +37,45 @@ root = comm.rank == 0
 clock_start, wall_start = time.process_time(), time.perf_counter()
 
 
-def solve_normal(S, d, w, spd_solve):
-    """Penalty contact at approach d from the start w (u_z at the candidates, whose heights zs
-    and nodal weights om the deck defines), S the condensed stiffness: (w, f, its, ok).
+def factored(a, bcs):
+    """The stiffness of bilinear form a with homogeneous Dirichlet rows bcs, factored (MUMPS)."""
+    A = fem.petsc.assemble_matrix(fem.form(a), bcs=bcs)
+    A.assemble()
+    ksp = PETSc.KSP().create(comm)
+    ksp.setOperators(A)
+    ksp.setType("preonly")
+    ksp.getPC().setType("lu")
+    ksp.getPC().setFactorSolverType("mumps")
+    ksp.setUp()
+    return A, ksp
 
-    Newton on S (w + d) = k om <-(zs + w)>_+ with the active set of the start: exact once the set
-    of the solution is the set it was computed with. spd_solve(S, D, b) solves (S + diag(D)) x = b."""
+
+def solve_normal(S, d, w, spd_solve, A=None):
+    """Penalty contact at approach d from the start w (u_z at the candidates, whose heights zs
+    and nodal weights om the deck defines), S the condensed stiffness: (w, f, its, ok), f the
+    contact forces on the candidates' u_z.
+
+    Node j's multiplier om_j k <-g_j>_+ sees the gap g = A (zs + w) and acts as the forces
+    f = A^T (om k <-g>_+); A = None is the identity (the nodal gap zs + w). Newton on
+    S (w + d) = f(w) with the active set of the start: exact once the set of the solution is the
+    set it was computed with. spd_solve(S, D, b) solves (S + D) x = b, D the contact's tangent
+    (with A = None its diagonal, a vector)."""
+    def gap(w):
+        return zs + w if A is None else A @ (zs + w)
+
+    def forces(w):
+        lam = k * om * np.maximum(-gap(w), 0.0)
+        return lam if A is None else A.T @ lam
+
     for it in range(1, maxit + 1):
-        act = zs + w < 0
-        w = spd_solve(S, k * om * act, -S @ np.full(len(w), d) - k * om * act * zs)
-        if np.array_equal(act, zs + w < 0):
-            return w, k * om * np.maximum(-(zs + w), 0.0), it, True
-    return w, k * om * np.maximum(-(zs + w), 0.0), maxit, False
+        act = gap(w) < 0
+        if A is None:
+            D, b = k * om * act, k * om * act * zs
+        else:
+            DA = (k * om * act)[:, None] * A
+            D, b = A.T @ DA, A.T @ (DA @ zs)
+        w = spd_solve(S, D, -S @ np.full(len(w), d) - b)
+        if np.array_equal(act, gap(w) < 0):
+            return w, forces(w), it, True
+    return w, forces(w), maxit, False
 # ---- end of the shared block -----------------------------------------------------------------------

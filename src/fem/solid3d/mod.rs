@@ -9,14 +9,14 @@
 //! | [`contact`] | the contact problem on the shared engine: pressure multipliers, symmetric weights |
 //! | [`model`] | the whole set-up of one body |
 //! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
-//! | [`measures`] | the contact radius and peak pressure from the nodal pressures |
+//! | [`measures`] | the contact radius, peak pressure and stick zone from the nodal values (`crate::fit::surface`, shared with the 3D deck) |
 //! | [`solver`] | `fem-3d`: the model of the scene's domain, the engine's settings, the metadata |
 //! | [`walk`] | the path walked on the engine: P, Q, c, p0, the stick zone, fields, VTU |
 //! | [`output`] | displacement and stress of a contact state; VTU of the volume and the contact surface |
 
 pub mod condense;
 pub mod contact;
-pub mod measures;
+pub use crate::fit::surface as measures;
 pub mod meshing;
 pub mod model;
 pub mod operator;

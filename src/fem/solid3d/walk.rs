@@ -21,6 +21,7 @@ use super::output::{self, Loads, SurfaceValues};
 use super::surface::Surface;
 use crate::driver::{PathIncrement, PathModel};
 use crate::history::{StepResult, SurfaceField, TangentialComponents};
+use crate::mirror::Mirror;
 use crate::path::Step;
 use crate::scene::Scene;
 use crate::solver::SolveError;
@@ -259,9 +260,8 @@ fn radius(p: [f64; 3]) -> f64 {
 }
 
 /// The surface field of the whole contact: the half's nodes and their mirror images in y = 0
-/// (nodes on the plane once), where q_x, p and the status are even and q_y and the y slip odd.
-/// `frictional`: the traction and status are given (zero and slipping for μ = 0); `slip`: the
-/// slip is resolved.
+/// ([`Mirror`]: q_x, p and the status even, q_y and the y slip odd). `frictional`: the traction
+/// and status are given (zero and slipping for μ = 0); `slip`: the slip is resolved.
 fn mirrored_field(
     surface: &Surface,
     position: usize,
@@ -269,55 +269,19 @@ fn mirrored_field(
     frictional: bool,
     slip: bool,
 ) -> SurfaceField {
-    let mirror: Vec<usize> = (0..surface.len()).filter(|&j| !surface.on_symmetry[j]).collect();
-    let even = |v: &[f64]| -> Vec<f64> { v.iter().copied().chain(mirror.iter().map(|&j| v[j])).collect() };
-    let odd_y = |v: &[[f64; 2]]| -> Vec<[f64; 2]> {
-        v.iter()
-            .copied()
-            .chain(mirror.iter().map(|&j| [v[j][0], -v[j][1]]))
-            .collect()
-    };
-    let points = surface
-        .points
-        .iter()
-        .map(|p| [p[0], p[1]])
-        .chain(
-            mirror
-                .iter()
-                .map(|&j| [surface.points[j][0], -surface.points[j][1]]),
-        )
-        .collect();
-    let stick: Vec<bool> = even(&values.status).iter().map(|&s| s > 0.0).collect();
+    let mirror = Mirror::new(&surface.on_symmetry);
+    let points: Vec<[f64; 2]> = surface.points.iter().map(|p| [p[0], p[1]]).collect();
+    let stick: Vec<bool> = mirror.even(&values.status).iter().map(|&s| s > 0.0).collect();
     SurfaceField {
         position,
-        points,
-        pressure: even(&values.pressure),
-        traction: frictional.then(|| odd_y(&values.traction)),
+        points: mirror.odd_y(&points),
+        pressure: mirror.even(&values.pressure),
+        traction: frictional.then(|| mirror.odd_y(&values.traction)),
         stick: frictional.then_some(stick),
-        slip: slip.then(|| odd_y(&values.slip)),
+        slip: slip.then(|| mirror.odd_y(&values.slip)),
         components: TangentialComponents::InPlane,
-        triangles: Some(mirrored_triangles(surface)),
+        triangles: Some(mirror.triangles(&surface.triangles)),
     }
-}
-
-/// The half's sub-triangles and their mirror images, as indices into [`mirrored_field`]'s
-/// points: a node on the symmetry plane is its own image, the others' images follow the half's
-/// nodes in order (each image triangle's orientation reversed, so all face the same way).
-fn mirrored_triangles(surface: &Surface) -> Vec<[usize; 3]> {
-    let mut image: Vec<usize> = (0..surface.len()).collect();
-    let mut next = surface.len();
-    for (j, on_plane) in surface.on_symmetry.iter().enumerate() {
-        if !on_plane {
-            image[j] = next;
-            next += 1;
-        }
-    }
-    let half = surface.triangles.iter().copied();
-    let mirrored = surface
-        .triangles
-        .iter()
-        .map(|&[a, b, c]| [image[a], image[c], image[b]]);
-    half.chain(mirrored).collect()
 }
 
 /// Writes the volume (far face translated by `translation`) and the contact surface of

@@ -1,5 +1,6 @@
-//! The contact radius c and the peak pressure p0 of a 3D contact state, from the nodal pressures
-//! of the candidate surface (scattered nodes, not rings).
+//! The contact radius c, the peak pressure p0 and the stick zone of a 3D contact state, from the
+//! nodal values of the candidate surface (scattered nodes, not rings): the measures of `fem-3d`
+//! and of the `fenicsx-3d` deck, which share the surface's contact rule and weights.
 //!
 //! c: from the second moment of the pressure, ⟨r²⟩ = ∫ p r² dA / ∫ p dA, which for Hertz's
 //! profile p0 √(1 − r²/c²) is (2/5) c², so c = √(5 ⟨r²⟩ / 2). An integral, it does not depend on
@@ -13,7 +14,7 @@
 //! 0.57 % low at 10 µm with the corner multipliers, c_max/10 apart).
 //!
 //! p0: the smooth even fit a₀ + a₁ (r/c)² + a₂ (r/c)⁴ to the nodal pressures on 0 < r ≤ c/2, as in
-//! the axisymmetric model ([`crate::fem::axisym::pressure`]): a fit, not the pole node's value.
+//! the axisymmetric model (`fem::axisym::pressure`): a fit, not the pole node's value.
 
 use crate::fem::quadrature;
 use crate::fit::profile::peak_pressure;
