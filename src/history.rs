@@ -163,6 +163,20 @@ pub struct Metadata {
     pub extra: BTreeMap<String, serde_json::Value>,
 }
 
+/// Which in-plane components of the tangential traction and slip a solver resolves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TangentialComponents {
+    /// Both q_x and q_y (and both slip components): the BEM grid, the 3D meshes.
+    #[default]
+    InPlane,
+    /// q_x only: the model takes the traction along the shift (Mindlin–Deresiewicz's
+    /// assumption; the axisymmetric Fourier n = 1 solvers and decks, MDR, Cattaneo–Mindlin).
+    /// The second component of `traction` and `slip` is 0 by that assumption, not by a solve:
+    /// readers treat q_y and slip_y as not produced.
+    AlongX,
+}
+
 /// Surface fields on the contact plane at one path position.
 ///
 /// Frame: origin at the contact centre, x along δt, y across it, both on the contact plane.
@@ -176,13 +190,15 @@ pub struct SurfaceField {
     /// Contact pressure p [Pa], compressive positive.
     pub pressure: Vec<f64>,
     /// Tangential traction (q_x, q_y) [Pa] on body 1, signed so that ∫ q_x dA = Q; `None` for
-    /// frictionless solvers.
+    /// frictionless solvers; q_y only where `components` says it is resolved.
     pub traction: Option<Vec<[f64; 2]>>,
     /// Stick (true) or slip (false) at each point in contact (p > 0); `None` where not resolved.
     pub stick: Option<Vec<bool>>,
     /// Relative tangential displacement of the surfaces (body 1 − body 2) [m] at each point,
     /// accumulated along the path; `None` for solvers that do not resolve it.
     pub slip: Option<Vec<[f64; 2]>>,
+    /// Which components of `traction` and `slip` the solver resolved.
+    pub components: TangentialComponents,
     /// The samples' triangulation (indices into `points`) for fields on a surface mesh: the
     /// layout reports draw them on; `None` for grids and profiles, whose layout the samples
     /// themselves show.

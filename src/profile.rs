@@ -125,7 +125,7 @@ fn interpolate(profile: &[(f64, f64)], r: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::history::StepResult;
+    use crate::history::{StepResult, TangentialComponents};
 
     fn history(points: &[f64], pressure: impl Fn(f64) -> f64, c: f64) -> History {
         History {
@@ -142,6 +142,7 @@ mod tests {
                 traction: Some(points.iter().map(|&r| [0.2 * pressure(r), 0.0]).collect()),
                 stick: None,
                 slip: None,
+                components: TangentialComponents::AlongX,
                 triangles: None,
             }],
             ..History::default()

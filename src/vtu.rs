@@ -264,7 +264,7 @@ impl Grid {
 
 #[cfg(test)]
 mod tests {
-    use crate::history::SurfaceField;
+    use crate::history::{SurfaceField, TangentialComponents};
 
     #[test]
     fn a_profile_is_not_a_grid_and_a_grid_becomes_quads() {
@@ -275,6 +275,7 @@ mod tests {
             traction: None,
             stick: None,
             slip: None,
+            components: TangentialComponents::InPlane,
             triangles: None,
         };
         assert!(Grid::of_surface_field(&profile).is_none());
@@ -288,6 +289,7 @@ mod tests {
             traction: Some(points.iter().map(|p| [p[1], 0.0]).collect()),
             stick: Some(points.iter().map(|p| p[1] > 0.0).collect()),
             slip: None,
+            components: TangentialComponents::InPlane,
             points,
             triangles: None,
         };

@@ -27,7 +27,7 @@
 //! reports itself not applicable otherwise (MDR covers varying loads).
 
 use crate::hertz::Hertz;
-use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -221,6 +221,7 @@ fn surface_field(
         traction: Some(radii.iter().map(|&r| [traction(r), 0.0]).collect()),
         stick: Some(radii.iter().map(|&r| r < stick_radius.unwrap_or(c)).collect()),
         slip: None,
+        components: TangentialComponents::AlongX,
         triangles: None,
     }
 }

@@ -35,7 +35,7 @@
 
 use crate::driver::{self, PathIncrement, PathModel};
 use crate::hertz::Hertz;
-use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MAX_MDR_SPRINGS;
 use crate::path::Step;
 use crate::resolution::{self, ResolutionError};
@@ -309,6 +309,7 @@ impl SpringBed {
             traction: Some(traction.into_iter().map(|q| [q, 0.0]).collect()),
             stick: Some(radii.iter().map(|&r| r < stick_radius).collect()),
             slip: None,
+            components: TangentialComponents::AlongX,
             triangles: None,
         }
     }

@@ -4,7 +4,7 @@
 use serde_json::json;
 
 use crate::driver::{self, PathIncrement, PathModel};
-use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MAX_BEM_GRID;
 use crate::path::Step;
 use crate::resolution::{self, ResolutionError};
@@ -207,6 +207,7 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
         // The engine's accumulated slip: the grid carries the pair's compliance and the relative
         // shift, so it is the relative slip (body 1 − body 2), as fem-axisym and fem-3d report it.
         slip: Some(s.slip.clone()),
+        components: TangentialComponents::InPlane,
         triangles: None,
     }
 }

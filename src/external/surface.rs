@@ -14,7 +14,7 @@
 
 use super::readback;
 use crate::fit::profile as pressure;
-use crate::history::SurfaceField;
+use crate::history::{SurfaceField, TangentialComponents};
 
 /// The columns of `surface.csv`, in order.
 pub const SURFACE_COLUMNS: [&str; 8] = [
@@ -123,6 +123,7 @@ impl Surface {
             traction: tangential.then(|| self.nodes.iter().map(|n| [n.traction_x, 0.0]).collect()),
             stick: tangential.then(|| self.nodes.iter().map(|n| n.stick).collect()),
             slip: tangential.then(|| self.nodes.iter().map(|n| [n.slip, 0.0]).collect()),
+            components: TangentialComponents::AlongX,
             triangles: None,
         }
     }

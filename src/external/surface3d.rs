@@ -12,7 +12,7 @@
 
 use super::readback;
 use crate::fit::surface::{self, Measures, StickZone};
-use crate::history::SurfaceField;
+use crate::history::{SurfaceField, TangentialComponents};
 use crate::mirror::Mirror;
 
 /// The columns of the 3D `surface.csv`, in order.
@@ -131,6 +131,7 @@ impl Surface3 {
             traction: tangential.then(|| pairs(|n| n.traction)),
             stick: tangential.then(|| mirror.even(&nodes.iter().map(|n| n.stick).collect::<Vec<_>>())),
             slip: tangential.then(|| pairs(|n| n.slip)),
+            components: TangentialComponents::InPlane,
             triangles: Some(mirror.triangles(triangles)),
         }
     }

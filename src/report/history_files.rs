@@ -12,11 +12,15 @@ pub fn csv_header() -> Vec<&'static str> {
     crate::exchange::results_csv::columns()
 }
 
+/// A CSV cell: the value, or empty when not produced.
+fn cell(v: Option<f64>) -> String {
+    v.map_or_else(String::new, |v| format!("{v:.10e}"))
+}
+
 /// The CSV text of a history.
 pub fn to_csv(history: &History) -> anyhow::Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record(csv_header())?;
-    let cell = |v: Option<f64>| v.map_or_else(String::new, |v| format!("{v:.10e}"));
     for row in &history.steps {
         let mut record = vec![
             row.step.to_string(),
@@ -32,7 +36,8 @@ pub fn to_csv(history: &History) -> anyhow::Result<String> {
 
 /// The CSV text of a history's surface fields: one row per sample point, empty cells for what
 /// the solver does not resolve (`stick` is 1, 0, or empty outside the contact; `slip_x`,
-/// `slip_y` the relative tangential displacement of the surfaces).
+/// `slip_y` the relative tangential displacement of the surfaces; `traction_y`, `slip_y` empty
+/// for a model that takes the traction along x).
 pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
@@ -49,8 +54,6 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
     for field in FieldView::all(history) {
         for i in 0..field.len() {
             let [x, y] = field.point(i);
-            let traction = field.traction(i);
-            let slip = field.slip(i);
             let stick = field
                 .stick(i)
                 .filter(|_| field.in_contact(i))
@@ -60,11 +63,11 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
                 format!("{x:.10e}"),
                 format!("{y:.10e}"),
                 format!("{:.10e}", field.pressure(i)),
-                traction.map_or_else(String::new, |t| format!("{:.10e}", t[0])),
-                traction.map_or_else(String::new, |t| format!("{:.10e}", t[1])),
+                cell(field.traction(i).map(|t| t[0])),
+                cell(field.traction_y(i)),
                 stick.unwrap_or_default(),
-                slip.map_or_else(String::new, |s| format!("{:.10e}", s[0])),
-                slip.map_or_else(String::new, |s| format!("{:.10e}", s[1])),
+                cell(field.slip(i).map(|s| s[0])),
+                cell(field.slip_y(i)),
             ])?;
         }
     }

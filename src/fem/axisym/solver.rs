@@ -23,7 +23,7 @@ use crate::external::toolchain::Toolchain;
 use crate::fem::element::tri6::Integration;
 use crate::fem::factor::Ordering;
 use crate::fem::pole::{self, PoleSized};
-use crate::history::{History, Metadata, StepResult, SurfaceField};
+use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{PoleLimits, ResolutionError};
 use crate::scene::Scene;
@@ -259,6 +259,7 @@ impl Run {
                 traction: solved.then(|| self.traction(model)),
                 stick: solved.then(|| self.contact.stick()),
                 slip: solved.then(|| self.slip(model)),
+                components: TangentialComponents::AlongX,
                 triangles: None,
             };
             if let Some(dir) = vtu_dir {

@@ -20,7 +20,7 @@ use super::model::Model;
 use super::output::{self, Loads, SurfaceValues};
 use super::surface::Surface;
 use crate::driver::{PathIncrement, PathModel};
-use crate::history::{StepResult, SurfaceField};
+use crate::history::{StepResult, SurfaceField, TangentialComponents};
 use crate::mirror::Mirror;
 use crate::path::Step;
 use crate::scene::Scene;
@@ -279,6 +279,7 @@ fn mirrored_field(
         traction: frictional.then(|| mirror.odd_y(&values.traction)),
         stick: frictional.then_some(stick),
         slip: slip.then(|| mirror.odd_y(&values.slip)),
+        components: TangentialComponents::InPlane,
         triangles: Some(mirror.triangles(&surface.triangles)),
     }
 }

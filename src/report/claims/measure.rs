@@ -96,11 +96,12 @@ impl RadialProfile {
 
 impl MapMeasures {
     /// The measures of a map with traction and stick/slip, with friction coefficient `friction`
-    /// and, if given, MD's traction `md` to measure the departure from; `None` for a profile or
-    /// a field without traction or status.
+    /// and, if given, MD's traction `md` to measure the departure from; `None` for a profile, a
+    /// field without traction or status, or one whose model takes the traction along x (its
+    /// q_y = 0 is assumed, not measured).
     pub fn of(view: &FieldView, friction: f64, md: Option<&RadialProfile>) -> Option<Self> {
         let areas = view.areas()?;
-        if !view.has_traction() || view.stick(0).is_none() {
+        if !view.has_traction() || view.stick(0).is_none() || !view.resolves_transverse() {
             return None;
         }
         let contact: Vec<usize> = (0..view.len()).filter(|&i| view.in_contact(i)).collect();
@@ -239,7 +240,7 @@ fn departure(view: &FieldView, md: &dyn Fn(f64) -> f64) -> Option<[f64; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::history::SurfaceField;
+    use crate::history::{SurfaceField, TangentialComponents};
 
     /// A grid with Cattaneo's traction (q_x only, stick disc of radius a, contact radius c) plus
     /// a transverse part ε·x·y inside the contact.
@@ -266,6 +267,7 @@ mod tests {
             traction: Some(traction),
             stick: Some(stick),
             slip: None,
+            components: TangentialComponents::InPlane,
             triangles: None,
         };
         (field, a, h)

@@ -55,7 +55,8 @@ impl Component {
         }
     }
 
-    /// The value of sample `i` in contact, `None` outside it or where the solver has none.
+    /// The value of sample `i` in contact, `None` outside it or where the solver has none (q_y
+    /// and |q| need both components resolved).
     fn value(self, view: &FieldView, i: usize) -> Option<MapValue> {
         if !view.in_contact(i) {
             return None;
@@ -63,9 +64,9 @@ impl Component {
         let level = |v: f64| Some(MapValue::Level(v * 1e-6));
         match self {
             Component::Pressure => level(view.pressure(i)),
-            Component::TractionMagnitude => level(view.traction(i).map(|q| q[0].hypot(q[1]))?),
+            Component::TractionMagnitude => level(view.traction(i)?[0].hypot(view.traction_y(i)?)),
             Component::TractionX => level(view.traction(i)?[0]),
-            Component::TractionY => level(view.traction(i)?[1]),
+            Component::TractionY => level(view.traction_y(i)?),
             Component::Status => view.stick(i).map(MapValue::Stick),
         }
     }

@@ -6,7 +6,7 @@
 //! Frame (as in `SurfaceField`): origin at the contact centre, x along δt, y across it; the
 //! traction is the one on body 1, signed so that ∫ q_x dA = Q.
 
-use crate::history::{History, SurfaceField};
+use crate::history::{History, SurfaceField, TangentialComponents};
 
 /// How a field's samples cover the contact plane.
 #[derive(Clone, Debug, PartialEq)]
@@ -153,6 +153,24 @@ impl<'a> FieldView<'a> {
     /// The slip (relative tangential displacement of the surfaces) [m] at sample `i`, if resolved.
     pub fn slip(&self, i: usize) -> Option<[f64; 2]> {
         self.field.slip.as_ref().map(|s| s[i])
+    }
+
+    /// True when the solver resolves the transverse components (q_y, slip_y); false when its
+    /// model takes the traction along x, so that their zeros are an assumption, not a result.
+    pub fn resolves_transverse(&self) -> bool {
+        self.field.components == TangentialComponents::InPlane
+    }
+
+    /// The transverse traction q_y [Pa] at sample `i`, if the solver resolves it.
+    pub fn traction_y(&self, i: usize) -> Option<f64> {
+        self.traction(i)
+            .filter(|_| self.resolves_transverse())
+            .map(|q| q[1])
+    }
+
+    /// The transverse slip [m] at sample `i`, if the solver resolves it.
+    pub fn slip_y(&self, i: usize) -> Option<f64> {
+        self.slip(i).filter(|_| self.resolves_transverse()).map(|s| s[1])
     }
 
     /// Stick (true) or slip at sample `i`, if resolved.
@@ -316,6 +334,7 @@ mod tests {
             traction: Some(points.iter().map(|p| [p[0], p[1]]).collect()),
             stick: None,
             slip: None,
+            components: TangentialComponents::InPlane,
             points,
             triangles: None,
         }
@@ -345,6 +364,7 @@ mod tests {
             traction: None,
             stick: None,
             slip: None,
+            components: TangentialComponents::InPlane,
             triangles: None,
         };
         let view = FieldView::of(&field);
@@ -379,6 +399,7 @@ mod tests {
             traction: None,
             stick: None,
             slip: None,
+            components: TangentialComponents::InPlane,
             triangles: None,
         };
         let view = FieldView {
