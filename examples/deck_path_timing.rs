@@ -3,7 +3,8 @@
 //! pole size c_max/40 through FreeFEM, dolfinx and fem-axisym, interleaved, one warm-up run each
 //! then REPEATS timed runs (default 3); medians of wall and CPU time (CPU includes the external
 //! programs'), the decks' own split (set-up: assembly, factorisation, condensation; path), and the
-//! errors (worst over the path positions for P, over every step relative to the peak |Q| for Q):
+//! errors (worst over every step: for P relative to the reference's P at that step, so the first
+//! small steps weigh most; for Q relative to the reference's peak |Q|):
 //! against mdr-domain, the finite-body reference (MDR in series with the case's domain's
 //! compliances, docs/finite-body.md: the discretisation error, so the CPU ratio is at equal error
 //! when these columns match), the raw offset of P from Hertz beside it, and each deck against
