@@ -179,22 +179,45 @@ pub struct MeshFiles {
     pub wall_s: f64,
 }
 
-/// Writes `<dir>/<stem>.geo` for the scene and runs gmsh for both mesh files.
+/// The quadratic mesh of one scene and resolution, without FreeFEM's first-order copy.
+#[derive(Clone, Debug)]
+pub struct QuadraticMesh {
+    /// The geometry, metres.
+    pub geo: PathBuf,
+    /// MSH 4.1, quadratic triangles, metres (in-crate solver, FEniCSx).
+    pub msh41: PathBuf,
+    /// Wall time of the gmsh run [s].
+    pub wall_s: f64,
+}
+
+/// The `.geo` file's name in the mesh folder. gmsh runs inside that folder, so it is handed the
+/// files' names, never paths relative to the caller's folder.
+const GEO_NAME: &str = "mesh.geo";
+
+/// Writes `<dir>/mesh.geo` for the scene and runs gmsh for the quadratic MSH 4.1 file only: what
+/// fem-axisym reads (the decks take [`mesh`], which adds FreeFEM's copy).
+pub fn mesh_quadratic(
+    scene: &Scene,
+    resolution: f64,
+    dir: &Path,
+    toolchain: &Toolchain,
+) -> Result<QuadraticMesh, SolveError> {
+    toolchain.require(Tool::Gmsh).map_err(SolveError::Unavailable)?;
+    let geo = dir.join(GEO_NAME);
+    std::fs::write(&geo, geo_for_scene(scene, resolution)?)
+        .map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
+    let (msh41, wall_s) = mesh_2d(toolchain, dir, &["-order", "2", "-format", "msh41"], "mesh.msh")?;
+    Ok(QuadraticMesh { geo, msh41, wall_s })
+}
+
+/// Writes `<dir>/mesh.geo` for the scene and runs gmsh for both mesh files.
 pub fn mesh(
     scene: &Scene,
     resolution: f64,
     dir: &Path,
     toolchain: &Toolchain,
 ) -> Result<MeshFiles, SolveError> {
-    toolchain.require(Tool::Gmsh).map_err(SolveError::Unavailable)?;
-    // gmsh runs inside `dir`, so it is handed the files' names, never paths relative to the
-    // caller's folder.
-    let (geo_name, msh41_name, msh22_name) = ("mesh.geo", "mesh.msh", "mesh_p1_mm.msh");
-    let geo = dir.join(geo_name);
-    std::fs::write(&geo, geo_for_scene(scene, resolution)?)
-        .map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
-    let (msh41, msh22_mm) = (dir.join(msh41_name), dir.join(msh22_name));
-    let quadratic = ["-order", "2", "-format", "msh41"];
+    let quadratic = mesh_quadratic(scene, resolution, dir, toolchain)?;
     let linear_mm = [
         "-order",
         "1",
@@ -204,25 +227,32 @@ pub fn mesh(
         "Mesh.ScalingFactor",
         "1000",
     ];
-    let mut wall_s = 0.0;
-    for (options, out, out_name) in [
-        (&quadratic[..], &msh41, msh41_name),
-        (&linear_mm[..], &msh22_mm, msh22_name),
-    ] {
-        let mut args = vec![geo_name.to_owned(), "-2".into()];
-        args.extend(options.iter().map(|s| s.to_string()));
-        args.extend(["-o".into(), out_name.to_owned()]);
-        wall_s += run_gmsh(toolchain, dir, args, out, GMSH_TIMEOUT, "gmsh")?;
-    }
+    let (msh22_mm, linear_s) = mesh_2d(toolchain, dir, &linear_mm, "mesh_p1_mm.msh")?;
     let triangles = triangle_count(&msh22_mm);
     Ok(MeshFiles {
-        geo,
-        msh41,
+        geo: quadratic.geo,
+        msh41: quadratic.msh41,
         msh22_mm,
         resolution,
         triangles,
-        wall_s,
+        wall_s: quadratic.wall_s + linear_s,
     })
+}
+
+/// gmsh's 2D mesh of `<dir>/mesh.geo` with `options`, written to `<dir>/<out_name>`: the file's
+/// path and gmsh's wall time [s].
+fn mesh_2d(
+    toolchain: &Toolchain,
+    dir: &Path,
+    options: &[&str],
+    out_name: &str,
+) -> Result<(PathBuf, f64), SolveError> {
+    let out = dir.join(out_name);
+    let mut args = vec![GEO_NAME.to_owned(), "-2".into()];
+    args.extend(options.iter().map(|s| s.to_string()));
+    args.extend(["-o".into(), out_name.to_owned()]);
+    let wall_s = run_gmsh(toolchain, dir, args, &out, GMSH_TIMEOUT, "gmsh")?;
+    Ok((out, wall_s))
 }
 
 /// Runs gmsh with `args` in `dir` for the file `out`, within `timeout`; its wall time [s], or the

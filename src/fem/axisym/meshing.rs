@@ -75,14 +75,14 @@ fn gmsh_model(
         .prefix("spherecontact-fem-axisym-")
         .tempdir()
         .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
-    let files = geo::mesh(scene, settings.pole_size, dir.path(), toolchain)?;
-    let model = read_model(scene, &files.msh41, settings).map_err(SolveError::Failed)?;
+    let mesh = geo::mesh_quadratic(scene, settings.pole_size, dir.path(), toolchain)?;
+    let model = read_model(scene, &mesh.msh41, settings).map_err(SolveError::Failed)?;
     let origin = Origin {
         description: format!(
             "gmsh {version} from the external decks' .geo (mesher = \"gmsh\"; {} triangles)",
-            files.triangles
+            model.bodies[0].mesh.triangles.len()
         ),
-        gmsh_s: Some(files.wall_s),
+        gmsh_s: Some(mesh.wall_s),
     };
     Ok((model, origin))
 }
