@@ -380,8 +380,8 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
         model: format!(
             "3D, half of one sphere (y ≥ 0; {}) against its symmetry plane, exact for identical \
              spheres; P2 on quadratic tetrahedra; penalty k = {KFAC:e} E/h with fem-3d's contact \
-             rule (multipliers linear on the faces' sub-triangles, averaged gap), condensed onto the \
-             candidate nodes; {}",
+             rule (multipliers at the faces' corners, linear on each face; averaged gap), condensed \
+             onto the candidate nodes; {}",
             scene.domain.describe(),
             if plan.tangential {
                 "Coulomb with history on the disc |q| ≤ μp, all-stick predictor every increment"
@@ -398,7 +398,13 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
         ..Metadata::default()
     };
     let facts = RunFacts {
-        candidate_nodes: run.surfaces.first().map_or(0, |s| s.nodes.len()),
+        // The condensed nodes (the deck's count); surface.csv holds their corners, the contact
+        // points (`deck_points`).
+        candidate_nodes: run
+            .timing
+            .iter()
+            .find(|(phase, _)| phase == "candidates")
+            .map_or(0, |(_, n)| n.round() as usize),
         capped: &capped,
         wall_s: run.wall_s,
     };
