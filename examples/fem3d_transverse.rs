@@ -17,6 +17,7 @@
 
 use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::FemSolid3d;
+use spherecontact::fit::surface::stick_zone;
 use spherecontact::history::History;
 use spherecontact::registry;
 use spherecontact::report::claims::study;
@@ -104,6 +105,27 @@ fn box_maxima(view: &FieldView, areas: &[f64], side: f64) -> [f64; 2] {
     })
 }
 
+/// The hat averages v̄_i = ∫ φ_i v_h dA / ∫ φ_i dA of a field v_h linear on the triangles
+/// (∫_T φ_i φ_k dA = |T| (1 + δ_ik)/12): the consistent recovery of a multiplier field, whose
+/// nodal values overshoot a concave extremum by O(h²) (`fit::surface::peak_by_moments`); the
+/// values themselves on a grid (the BEM's panels are already averages).
+fn hat_averages(view: &FieldView, value: &dyn Fn(usize) -> f64) -> Vec<f64> {
+    let Layout::Triangles(triangles) = &view.layout else {
+        return (0..view.len()).map(value).collect();
+    };
+    let (mut sum, mut weight) = (vec![0.0; view.len()], vec![0.0; view.len()]);
+    for t in triangles {
+        let [a, b, c] = t.map(|i| view.point(i));
+        let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs();
+        let total: f64 = t.iter().map(|&k| value(k)).sum();
+        for &i in t {
+            sum[i] += area / 12.0 * (value(i) + total);
+            weight[i] += area / 3.0;
+        }
+    }
+    sum.iter().zip(&weight).map(|(s, w)| s / w).collect()
+}
+
 fn report(label: &str, history: &History, friction: f64) {
     let (m, c) = study::measure(history, 5, friction, None).expect("a map at position 5");
     let view = FieldView::at_position(history, 5).expect("a field at position 5");
@@ -142,6 +164,38 @@ fn report(label: &str, history: &History, friction: f64) {
         roughness(&|i| view.pressure(i)),
         roughness(&|i| q(i)[0]),
         roughness(&|i| q(i)[1])
+    );
+    let averaged = [0, 1].map(|a| {
+        let v = hat_averages(&view, &|i| if view.in_contact(i) { q(i)[a] } else { 0.0 });
+        contact.iter().map(|&i| v[i].abs()).fold(0.0, f64::max)
+    });
+    let stick_radius = history
+        .at_position(5)
+        .and_then(|r| r.stick_radius)
+        .unwrap_or(f64::NAN);
+    let r_k = view.point(k)[0].hypot(view.point(k)[1]);
+    let sticking = |i: usize| view.stick(i) == Some(true);
+    // The second-moment semi-axes (`fit::surface::stick_zone`, fem-3d's per-step measure) on
+    // the whole map: integrals, they do not hinge on the edge's samples along two lines.
+    let points: Vec<[f64; 3]> = (0..view.len())
+        .map(|i| {
+            let [x, y] = view.point(i);
+            [x, y, 0.0]
+        })
+        .collect();
+    let pressure: Vec<f64> = (0..view.len()).map(|i| view.pressure(i)).collect();
+    let stick: Vec<bool> = (0..view.len()).map(sticking).collect();
+    let moments = stick_zone(&points, &areas, &pressure, &stick).map(|z| z.semi_axes);
+    println!(
+        "  hat-averaged max|q_y|/max|q_x| {:.4}; second-moment stick semi-axes x/y {}; max|q_y| at r = {:.3} c \
+         (stick radius {:.3} c), |q|/μp there {:.3}, its neighbours {} stick / {} slip",
+        averaged[1] / averaged[0],
+        moments.map_or("—".into(), |a| format!("{:.1}/{:.1} µm", 1e6 * a[0], 1e6 * a[1])),
+        r_k / c,
+        stick_radius / c,
+        q(k)[0].hypot(q(k)[1]) / (friction * view.pressure(k)),
+        around[k].iter().filter(|&&j| sticking(j)).count(),
+        around[k].iter().filter(|&&j| view.in_contact(j) && !sticking(j)).count(),
     );
     let [x, y] = view.point(k);
     println!(

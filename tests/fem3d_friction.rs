@@ -33,8 +33,18 @@ fn fem3d(scene: &Scene, divisions: f64) -> History {
 /// The coarse mesh of the light tests: the contact spans about four elements at its largest.
 const COARSE: f64 = 4.0;
 /// The mesh of the reversal test, whose Q is checked against the corrected reference: with the
-/// multipliers at the corners, c_max/4 leaves 2.9 % of the peak (about four multiplier points
-/// along the contact radius), c_max/6 1.1 %, c_max/8 0.22 %.
+/// multipliers at the corners, c_max/4 leaves 2.9 % of the peak, c_max/6 1.1 %, c_max/8 0.22 %.
+///
+/// Why c_max/4 is too coarse here and not for Cattaneo's shift: a reversal of ±0.5 µm slips only
+/// a thin annulus. Cattaneo–Mindlin: the sliding shift is δ_s = 3μP/(16 G* c) = 4.15 µm at
+/// δn = 17 µm (P = 808 N, c = 922 µm, G* = G/(2(2 − ν)) = 7.9 GPa), the first 0.5 µm leaves the
+/// stick radius c_s/c = √(1 − δt/δ_s) = 0.938, and every later reversal of 1 µm, on Masing's
+/// branch of twice the friction, √(1 − 1/(2 δ_s)) = 0.938 again: the slip annulus is 0.062 c =
+/// 57 µm wide. c_max/4 puts the multiplier points 0.25 c = 230 µm apart, so the annulus is a
+/// quarter of one spacing and lies between the last loaded ring and the edge, where no point
+/// resolves it: Q, carried by μp over the annulus and by the stick zone's compliance inside, is
+/// off by a share of the annulus's load. At c_max/8 the annulus is half a spacing. (Cattaneo's
+/// shift to 5 µm slides the whole contact, its annuli are up to c wide: 0.52 % at c_max/4.)
 const REVERSAL_MESH: f64 = 8.0;
 
 #[test]
