@@ -11,12 +11,18 @@
 //! measure of the reports, `report::claims::measure`); the same ratio of the RMS over the
 //! contact; the same ratio of the largest averages over square boxes of side c/5 on one grid
 //! centred on the contact (a measure both discretisations share: each box holds several of
-//! either's samples); ∫ q_y dA over the first quadrant; the stick semi-axes along x and y; and
-//! where max|q_y| lies (x/c, y/c, stick or slip) with its value against the mean of its
-//! neighbours (a node-to-node oscillation shows as a peak far above its neighbours).
+//! either's samples); ∫ q_y dA over the first quadrant; the stick semi-axes along x and y (the
+//! reports' edge fit on the half-axes); and where max|q_y| lies (x/c, y/c, stick or slip) with
+//! its value against the mean of its neighbours (a node-to-node oscillation or a one-point spike
+//! shows as a peak far above its neighbours). Then, a line above it: the ratio on the hat
+//! averages of the traction (`fit::recovery`; a grid's values as they are) and where its
+//! largest |q̄_y| lies; the stick zone's second-moment semi-axes (`fit::surface::stick_zone`);
+//! and at the pointwise maximum: its radius against the stick radius, |q|/μp, and how many of
+//! its neighbours stick and slip.
 
 use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::FemSolid3d;
+use spherecontact::fit::recovery::hat_averages;
 use spherecontact::fit::surface::stick_zone;
 use spherecontact::history::History;
 use spherecontact::registry;
@@ -105,27 +111,6 @@ fn box_maxima(view: &FieldView, areas: &[f64], side: f64) -> [f64; 2] {
     })
 }
 
-/// The hat averages v̄_i = ∫ φ_i v_h dA / ∫ φ_i dA of a field v_h linear on the triangles
-/// (∫_T φ_i φ_k dA = |T| (1 + δ_ik)/12): the consistent recovery of a multiplier field, whose
-/// nodal values overshoot a concave extremum by O(h²) (`fit::surface::peak_by_moments`); the
-/// values themselves on a grid (the BEM's panels are already averages).
-fn hat_averages(view: &FieldView, value: &dyn Fn(usize) -> f64) -> Vec<f64> {
-    let Layout::Triangles(triangles) = &view.layout else {
-        return (0..view.len()).map(value).collect();
-    };
-    let (mut sum, mut weight) = (vec![0.0; view.len()], vec![0.0; view.len()]);
-    for t in triangles {
-        let [a, b, c] = t.map(|i| view.point(i));
-        let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs();
-        let total: f64 = t.iter().map(|&k| value(k)).sum();
-        for &i in t {
-            sum[i] += area / 12.0 * (value(i) + total);
-            weight[i] += area / 3.0;
-        }
-    }
-    sum.iter().zip(&weight).map(|(s, w)| s / w).collect()
-}
-
 fn report(label: &str, history: &History, friction: f64) {
     let (m, c) = study::measure(history, 5, friction, None).expect("a map at position 5");
     let view = FieldView::at_position(history, 5).expect("a field at position 5");
@@ -165,10 +150,20 @@ fn report(label: &str, history: &History, friction: f64) {
         roughness(&|i| q(i)[0]),
         roughness(&|i| q(i)[1])
     );
-    let averaged = [0, 1].map(|a| {
-        let v = hat_averages(&view, &|i| if view.in_contact(i) { q(i)[a] } else { 0.0 });
-        contact.iter().map(|&i| v[i].abs()).fold(0.0, f64::max)
+    let points2: Vec<[f64; 2]> = (0..view.len()).map(|i| view.point(i)).collect();
+    let recovered = [0, 1].map(|a| {
+        let v: Vec<f64> = (0..view.len())
+            .map(|i| if view.in_contact(i) { q(i)[a] } else { 0.0 })
+            .collect();
+        view.triangles()
+            .map_or(v.clone(), |t| hat_averages(&points2, t, &v))
     });
+    let averaged = [0, 1].map(|a| contact.iter().map(|&i| recovered[a][i].abs()).fold(0.0, f64::max));
+    let k_averaged = *contact
+        .iter()
+        .max_by(|&&a, &&b| recovered[1][a].abs().total_cmp(&recovered[1][b].abs()))
+        .expect("contact");
+    let [xa, ya] = view.point(k_averaged);
     let stick_radius = history
         .at_position(5)
         .and_then(|r| r.stick_radius)
@@ -187,9 +182,11 @@ fn report(label: &str, history: &History, friction: f64) {
     let stick: Vec<bool> = (0..view.len()).map(sticking).collect();
     let moments = stick_zone(&points, &areas, &pressure, &stick).map(|z| z.semi_axes);
     println!(
-        "  hat-averaged max|q_y|/max|q_x| {:.4}; second-moment stick semi-axes x/y {}; max|q_y| at r = {:.3} c \
+        "  hat-averaged max|q_y|/max|q_x| {:.4} at ({:.2}, {:.2}) c; second-moment stick semi-axes x/y {}; max|q_y| at r = {:.3} c \
          (stick radius {:.3} c), |q|/μp there {:.3}, its neighbours {} stick / {} slip",
         averaged[1] / averaged[0],
+        xa / c,
+        ya / c,
         moments.map_or("—".into(), |a| format!("{:.1}/{:.1} µm", 1e6 * a[0], 1e6 * a[1])),
         r_k / c,
         stick_radius / c,
