@@ -11,12 +11,19 @@
 //! measure of the reports, `report::claims::measure`); the same ratio of the RMS over the
 //! contact; the same ratio of the largest averages over square boxes of side c/5 on one grid
 //! centred on the contact (a measure both discretisations share: each box holds several of
-//! either's samples); ∫ q_y dA over the first quadrant; the stick semi-axes along x and y; and
-//! where max|q_y| lies (x/c, y/c, stick or slip) with its value against the mean of its
-//! neighbours (a node-to-node oscillation shows as a peak far above its neighbours).
+//! either's samples); ∫ q_y dA over the first quadrant; the stick semi-axes along x and y (the
+//! reports' edge fit on the half-axes); and where max|q_y| lies (x/c, y/c, stick or slip) with
+//! its value against the mean of its neighbours (a node-to-node oscillation or a one-point spike
+//! shows as a peak far above its neighbours). Then, a line above it: the ratio on the hat
+//! averages of the traction (`fit::recovery`; a grid's values as they are) and where its
+//! largest |q̄_y| lies; the stick zone's second-moment semi-axes (`fit::surface::stick_zone`);
+//! and at the pointwise maximum: its radius against the stick radius, |q|/μp, and how many of
+//! its neighbours stick and slip.
 
 use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::FemSolid3d;
+use spherecontact::fit::recovery::hat_averages;
+use spherecontact::fit::surface::stick_zone;
 use spherecontact::history::History;
 use spherecontact::registry;
 use spherecontact::report::claims::study;
@@ -142,6 +149,50 @@ fn report(label: &str, history: &History, friction: f64) {
         roughness(&|i| view.pressure(i)),
         roughness(&|i| q(i)[0]),
         roughness(&|i| q(i)[1])
+    );
+    let points2: Vec<[f64; 2]> = (0..view.len()).map(|i| view.point(i)).collect();
+    let recovered = [0, 1].map(|a| {
+        let v: Vec<f64> = (0..view.len())
+            .map(|i| if view.in_contact(i) { q(i)[a] } else { 0.0 })
+            .collect();
+        view.triangles()
+            .map_or(v.clone(), |t| hat_averages(&points2, t, &v))
+    });
+    let averaged = [0, 1].map(|a| contact.iter().map(|&i| recovered[a][i].abs()).fold(0.0, f64::max));
+    let k_averaged = *contact
+        .iter()
+        .max_by(|&&a, &&b| recovered[1][a].abs().total_cmp(&recovered[1][b].abs()))
+        .expect("contact");
+    let [xa, ya] = view.point(k_averaged);
+    let stick_radius = history
+        .at_position(5)
+        .and_then(|r| r.stick_radius)
+        .unwrap_or(f64::NAN);
+    let r_k = view.point(k)[0].hypot(view.point(k)[1]);
+    let sticking = |i: usize| view.stick(i) == Some(true);
+    // The second-moment semi-axes (`fit::surface::stick_zone`, fem-3d's per-step measure) on
+    // the whole map: integrals, they do not hinge on the edge's samples along two lines.
+    let points: Vec<[f64; 3]> = (0..view.len())
+        .map(|i| {
+            let [x, y] = view.point(i);
+            [x, y, 0.0]
+        })
+        .collect();
+    let pressure: Vec<f64> = (0..view.len()).map(|i| view.pressure(i)).collect();
+    let stick: Vec<bool> = (0..view.len()).map(sticking).collect();
+    let moments = stick_zone(&points, &areas, &pressure, &stick).map(|z| z.semi_axes);
+    println!(
+        "  hat-averaged max|q_y|/max|q_x| {:.4} at ({:.2}, {:.2}) c; second-moment stick semi-axes x/y {}; max|q_y| at r = {:.3} c \
+         (stick radius {:.3} c), |q|/μp there {:.3}, its neighbours {} stick / {} slip",
+        averaged[1] / averaged[0],
+        xa / c,
+        ya / c,
+        moments.map_or("—".into(), |a| format!("{:.1}/{:.1} µm", 1e6 * a[0], 1e6 * a[1])),
+        r_k / c,
+        stick_radius / c,
+        q(k)[0].hypot(q(k)[1]) / (friction * view.pressure(k)),
+        around[k].iter().filter(|&&j| sticking(j)).count(),
+        around[k].iter().filter(|&&j| view.in_contact(j) && !sticking(j)).count(),
     );
     let [x, y] = view.point(k);
     println!(

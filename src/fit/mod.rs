@@ -1,7 +1,9 @@
 //! Least-squares fits shared by the solvers' post-processing (contact edges) and the
-//! convergence tests (observed rates).
+//! convergence tests (observed rates), and the consistent recovery of a mesh's contact fields
+//! from their multipliers ([`recovery`]).
 
 pub mod profile;
+pub mod recovery;
 pub mod surface;
 
 /// A straight line y = ȳ + slope (x − x̄) fitted by least squares.
