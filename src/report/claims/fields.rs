@@ -295,9 +295,14 @@ fn pressure_axisymmetry(e: &Evidence, _: &References, _: &[&Evidence]) -> (Strin
         e.across(|m| Some(format!("{:.2} %", departure(m) * 100.0)))
     );
     let d = departure(e.best());
-    let moves = e.change(|m| Some(departure(m))).map_or(String::new(), |c| {
-        format!("; it moves by {:.2} % of the peak under refinement", c * 100.0)
-    });
+    let moves = match e.change(|m| Some(departure(m))) {
+        Some(c) if c > d => format!(
+            "; the coarser rung departs by {:.2} %: the departure falls under refinement (the mesh's, not the field's)",
+            (d + c) * 100.0
+        ),
+        Some(c) => format!("; it moves by {:.2} % of the peak under refinement", c * 100.0),
+        None => String::new(),
+    };
     if d <= MAGNITUDE_AXISYMMETRY {
         (
             measured,
