@@ -93,24 +93,6 @@ fn neighbours(view: &FieldView) -> Vec<Vec<usize>> {
     around
 }
 
-/// The largest |box average| of q_x and of q_y over boxes of side `side` on the grid centred
-/// at the origin (area-weighted averages of the samples in contact within each box).
-fn box_maxima(view: &FieldView, areas: &[f64], side: f64) -> [f64; 2] {
-    let mut boxes: std::collections::HashMap<(i64, i64), [f64; 3]> = Default::default();
-    for i in (0..view.len()).filter(|&i| view.in_contact(i)) {
-        let [x, y] = view.point(i);
-        let key = ((x / side).floor() as i64, (y / side).floor() as i64);
-        let q = view.traction(i).unwrap_or([0.0; 2]);
-        let b = boxes.entry(key).or_insert([0.0; 3]);
-        b[0] += q[0] * areas[i];
-        b[1] += q[1] * areas[i];
-        b[2] += areas[i];
-    }
-    boxes.values().fold([0.0, 0.0], |m, b| {
-        [m[0].max((b[0] / b[2]).abs()), m[1].max((b[1] / b[2]).abs())]
-    })
-}
-
 fn report(label: &str, history: &History, friction: f64) {
     let (m, c) = study::measure(history, 5, friction, None).expect("a map at position 5");
     let view = FieldView::at_position(history, 5).expect("a field at position 5");
@@ -122,7 +104,8 @@ fn report(label: &str, history: &History, friction: f64) {
         let area: f64 = contact.iter().map(|&i| areas[i]).sum();
         (s / area).sqrt()
     };
-    let boxed = box_maxima(&view, &areas, c / 5.0);
+    // The largest c/5 box averages, the reports' measure (report::claims::measure).
+    let boxed = m.box_max;
     let around = neighbours(&view);
     let k = *contact
         .iter()

@@ -4,7 +4,7 @@
 //! seconds each), and the paper's Figure 11–12 claim measured against the BEM (heavy, ignored).
 //!
 //! The Q accuracy along the paper path and on Cattaneo's shift is checked by the shipped cases
-//! (cases/fem-3d-friction.toml, cases/fem-3d-cattaneo.toml: `spherecontact verify`).
+//! (cases/paper-fig7.toml, cases/fem-3d-cattaneo.toml: `spherecontact verify`).
 
 mod common;
 

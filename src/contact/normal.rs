@@ -162,11 +162,14 @@ impl NormalProblem<'_> {
                     p[i] = next.max(0.0);
                 }
             }
-            // Points out of contact that penetrate re-enter (P&K, eq. 13), restarting the CG.
+            // Points out of contact that penetrate re-enter (P&K, eq. 13), restarting the CG. When
+            // the contact set is already solved (zero gaps: step 0, e.g. one point in contact),
+            // −step·gap would keep them out for ever: they enter with the seed stiffness instead.
             restart = false;
+            let entry = if step > 0.0 { step } else { self.seed_stiffness };
             for i in 0..m {
                 if p[i] == 0.0 && gap[i] < 0.0 {
-                    p[i] = -step * gap[i];
+                    p[i] = -entry * gap[i];
                     changes.push((i, p[i]));
                     restart = true;
                 }
