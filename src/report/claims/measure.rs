@@ -59,6 +59,10 @@ pub struct MapMeasures {
     pub qx_max: f64,
     /// The largest |q_y| over the contact [Pa].
     pub qy_max: f64,
+    /// max|q̄_y| / max|q̄_x| on the values the contact rule determines: the hat averages of a map
+    /// on triangles (a mesh's multipliers overshoot at single nodes at the stick edge), a grid's
+    /// panel values ([`crate::fit::recovery::transverse_ratio`]); `None` without q_x.
+    pub recovered_ratio: Option<f64>,
     /// The largest |area-weighted average| of q_x and of q_y over square boxes of side
     /// c/[`BOXES_PER_RADIUS`] on a grid with a corner at the centre [Pa].
     pub box_max: [f64; 2],
@@ -172,6 +176,7 @@ impl MapMeasures {
             spacing: view.spacing(),
             qx_max: largest(&|i| traction(i)[0].abs()),
             qy_max: largest(&|i| traction(i)[1].abs()),
+            recovered_ratio: recovered_ratio(view),
             box_max: box_maxima(view, &areas, &contact, contact_radius / BOXES_PER_RADIUS),
             quadrants,
             stick_axes,
@@ -279,6 +284,18 @@ fn stick_moments(view: &FieldView, areas: &[f64]) -> Option<[f64; 2]> {
 
 /// The largest |area-weighted average| of q_x and of q_y over the contact samples of square
 /// boxes of side `side` [m] on the grid with a corner at the origin (0 without a positive side).
+/// The transverse ratio on the map's recovered values ([`MapMeasures::recovered_ratio`]).
+fn recovered_ratio(view: &FieldView) -> Option<f64> {
+    let all = 0..view.len();
+    let points: Vec<[f64; 2]> = all.clone().map(|i| view.point(i)).collect();
+    let traction: Vec<[f64; 2]> = all
+        .clone()
+        .map(|i| view.traction(i).unwrap_or([0.0, 0.0]))
+        .collect();
+    let pressure: Vec<f64> = all.map(|i| view.pressure(i)).collect();
+    crate::fit::recovery::transverse_ratio(&points, view.triangles(), &traction, &pressure)
+}
+
 fn box_maxima(view: &FieldView, areas: &[f64], contact: &[usize], side: f64) -> [f64; 2] {
     if !side.is_finite() || side <= 0.0 {
         return [0.0, 0.0];
@@ -385,6 +402,8 @@ mod tests {
             "q_y = −0.01 x y"
         );
         assert!(m.qy_max > 0.0 && m.transverse_share > 0.0);
+        // A grid's panel value is its own average: the recovered ratio is the samples' ratio.
+        assert_eq!(m.recovered_ratio, Some(m.qy_max / m.qx_max));
         // Against its own q_x as MD's: the whole departure is transverse.
         let root = |s: f64, r: f64| (s * s - r * r).max(0.0).sqrt();
         let [transverse, parallel] = departure(&view, &|r| 0.2 * (root(1.0, r) - root(0.5, r))).unwrap();

@@ -5,7 +5,8 @@
 use super::{cusp_sampling, fraction, Evidence, Measured, References, Verdict, MAGNITUDE_AXISYMMETRY};
 use crate::report::claims::measure::{AXIS_READ, BOXES_PER_RADIUS};
 
-/// The transverse traction: its size against q_x (averaged over boxes, and pointwise), its sign
+/// The transverse traction: its size against q_x (on the recovered values, judged; averaged over
+/// boxes; at single samples), its sign
 /// pattern, the axisymmetry of |q|, and how it compares with the other map solvers.
 pub(super) fn claim(
     e: &Evidence,
@@ -29,29 +30,32 @@ pub(super) fn claim(
         "q_y is not odd in x and in y".to_owned()
     };
     let measured = format!(
-        "max |q_y| / max |q_x| averaged over boxes of side c/{:.0} = {}; read pointwise {}; {pattern}; |q| read along x \
-         and along y (r ≤ {AXIS_READ} c) differs, relative to its peak, by ≤ {}; q_y adds ≤ {:.2} % of the peak to |q|",
+        "max |q_y| / max |q_x| on the values the contact rule determines (a mesh's hat averages, a grid's panels) = {}; \
+         averaged over boxes of side c/{:.0} = {}; at single samples {}; {pattern}; |q| read along x and along y \
+         (r ≤ {AXIS_READ} c) differs, relative to its peak, by ≤ {}; q_y adds ≤ {:.2} % of the peak to |q|",
+        e.across(|m| as_percent(m.measures.recovered_ratio)),
         BOXES_PER_RADIUS,
         e.across(|m| as_percent(boxed_ratio(m))),
         e.across(|m| as_percent(pointwise_ratio(m))),
         e.across(|m| as_percent(Some(fraction(m.measures.axis_difference, m.measures.peak.map_or(0.0, |p| p.value))))),
         fraction(best.transverse_share, peak) * 100.0
     );
-    let Some(r) = boxed_ratio(e.best()).filter(|&r| r > 0.0) else {
+    let Some(r) = recovered(e.best()).filter(|&r| r > 0.0) else {
         return (measured, Verdict::NotConfirmed, "no transverse traction".into());
     };
-    // The pointwise maximum is a one-sample peak at the stick edge: said, not judged on.
-    let pointwise = match (e.change(pointwise_ratio), e.change(boxed_ratio)) {
+    // A mesh's single-sample maximum is a one-node overshoot at the stick edge (fit::recovery):
+    // said, not judged on.
+    let pointwise = match (e.change(pointwise_ratio), e.change(recovered)) {
         (Some(p), Some(b)) if p > b => format!(
-            ". The pointwise maximum, one sample at the stick edge, is not converged: it moves by {:.2} % of max|q_x| \
-             between the two finest rungs, the box average by {:.2} %",
+            ". The single-sample maximum, one node at the stick edge, is not converged: it moves by {:.2} % of \
+             max|q_x| between the two finest rungs, the recovered ratio by {:.2} %",
             p * 100.0,
             b * 100.0
         ),
         _ => String::new(),
     };
     let beside: String = others.iter().filter_map(|o| compare_transverse(e, o)).collect();
-    let resolved = e.change(boxed_ratio).is_none_or(|change| change < r);
+    let resolved = e.change(recovered).is_none_or(|change| change < r);
     // |q| departs from axisymmetry only beyond a tenth of a contour level, beyond what refinement
     // still moves, and beyond what the samples can tell at the cusp of |q| at the stick edge,
     // which a mesh samples differently along x and y (a grid symmetric in x and y alike).
@@ -83,22 +87,20 @@ pub(super) fn claim(
         (true, true, _) => (
             Verdict::Partly,
             format!(
-                "the traction's direction is not axisymmetric (q_y up to {:.1} % of q_x over c/{:.0} boxes), its \
-                 magnitude |q| is, to {:.2} % of its peak, within a tenth of a contour level{others_read}",
+                "the traction's direction is not axisymmetric (q_y up to {:.1} % of q_x), its magnitude |q| is, to \
+                 {:.2} % of its peak, within a tenth of a contour level{others_read}",
                 r * 100.0,
-                BOXES_PER_RADIUS,
                 d * 100.0
             ),
         ),
         (true, false, true) => (
             Verdict::Partly,
             format!(
-                "the traction's direction is not axisymmetric (q_y up to {:.1} % of q_x over c/{:.0} boxes); whether its \
-                 magnitude |q| is cannot be told from these samples: |q| read along x and y differs by {:.2} % of its \
-                 peak, within its change under refinement ({:.2} %) or what samples h apart can miss of the cusp of |q| \
-                 at the stick edge (μp0 √(c_s h)/c, {:.1} % of the peak){others_read}",
+                "the traction's direction is not axisymmetric (q_y up to {:.1} % of q_x); whether its magnitude |q| \
+                 is cannot be told from these samples: |q| read along x and y differs by {:.2} % of its peak, within \
+                 its change under refinement ({:.2} %) or what samples h apart can miss of the cusp of |q| at the \
+                 stick edge (μp0 √(c_s h)/c, {:.1} % of the peak){others_read}",
                 r * 100.0,
-                BOXES_PER_RADIUS,
                 d * 100.0,
                 change * 100.0,
                 cusp * 100.0
@@ -122,18 +124,23 @@ fn boxed_ratio(m: &Measured) -> Option<f64> {
     (qx > 0.0).then(|| qy / qx)
 }
 
+/// The judged ratio: max|q_y| / max|q_x| on the recovered values.
+fn recovered(m: &Measured) -> Option<f64> {
+    m.measures.recovered_ratio
+}
+
 /// max|q_y| / max|q_x| over the samples, if there is a q_x.
 fn pointwise_ratio(m: &Measured) -> Option<f64> {
     (m.measures.qx_max > 0.0).then(|| m.measures.qy_max / m.measures.qx_max)
 }
 
 /// The transverse traction of `e` against another map solver's `o`: the sign pattern over the
-/// quadrants, and the box ratio's difference against what the two discretisations explain —
+/// quadrants, and the recovered ratio's difference against what the two discretisations explain —
 /// each one's change between its two finest rungs, an estimate of its remaining error — with the
 /// two models' difference in Q at the position beside it (a finite body against half-spaces
 /// shears differently, and q_y follows the shear).
 fn compare_transverse(e: &Evidence, o: &Evidence) -> Option<String> {
-    let (a, b) = (boxed_ratio(e.best())?, boxed_ratio(o.best())?);
+    let (a, b) = (recovered(e.best())?, recovered(o.best())?);
     let signs = |m: &Measured| m.measures.quadrants.map(|q| q.total > 0.0);
     let pattern = if signs(e.best()) == signs(o.best()) {
         "the same sign pattern"
@@ -142,7 +149,7 @@ fn compare_transverse(e: &Evidence, o: &Evidence) -> Option<String> {
     };
     let difference = (a - b).abs();
     let mut text = format!(
-        ". Against {}: {pattern}; box ratio {:.2} % against {:.2} %, {:.2} % of max|q_x| apart ({:.1} % of {}'s)",
+        ". Against {}: {pattern}; recovered ratio {:.2} % against {:.2} %, {:.2} % of max|q_x| apart ({:.1} % of {}'s)",
         o.solver,
         a * 100.0,
         b * 100.0,
@@ -150,7 +157,7 @@ fn compare_transverse(e: &Evidence, o: &Evidence) -> Option<String> {
         fraction(difference, b) * 100.0,
         o.solver
     );
-    match (e.change(boxed_ratio), o.change(boxed_ratio)) {
+    match (e.change(recovered), o.change(recovered)) {
         (Some(de), Some(dobj)) => {
             let within = if difference <= de + dobj {
                 "within"
