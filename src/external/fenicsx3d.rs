@@ -4,7 +4,7 @@
 //! disc), condensed onto the candidate nodes; under `mpirun` with a chosen rank count (template
 //! `templates/fenicsx_3d.py`; the model and the cluster how-to: docs/external-decks.md).
 //!
-//! Heavy: not in the shipped cases' default solver lists; `cases/heavy/paper-fig7-3d.toml` names it.
+//! Heavy: not in the shipped cases' default solver lists; `cases-heavy/paper-fig7-3d.toml` names it.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
