@@ -23,7 +23,6 @@
 use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::FemSolid3d;
 use spherecontact::fit::recovery::hat_averages;
-use spherecontact::fit::surface::stick_zone;
 use spherecontact::history::History;
 use spherecontact::registry;
 use spherecontact::report::claims::study;
@@ -154,16 +153,9 @@ fn report(label: &str, history: &History, friction: f64) {
     let r_k = view.point(k)[0].hypot(view.point(k)[1]);
     let sticking = |i: usize| view.stick(i) == Some(true);
     // The second-moment semi-axes (`fit::surface::stick_zone`, fem-3d's per-step measure) on
-    // the whole map: integrals, they do not hinge on the edge's samples along two lines.
-    let points: Vec<[f64; 3]> = (0..view.len())
-        .map(|i| {
-            let [x, y] = view.point(i);
-            [x, y, 0.0]
-        })
-        .collect();
-    let pressure: Vec<f64> = (0..view.len()).map(|i| view.pressure(i)).collect();
-    let stick: Vec<bool> = (0..view.len()).map(sticking).collect();
-    let moments = stick_zone(&points, &areas, &pressure, &stick).map(|z| z.semi_axes);
+    // the whole map, as the claims read them: integrals, they do not hinge on the edge's samples
+    // along two lines.
+    let moments = m.stick_moments;
     println!(
         "  hat-averaged max|q_y|/max|q_x| {:.4} at ({:.2}, {:.2}) c; second-moment stick semi-axes x/y {}; max|q_y| at r = {:.3} c \
          (stick radius {:.3} c), |q|/μp there {:.3}, its neighbours {} stick / {} slip",
