@@ -4,6 +4,8 @@
 //! one warm-up run each, then REPEATS timed runs (default 3), interleaved; medians of the wall
 //! time of the set-up (mesh, assembly, factorisation, condensation) and of the path, the path's
 //! time per increment, and the largest difference of P and Q from fem-3d (relative to the peaks).
+//! Times print to three significant figures: fem-3d's whole path (its `contact_s`, the walk with
+//! every contact solve) takes tens of milliseconds, which a fixed `{:.1}` s column showed as 0.0.
 //! The machine may be shared: compare the rows of one run.
 //!
 //! Run: `cargo run --release --example deck3d_timing [CASE] [REPEATS] [N]` (needs
@@ -39,6 +41,21 @@ fn phases(history: &History, wall_s: f64) -> (f64, f64, f64) {
     }
     let contact = extra(history, "contact_s");
     (wall_s - contact, contact, f64::NAN)
+}
+
+/// The row of fem-3d, the reference of the P and Q columns.
+const FEM_ROW: usize = 2;
+
+/// `value` to three significant figures ("0.0143", "6.04", "130"), "—" when not a number.
+fn significant(value: f64) -> String {
+    if !value.is_finite() {
+        return "—".to_owned();
+    }
+    if value == 0.0 {
+        return "0".to_owned();
+    }
+    let digits = (2 - value.abs().log10().floor() as i32).max(0) as usize;
+    format!("{value:.digits$}")
 }
 
 fn main() {
@@ -89,7 +106,7 @@ fn main() {
             }
         }
     }
-    let fem = histories[2].clone();
+    let fem = histories[FEM_ROW].clone();
     println!(
         "{:<20} {:>9} {:>8} {:>14} {:>18} {:>8} {:>8}",
         "solver", "set-up s", "path s", "ms/increment", "CPU ms/increment", "ΔP/peak", "ΔQ/peak"
@@ -108,19 +125,20 @@ fn main() {
             sorted_median(|r| r.1),
             sorted_median(|r| r.2),
         );
-        let cpu = if cpu.is_finite() {
-            format!("{:.0}", cpu / increments as f64 * 1e3)
-        } else {
-            "—".to_owned()
-        };
+        let per_increment = |s: f64| significant(s / increments as f64 * 1e3);
+        // fem-3d against itself: nothing to show.
         let against = |q: Quantity| {
             fem.as_ref()
+                .filter(|_| k != FEM_ROW)
                 .and_then(|f| worst_error(history, f, q, true))
                 .map_or_else(|| "—".to_owned(), |e| format!("{e:.1e}"))
         };
         println!(
-            "{name:<20} {setup:>9.1} {path:>8.1} {:>14.0} {cpu:>18} {:>8} {:>8}",
-            path / increments as f64 * 1e3,
+            "{name:<20} {:>9} {:>8} {:>14} {:>18} {:>8} {:>8}",
+            significant(setup),
+            significant(path),
+            per_increment(path),
+            per_increment(cpu),
             against(Quantity::NormalForce),
             against(Quantity::TangentialForce),
         );

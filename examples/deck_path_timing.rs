@@ -8,16 +8,20 @@
 //! against mdr-domain, the finite-body reference (MDR in series with the case's domain's
 //! compliances, docs/finite-body.md: the discretisation error, so the CPU ratio is at equal error
 //! when these columns match), the raw offset of P from Hertz beside it, and each deck against
-//! fem-axisym; then Q at every path position beside mdr and mdr-domain. The machine may be shared:
-//! compare the solvers within one run.
+//! fem-axisym; then P and Q at every path position beside mdr and mdr-domain. The machine may be
+//! shared: compare the solvers within one run.
 //!
-//! Run: `cargo run --release --example deck_path_timing [CASE] [REPEATS]` (needs scripts/setup.sh).
+//! Run: `cargo run --release --example deck_path_timing [CASE] [REPEATS] [SOLVERS]` (needs
+//! scripts/setup.sh). SOLVERS is a comma-separated list of the solvers to time (default
+//! `freefem-axisym,fenicsx-axisym,fem-axisym`), each at the case's `[resolution]`; e.g.
+//! `… cases/paper-fig7.toml 1 fem-3d,fem-axisym` prints the closing note's table of P and Q at
+//! every path position for fem-3d, fem-axisym, MDR and mdr-domain.
 
 use std::path::Path;
 
 use spherecontact::bench::{self, worst_error};
 use spherecontact::case::Case;
-use spherecontact::history::{History, Quantity};
+use spherecontact::history::{History, Quantity, StepResult};
 use spherecontact::registry;
 use spherecontact::solver::{self, Solver};
 
@@ -51,13 +55,21 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let case = args.next().unwrap_or_else(|| "cases/paper-fig7.toml".into());
     let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(3);
-    let scene = Case::load(Path::new(&case))
-        .expect("a valid case, run from the crate root")
-        .scene;
-    let solvers: Vec<Box<dyn Solver>> = ["freefem-axisym", "fenicsx-axisym", "fem-axisym"]
-        .iter()
-        .filter_map(|name| registry::by_name(name))
+    let names = args
+        .next()
+        .unwrap_or_else(|| "freefem-axisym,fenicsx-axisym,fem-axisym".into());
+    let loaded = Case::load(Path::new(&case)).expect("a valid case, run from the crate root");
+    let solvers: Vec<Box<dyn Solver>> = names
+        .split(',')
+        .filter_map(|name| {
+            let solver = loaded.solver(name.trim());
+            if solver.is_none() {
+                println!("{name}: no such solver in this build");
+            }
+            solver
+        })
         .collect();
+    let scene = loaded.scene;
     let reference = |name: &str| registry::by_name(name).and_then(|s| solver::run(s.as_ref(), &scene).ok());
     let (hertz, domain, mdr) = (reference("hertz"), reference("mdr-domain"), reference("mdr"));
     println!(
@@ -107,7 +119,7 @@ fn main() {
             fem_cpu.map_or_else(String::new, |f| format!("   CPU ×{:.0} fem-axisym", cpu / f)),
         );
     }
-    // Q at every path position, each solver beside the references.
+    // P and Q at every path position, each solver beside the references.
     let rows: Vec<(String, History)> = timings
         .iter()
         .flatten()
@@ -118,16 +130,20 @@ fn main() {
                 .filter_map(|(n, h)| Some((n.to_owned(), h.clone()?))),
         )
         .collect();
-    println!("\nQ [N] at the path positions");
-    print!("{:<15}", "position");
-    rows.iter().for_each(|(name, _)| print!(" {name:>15}"));
-    println!();
-    for position in 0..scene.path.positions().len() {
-        print!("{position:<15}");
-        for (_, h) in &rows {
-            let q = h.at_position(position).and_then(|r| r.tangential_force);
-            print!(" {:>15}", q.map_or_else(|| "—".to_owned(), newtons));
-        }
+    let quantities: [(&str, fn(&StepResult) -> Option<f64>); 2] =
+        [("P", |r| r.normal_force), ("Q", |r| r.tangential_force)];
+    for (title, quantity) in quantities {
+        println!("\n{title} [N] at the path positions");
+        print!("{:<15}", "position");
+        rows.iter().for_each(|(name, _)| print!(" {name:>15}"));
         println!();
+        for position in 0..scene.path.positions().len() {
+            print!("{position:<15}");
+            for (_, h) in &rows {
+                let value = h.at_position(position).and_then(quantity);
+                print!(" {:>15}", value.map_or_else(|| "—".to_owned(), newtons));
+            }
+            println!();
+        }
     }
 }
