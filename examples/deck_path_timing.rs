@@ -36,6 +36,17 @@ fn percent(value: Option<f64>) -> String {
     value.map_or_else(|| "—".to_owned(), |v| format!("{:.3}", v * 100.0))
 }
 
+/// A force to the table's 1 mN: a Q a few µN below zero (the decks' round-off at Q = 0) prints
+/// as 0.000, not −0.000.
+fn newtons(q: f64) -> String {
+    let shown = format!("{q:.3}");
+    if shown == "-0.000" {
+        "0.000".to_owned()
+    } else {
+        shown
+    }
+}
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let case = args.next().unwrap_or_else(|| "cases/paper-fig7.toml".into());
@@ -115,7 +126,7 @@ fn main() {
         print!("{position:<15}");
         for (_, h) in &rows {
             let q = h.at_position(position).and_then(|r| r.tangential_force);
-            print!(" {:>15}", q.map_or_else(|| "—".to_owned(), |q| format!("{q:.3}")));
+            print!(" {:>15}", q.map_or_else(|| "—".to_owned(), newtons));
         }
         println!();
     }

@@ -289,17 +289,17 @@ with open("steps.csv", "w", newline="") as fs, open("surface.csv", "w", newline=
         stick = p > 0
         slip = np.zeros(m)
         if tangential:
-            # nodes out of contact carry no force: their history follows them
-            free = p <= 0
-            (A, B), (sA, sB) = nodal(v), nodal(s)
-            s = expand(np.where(free, A, sA), np.where(free, B, sB))
             v, stick, its1, outcome1 = solve_tangential(t, v, s, p)
             TA, TB, stick, _ = tractions(v, s, p, False)
             F = expand(om1 * TA, om1 * TB)
             (A, B), (sA, sB) = nodal(v), nodal(s)
             # return mapping: a slipping node's history moves to where its trial traction is mu p
             slipping = (p > 0) & ~stick
-            s = expand(np.where(slipping, A + TA / k, sA), np.where(slipping, B, sB))
+            # a node out of contact carries no force and its history follows it, at the end of the
+            # increment: a node that comes into contact at the next one sticks from where it
+            # stood at that increment's start (its slip is measured over the increment)
+            free = p <= 0
+            s = expand(np.where(slipping | free, A + TA / k, sA), np.where(slipping | free, B, sB))
             Q = -2 * np.pi * (om * TA).sum()        # Q = -2 pi int T_A r dr
             qx = -(TA + TB)                        # q_x on the x axis: -(T_A + T_B) = -T_r
             slip = 2.0 * (A + B)                   # relative displacement of the surfaces along x
