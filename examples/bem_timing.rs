@@ -129,7 +129,9 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
         let (s, cost) = outcome.expect("at least one run");
         let (q, p) = (s.tangential_force(), s.normal_force());
         let expected = s.contact_radius() * (1.0 - q / (scene.friction * p)).cbrt();
-        let fitted = s.stick_zone().map_or(f64::NAN, |z| 0.5 * (z.semi_axes[0] + z.semi_axes[1]));
+        let fitted = s
+            .stick_zone()
+            .map_or(f64::NAN, |z| 0.5 * (z.semi_axes[0] + z.semi_axes[1]));
         println!(
             "| {n}² | {:+.3e} | {:+.3e} | {:+.3e} | {} | {:.1} ms | {:.1} ms |",
             (q - q_ref) / q_ref,

@@ -6,8 +6,9 @@
 //! time per increment, and the largest difference of P and Q from fem-3d (relative to the peaks).
 //! The machine may be shared: compare the rows of one run.
 //!
-//! Run: `cargo run --release --example deck3d_timing [CASE] [REPEATS]` (needs scripts/setup.sh;
-//! default case: cases-heavy/paper-fig7-3d.toml, the paper path up to position 5).
+//! Run: `cargo run --release --example deck3d_timing [CASE] [REPEATS] [N]` (needs
+//! scripts/setup.sh; default case: cases-heavy/paper-fig7-3d.toml, the paper path up to position
+//! 5; N: the pole size c_max/N of both meshes, default 5, the deck's default).
 
 use std::path::Path;
 use std::time::Instant;
@@ -49,10 +50,20 @@ fn main() {
     let scene = Case::load(Path::new(&case))
         .expect("a valid case, run from the crate root")
         .scene;
-    let h = DEFAULT_POLE_FRACTION * scene.max_contact_radius();
+    let fraction = args
+        .next()
+        .and_then(|a| a.parse::<f64>().ok())
+        .filter(|n| *n >= 1.0)
+        .map_or(DEFAULT_POLE_FRACTION, |n| 1.0 / n);
+    let h = fraction * scene.max_contact_radius();
+    let deck = |ranks: u32| {
+        let mut deck = Solid3dDeck::new(ranks);
+        deck.options.resolution = Some(h);
+        Box::new(deck)
+    };
     let solvers: Vec<(String, Box<dyn Solver>)> = vec![
-        ("fenicsx-3d, 1 rank".into(), Box::new(Solid3dDeck::new(1))),
-        ("fenicsx-3d, 2 ranks".into(), Box::new(Solid3dDeck::new(2))),
+        ("fenicsx-3d, 1 rank".into(), deck(1)),
+        ("fenicsx-3d, 2 ranks".into(), deck(2)),
         ("fem-3d".into(), Box::new(FemSolid3d::with_pole_size(h))),
     ];
     let increments = scene.steps().len() - 1;
@@ -60,7 +71,7 @@ fn main() {
         "{case}: {increments} increments, pole size {:.1} µm (c_max/{:.0}); medians of {repeats} runs \
          after a warm-up, interleaved; the machine may be shared",
         h * 1e6,
-        1.0 / DEFAULT_POLE_FRACTION
+        1.0 / fraction
     );
     let mut runs: Vec<Vec<(f64, f64, f64)>> = vec![Vec::new(); solvers.len()];
     let mut histories: Vec<Option<History>> = vec![None; solvers.len()];

@@ -11,12 +11,18 @@
 //! measure of the reports, `report::claims::measure`); the same ratio of the RMS over the
 //! contact; the same ratio of the largest averages over square boxes of side c/5 on one grid
 //! centred on the contact (a measure both discretisations share: each box holds several of
-//! either's samples); ∫ q_y dA over the first quadrant; the stick semi-axes along x and y; and
-//! where max|q_y| lies (x/c, y/c, stick or slip) with its value against the mean of its
-//! neighbours (a node-to-node oscillation shows as a peak far above its neighbours).
+//! either's samples); ∫ q_y dA over the first quadrant; the stick semi-axes along x and y (the
+//! reports' edge fit on the half-axes); and where max|q_y| lies (x/c, y/c, stick or slip) with
+//! its value against the mean of its neighbours (a node-to-node oscillation or a one-point spike
+//! shows as a peak far above its neighbours). Then, a line above it: the ratio on the hat
+//! averages of the traction (`fit::recovery`; a grid's values as they are) and where its
+//! largest |q̄_y| lies; the stick zone's second-moment semi-axes (`fit::stick::semi_axes`);
+//! and at the pointwise maximum: its radius against the stick radius, |q|/μp, and how many of
+//! its neighbours stick and slip.
 
 use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::FemSolid3d;
+use spherecontact::fit::recovery::hat_averages;
 use spherecontact::history::History;
 use spherecontact::registry;
 use spherecontact::report::claims::study;
@@ -86,24 +92,6 @@ fn neighbours(view: &FieldView) -> Vec<Vec<usize>> {
     around
 }
 
-/// The largest |box average| of q_x and of q_y over boxes of side `side` on the grid centred
-/// at the origin (area-weighted averages of the samples in contact within each box).
-fn box_maxima(view: &FieldView, areas: &[f64], side: f64) -> [f64; 2] {
-    let mut boxes: std::collections::HashMap<(i64, i64), [f64; 3]> = Default::default();
-    for i in (0..view.len()).filter(|&i| view.in_contact(i)) {
-        let [x, y] = view.point(i);
-        let key = ((x / side).floor() as i64, (y / side).floor() as i64);
-        let q = view.traction(i).unwrap_or([0.0; 2]);
-        let b = boxes.entry(key).or_insert([0.0; 3]);
-        b[0] += q[0] * areas[i];
-        b[1] += q[1] * areas[i];
-        b[2] += areas[i];
-    }
-    boxes.values().fold([0.0, 0.0], |m, b| {
-        [m[0].max((b[0] / b[2]).abs()), m[1].max((b[1] / b[2]).abs())]
-    })
-}
-
 fn report(label: &str, history: &History, friction: f64) {
     let (m, c) = study::measure(history, 5, friction, None).expect("a map at position 5");
     let view = FieldView::at_position(history, 5).expect("a field at position 5");
@@ -115,7 +103,8 @@ fn report(label: &str, history: &History, friction: f64) {
         let area: f64 = contact.iter().map(|&i| areas[i]).sum();
         (s / area).sqrt()
     };
-    let boxed = box_maxima(&view, &areas, c / 5.0);
+    // The largest c/5 box averages, the reports' measure (report::claims::measure).
+    let boxed = m.box_max;
     let around = neighbours(&view);
     let k = *contact
         .iter()
@@ -142,6 +131,43 @@ fn report(label: &str, history: &History, friction: f64) {
         roughness(&|i| view.pressure(i)),
         roughness(&|i| q(i)[0]),
         roughness(&|i| q(i)[1])
+    );
+    let points2: Vec<[f64; 2]> = (0..view.len()).map(|i| view.point(i)).collect();
+    let recovered = [0, 1].map(|a| {
+        let v: Vec<f64> = (0..view.len())
+            .map(|i| if view.in_contact(i) { q(i)[a] } else { 0.0 })
+            .collect();
+        view.triangles()
+            .map_or(v.clone(), |t| hat_averages(&points2, t, &v))
+    });
+    let averaged = [0, 1].map(|a| contact.iter().map(|&i| recovered[a][i].abs()).fold(0.0, f64::max));
+    let k_averaged = *contact
+        .iter()
+        .max_by(|&&a, &&b| recovered[1][a].abs().total_cmp(&recovered[1][b].abs()))
+        .expect("contact");
+    let [xa, ya] = view.point(k_averaged);
+    let stick_radius = history
+        .at_position(5)
+        .and_then(|r| r.stick_radius)
+        .unwrap_or(f64::NAN);
+    let r_k = view.point(k)[0].hypot(view.point(k)[1]);
+    let sticking = |i: usize| view.stick(i) == Some(true);
+    // The second-moment semi-axes (`fit::stick::semi_axes`, fem-3d's per-step measure) on
+    // the whole map, as the claims read them: integrals, they do not hinge on the edge's samples
+    // along two lines.
+    let moments = m.stick_moments;
+    println!(
+        "  hat-averaged max|q_y|/max|q_x| {:.4} at ({:.2}, {:.2}) c; second-moment stick semi-axes x/y {}; max|q_y| at r = {:.3} c \
+         (stick radius {:.3} c), |q|/μp there {:.3}, its neighbours {} stick / {} slip",
+        averaged[1] / averaged[0],
+        xa / c,
+        ya / c,
+        moments.map_or("—".into(), |a| format!("{:.1}/{:.1} µm", 1e6 * a[0], 1e6 * a[1])),
+        r_k / c,
+        stick_radius / c,
+        q(k)[0].hypot(q(k)[1]) / (friction * view.pressure(k)),
+        around[k].iter().filter(|&&j| sticking(j)).count(),
+        around[k].iter().filter(|&&j| view.in_contact(j) && !sticking(j)).count(),
     );
     let [x, y] = view.point(k);
     println!(

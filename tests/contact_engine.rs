@@ -146,7 +146,11 @@ fn the_fft_operator_and_the_dense_matrix_give_the_same_contact() {
     let mut single = FftCompliance::<f32>::tangential(&grid, &compliance);
     let mut rounded = vec![0.0; load.len()];
     single.apply(&load, &mut rounded);
-    let worst = rounded.iter().zip(&b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs())) / scale;
+    let worst = rounded
+        .iter()
+        .zip(&b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale;
     assert!(worst < 1e-6, "f32 product off by {worst:e} of the largest value");
     fft.add_columns(&[(3, 2.0), (grid.len() + 40, -1.0)], &mut a);
     matrix.add_columns(&[(3, 2.0), (grid.len() + 40, -1.0)], &mut b);

@@ -99,13 +99,12 @@ fn default_mesh_agrees_with_fem_axisym_on_the_same_body() {
         // plus fem-axisym's own edge fit (≤ 0.3 % against Hertz at its default mesh,
         // tests/fem_hertz.rs).
         assert!(c.abs() < 3e-3, "c {c:+.2e}");
-        // p0: measured +0.38 % and +0.18 %: a fit over r ≤ c/2 (≈ 4 points along the radius) of the
-        // corner multipliers, which overshoot a concave pressure by O(h²) (the multipliers of a
-        // linear interpolation whose averages match the pressure's), on pressures that follow
-        // P as P^(1/3) (+0.03 %). With multipliers at every node (twice as dense) it was
-        // +0.055 % and +0.070 %, but they oscillated from node to node
-        // (`examples/fem3d_transverse.rs`).
-        assert!(p0.abs() < 5e-3, "p0 {p0:+.2e}");
+        // p0: measured +0.096 % and +0.054 %: the even fit over r ≤ c/2 to the contact rule's hat
+        // averages (`fit::surface::peak_by_moments`), on pressures that follow P as P^(1/3)
+        // (+0.034 % of the +0.10 % in P); the rest is the fit's sampling of about four rings
+        // of points, ≤ 0.18 % down to c_max/6 (`examples/fem3d_peak.rs`). The former fit to the
+        // nodal values gave +0.38 %: they overshoot a concave pressure by O(h²).
+        assert!(p0.abs() < 2e-3, "p0 {p0:+.2e}");
     }
 }
 
@@ -137,19 +136,43 @@ fn refinement_study_against_fem_axisym() {
         }
         table.push(errors);
     }
-    // Measured (P, c, p0 in %): c/6 (+0.126, −0.35, −0.57), c/10 (+0.087, −0.12, +0.055),
-    // c/14 (+0.072, −0.04, +0.062) at 17 µm; the same trend at 25 µm.
+    // Measured (P, c, p0 in %): c/6 (+0.015, −0.17, +0.18), c/10 (+0.102, +0.061, +0.096),
+    // c/14 (+0.077, +0.035, +0.046) at 17 µm; c/6 (+0.126, +0.084, −0.077), c/10 (+0.101,
+    // +0.077, +0.054), c/14 (+0.084, +0.065, +0.048) at 25 µm.
+    // p0 at an asserted rate. Hertz's p0 follows P as P^(1/3) on one geometry, so a third of
+    // P's error (the far field's stiffness, which pole refinement hardly moves) is not p0's own:
+    // corrected, e_p0 − e_P/3 is +0.174 %, +0.062 %, +0.020 % at 17 µm and −0.119 %,
+    // +0.020 %, +0.020 % at 25 µm. The worst over both positions falls at every step, and from
+    // c/6 to c/14 at the observed order 2.5 (an O(h²) remainder: the hat averages remove the
+    // nodal values' O(h²) overshoot to leading order, `fit::surface::peak_by_moments`).
+    let corrected = |k: usize| {
+        (0..2)
+            .map(|p| (table[k][p][2] - table[k][p][0] / 3.0).abs())
+            .fold(0.0, f64::max)
+    };
+    let [coarse, default, fine] = [0, 1, 2].map(corrected);
+    let order = (coarse / fine).ln() / (14.0_f64 / 6.0).ln();
+    eprintln!("p0 corrected for P^(1/3): worst {coarse:.2e}, {default:.2e}, {fine:.2e}; order {order:.2}");
+    assert!(fine < default && default < coarse, "{coarse} {default} {fine}");
+    // 1.5: second order with room for the sampling scatter of a four-ring fit (c_max/8 gives
+    // 0.040 %, below c_max/10's 0.062 %: the mesh's rings fall differently against c/2).
+    assert!(order > 1.5, "p0's observed order {order:.2}");
     for position in 1..=2 {
         let [coarse, default, fine] = [0, 1, 2].map(|k: usize| table[k][position - 1]);
-        // P and c: the error falls at every refinement (P as h^1.2 towards a 0.03–0.05 %
-        // remainder of the coarse far field, which pole refinement does not touch).
-        for q in 0..2 {
-            assert!(
-                // 1e-4: the mesh-to-mesh scatter of the c estimate near its limit.
-                fine[q].abs() < default[q].abs() + 1e-4 && default[q].abs() < coarse[q].abs(),
-                "quantity {q} at position {position}: {coarse:?} {default:?} {fine:?}"
-            );
-        }
+        // P converges: its successive changes shrink (0.087 % then 0.025 % at 17 µm, 0.025 %
+        // then 0.017 % at 25 µm). Not its error against fem-axisym: that is the coarse far
+        // field's +0.07–0.10 %, which pole refinement does not touch, plus the contact zone's
+        // part, negative on the coarsest mesh (c_max/6: +0.015 % at 17 µm, a cancellation).
+        assert!(
+            (fine[0] - default[0]).abs() < (default[0] - coarse[0]).abs(),
+            "P at position {position}: {coarse:?} {default:?} {fine:?}"
+        );
+        // c: the error falls at every refinement.
+        assert!(
+            // 1e-4: the mesh-to-mesh scatter of the c estimate near its limit.
+            fine[1].abs() < default[1].abs() + 1e-4 && default[1].abs() < coarse[1].abs(),
+            "c at position {position}: {coarse:?} {default:?} {fine:?}"
+        );
         // At c/14 all three within 0.1 % of fem-axisym: p0 carries P^(1/3) of the remainder.
         assert!(fine.iter().all(|e| e.abs() < 1e-3), "{fine:?}");
     }

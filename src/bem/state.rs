@@ -107,7 +107,13 @@ impl Snapshot {
     pub fn stick_zone(&self) -> Option<StickZone> {
         let weights = vec![self.grid.panel_area(); self.grid.len()];
         let points = self.grid.centres();
-        stick::stick_zone(self.contact_radius(), &points, &weights, &self.pressure, &self.stick)
+        stick::stick_zone(
+            self.contact_radius(),
+            &points,
+            &weights,
+            &self.pressure,
+            &self.stick,
+        )
     }
 
     /// The stick radius [m] ([`Snapshot::stick_zone`]): c at full stick, never above it, 0 in
@@ -185,8 +191,12 @@ impl ContactState {
             // Pressure per unit overlap of Hertz's order, E*/c_max, to seed the normal solver.
             seed_stiffness: Some(scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h)),
         };
-        let contact = Contact::new(FftCompliance::<f64>::normal(&grid, &compliance), separation, settings)
-            .expect("one separation a panel");
+        let contact = Contact::new(
+            FftCompliance::<f64>::normal(&grid, &compliance),
+            separation,
+            settings,
+        )
+        .expect("one separation a panel");
         let contact = if scene.friction > 0.0 && !scene.path.is_normal_only() {
             contact
                 .with_friction(

@@ -158,9 +158,12 @@ impl NormalProblem<'_> {
             let step = if den > 0.0 { num / den } else { 0.0 };
             // One pass over the points: the step, negative multipliers clamped to zero, points out
             // of contact that penetrate re-entering (P&K, eq. 13; restarting the CG), and the
-            // displacement.
+            // displacement. When the contact set is already solved (zero gaps: step 0, e.g. one
+            // point in contact), −step·gap would keep penetrating points out for ever: they enter
+            // with the seed stiffness instead.
             changes.clear();
             restart = false;
+            let entry = if step > 0.0 { step } else { self.seed_stiffness };
             for i in 0..m {
                 if p[i] > 0.0 {
                     let next = p[i] - step * direction[i];
@@ -170,7 +173,7 @@ impl NormalProblem<'_> {
                     p[i] = next.max(0.0);
                 }
                 if p[i] == 0.0 && gap[i] < 0.0 {
-                    p[i] = -step * gap[i];
+                    p[i] = -entry * gap[i];
                     changes.push((i, p[i]));
                     restart = true;
                 }

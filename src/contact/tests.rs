@@ -171,3 +171,27 @@ fn the_two_algorithms_agree_along_a_path_on_a_disc() {
     }
     assert!(mixed >= 2, "the path must show partial slip");
 }
+
+#[test]
+fn a_point_penetrating_beside_a_solved_contact_set_enters_it() {
+    // C = I, point 0 in contact with zero gap already (λ0 = 1 for o0 = −1), point 1 open but
+    // penetrating (o1 = −0.5): the CG step on the solved set is 0, which must not keep point 1
+    // out (it once looped to the iteration cap, fem-3d at δn = 0.3 µm on the paper path).
+    let mut op = diagonal(&[1.0, 1.0]);
+    let mut state = normal::NormalState {
+        multipliers: vec![1.0, 0.0],
+        displacement: vec![1.0, 0.0],
+    };
+    let opening = [-1.0, -0.5];
+    let mut problem = normal::NormalProblem {
+        op: &mut op,
+        opening: &opening,
+        scale: 1.0,
+        tolerance: 1e-13,
+        max_iterations: 100,
+        seed_stiffness: 1.0,
+    };
+    problem.solve_iterative(&mut state).expect("converges");
+    let p = &state.multipliers;
+    assert!((p[0] - 1.0).abs() < 1e-12 && (p[1] - 0.5).abs() < 1e-12, "{p:?}");
+}

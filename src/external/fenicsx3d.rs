@@ -4,7 +4,7 @@
 //! disc), condensed onto the candidate nodes; under `mpirun` with a chosen rank count (template
 //! `templates/fenicsx_3d.py`; the model and the cluster how-to: docs/external-decks.md).
 //!
-//! Heavy: not in the shipped cases' default solver lists; `cases/heavy/paper-fig7-3d.toml` names it.
+//! Heavy: not in the shipped cases' default solver lists; `cases-heavy/paper-fig7-3d.toml` names it.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -355,11 +355,10 @@ fn history(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) ->
             tangential_force: plan.tangential.then_some(row.tangential_force),
             contact_radius: measures.radius,
             peak_pressure: measures.peak,
-            stick_radius: (plan.tangential && in_contact)
-                .then(|| {
-                    let c = measures.radius.unwrap_or(0.0);
-                    surface.stick_zone(c).map_or(0.0, |z| z.radius)
-                }),
+            stick_radius: (plan.tangential && in_contact).then(|| {
+                let c = measures.radius.unwrap_or(0.0);
+                surface.stick_zone(c).map_or(0.0, |z| z.radius)
+            }),
             ..StepResult::at(step)
         });
     }
@@ -383,8 +382,8 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
         model: format!(
             "3D, half of one sphere (y ≥ 0; {}) against its symmetry plane, exact for identical \
              spheres; P2 on quadratic tetrahedra; penalty k = {KFAC:e} E/h with fem-3d's contact \
-             rule (multipliers linear on the faces' sub-triangles, averaged gap), condensed onto the \
-             candidate nodes; {}",
+             rule (multipliers at the faces' corners, linear on each face; averaged gap), condensed \
+             onto the candidate nodes; {}",
             scene.domain.describe(),
             if plan.tangential {
                 "Coulomb with history on the disc |q| ≤ μp, all-stick predictor every increment"
@@ -401,7 +400,13 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
         ..Metadata::default()
     };
     let facts = RunFacts {
-        candidate_nodes: run.surfaces.first().map_or(0, |s| s.nodes.len()),
+        // The condensed nodes (the deck's count); surface.csv holds their corners, the contact
+        // points (`deck_points`).
+        candidate_nodes: run
+            .timing
+            .iter()
+            .find(|(phase, _)| phase == "candidates")
+            .map_or(0, |(_, n)| n.round() as usize),
         capped: &capped,
         wall_s: run.wall_s,
     };

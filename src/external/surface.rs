@@ -237,7 +237,10 @@ mod tests {
         // the areas are in the ratio Σ i: 66/190, and b = c √(66/190), between the last sticking
         // node (0.275 mm) and the innermost slipping one (0.3 mm).
         let stick = surfaces[0].stick_radius(m.contact_radius.unwrap());
-        assert!((stick - 0.5e-3 * (66.0_f64 / 190.0).sqrt()).abs() < 1e-12, "{stick}");
+        assert!(
+            (stick - 0.5e-3 * (66.0_f64 / 190.0).sqrt()).abs() < 1e-12,
+            "{stick}"
+        );
         assert!(stick > 0.275e-3 && stick < 0.3e-3, "{stick}");
         assert!(!surfaces[0].edge_loaded());
         let field = surfaces[0].field(2, m.pressure, true);

@@ -1,12 +1,12 @@
-//! The contact surface's nodal state that the 3D deck writes at every computed step
-//! (`surface.csv`: the candidate nodes of the half surface y ≥ 0, P2 vertices and midside nodes),
-//! and what is measured from it.
+//! The contact surface's state that the 3D deck writes at every computed step (`surface.csv`:
+//! the contact points of the half surface y ≥ 0, the corners of the candidate faces), and what is
+//! measured from it.
 //!
-//! The deck applies fem-3d's contact rule: node j's multiplier ω_j p_j (ω_j = ∫ φ_j dA, φ_j its hat
-//! on the faces' sub-triangles, see docs/external-decks.md), and the half model's forces are
-//! doubled for the whole sphere. The measures (c, p0, the stick zone) are fem-3d's
-//! ([`crate::fit::surface`]) on the same weights; the fields read back in fem-3d's layout (the
-//! half's nodes, their mirror images, the sub-triangles: [`Mirror`]).
+//! The deck applies fem-3d's default contact rule (`Rule::Corners`): point j's multiplier
+//! ω_j p_j (ω_j = ∫ L_j dA, L_j its linear hat on the faces, see docs/external-decks.md), and the
+//! half model's forces are doubled for the whole sphere. The measures (c, p0, the stick zone) are
+//! fem-3d's ([`crate::fit::surface`]) on the same weights; the fields read back in fem-3d's layout
+//! (the half's points, their mirror images, the faces: [`Mirror`]).
 //!
 //! Units: the file is in mm, MPa; [`Node3`] is SI.
 
@@ -31,12 +31,12 @@ pub const SURFACE3_COLUMNS: [&str; 11] = [
     "slip_y_mm",
 ];
 
-/// One candidate contact node at one step, SI.
+/// One contact point (a face corner) at one step, SI.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Node3 {
     /// Position (x, y) on the contact plane [m], y ≥ 0.
     pub point: [f64; 2],
-    /// The node's weight ω = ∫ φ dA on the faces' sub-triangles [m²].
+    /// The point's weight ω = ∫ L dA, L its linear hat on the faces [m²].
     pub weight: f64,
     /// Height of the deformed surface above the contact plane [m] (negative: penetration).
     pub gap: f64,
@@ -57,41 +57,41 @@ impl Node3 {
     }
 }
 
-/// The candidate nodes of one computed step.
+/// The contact points of one computed step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Surface3 {
     /// The path step.
     pub step: usize,
-    /// The nodes, in the deck's order (the same at every step).
+    /// The points, in the deck's order (the same at every step).
     pub nodes: Vec<Node3>,
 }
 
 impl Surface3 {
-    /// The nodes' positions on the contact plane (z = 0), weights and pressures.
-    fn columns(&self) -> (Vec<[f64; 3]>, Vec<f64>, Vec<f64>) {
-        (
-            self.nodes.iter().map(|n| [n.point[0], n.point[1], 0.0]).collect(),
-            self.nodes.iter().map(|n| n.weight).collect(),
-            self.nodes.iter().map(|n| n.pressure).collect(),
-        )
+    /// The points' positions on the contact plane (z = 0).
+    fn positions(&self) -> Vec<[f64; 3]> {
+        self.nodes.iter().map(|n| [n.point[0], n.point[1], 0.0]).collect()
+    }
+
+    /// The points' pressures [Pa].
+    fn pressures(&self) -> Vec<f64> {
+        self.nodes.iter().map(|n| n.pressure).collect()
     }
 
     /// c and p0 by fem-3d's measures ([`surface::measure`]: c from the pressure's second moment,
     /// integrated over `triangles`, on which the contact rule interpolates p linearly; p0 from the
     /// smooth even fit near the pole).
     pub fn measures(&self, triangles: &[[usize; 3]]) -> Measures {
-        let (points, _, pressure) = self.columns();
-        surface::measure(&points, triangles, &pressure)
+        surface::measure(&self.positions(), triangles, &self.pressures())
     }
 
     /// The stick zone of contact radius `contact_radius` by the measure of every solver
     /// ([`stick::stick_zone`]: c √(stick area / contact area) and the semi-axes of the zone's
     /// second moments); `None` when no loaded node sticks.
     pub fn stick_zone(&self, contact_radius: f64) -> Option<StickZone> {
-        let (_, weights, pressure) = self.columns();
         let points: Vec<[f64; 2]> = self.nodes.iter().map(|n| n.point).collect();
+        let weights: Vec<f64> = self.nodes.iter().map(|n| n.weight).collect();
         let flags: Vec<bool> = self.nodes.iter().map(|n| n.stick).collect();
-        stick::stick_zone(contact_radius, &points, &weights, &pressure, &flags)
+        stick::stick_zone(contact_radius, &points, &weights, &self.pressures(), &flags)
     }
 
     /// P by the nodal rule, 2 Σ ω p over the half surface [N].
@@ -120,8 +120,8 @@ impl Surface3 {
 
     /// The surface field at path position `position` on the whole contact plane, in fem-3d's
     /// layout ([`Mirror`]): the half surface, then the mirror images of its nodes off the plane
-    /// (p, q_x and slip_x even, q_y and slip_y odd in y), on the faces' sub-triangles
-    /// `triangles` (indices of the half's nodes) and their images; traction, status and slip
+    /// (p, q_x and slip_x even, q_y and slip_y odd in y), on the faces `triangles` (indices of
+    /// the half's points) and their images; traction, status and slip
     /// when the tangential problem was solved.
     pub fn field(&self, position: usize, tangential: bool, triangles: &[[usize; 3]]) -> SurfaceField {
         let mirror = Mirror::new(&self.on_plane());
@@ -140,8 +140,8 @@ impl Surface3 {
     }
 }
 
-/// The columns of the 3D deck's `triangles.csv`: the candidate faces' sub-triangles, as indices
-/// of the nodes of one step's block of `surface.csv`.
+/// The columns of the 3D deck's `triangles.csv`: the candidate faces, as indices of the contact
+/// points of one step's block of `surface.csv`.
 pub const TRIANGLE_COLUMNS: [&str; 3] = ["a", "b", "c"];
 
 /// Reads `triangles.csv` from `text` for a surface of `nodes` nodes.

@@ -75,6 +75,15 @@ pub fn stick_zone(
     pressure: &[f64],
     stick: &[bool],
 ) -> Option<StickZone> {
+    semi_axes(points, weights, pressure, stick).map(|semi_axes| StickZone {
+        radius: stick_radius(contact_radius, weights, pressure, stick),
+        semi_axes,
+    })
+}
+
+/// The stick zone's semi-axes along x and y [m] (see the module doc: the ellipse with the sticking
+/// points' weighted central second moments); `None` when no point sticks.
+pub fn semi_axes(points: &[[f64; 2]], weights: &[f64], pressure: &[f64], stick: &[bool]) -> Option<[f64; 2]> {
     let sticking: Vec<usize> = (0..points.len())
         .filter(|&j| stick[j] && pressure[j] > 0.0)
         .collect();
@@ -86,10 +95,7 @@ pub fn stick_zone(
     let x_bar = mean(&|j| points[j][0]);
     let xx = mean(&|j| (points[j][0] - x_bar).powi(2));
     let yy = mean(&|j| points[j][1].powi(2));
-    Some(StickZone {
-        radius: stick_radius(contact_radius, weights, pressure, stick),
-        semi_axes: [2.0 * xx.sqrt(), 2.0 * yy.sqrt()],
-    })
+    Some([2.0 * xx.sqrt(), 2.0 * yy.sqrt()])
 }
 
 #[cfg(test)]
@@ -98,7 +104,11 @@ mod tests {
 
     /// A square lattice of spacing d over |x|, |y| ≤ 0.5 with unit pressure inside the disc
     /// r < c and stick inside `inside`.
-    fn lattice(d: f64, c: f64, inside: impl Fn([f64; 2]) -> bool) -> (Vec<[f64; 2]>, Vec<f64>, Vec<f64>, Vec<bool>) {
+    fn lattice(
+        d: f64,
+        c: f64,
+        inside: impl Fn([f64; 2]) -> bool,
+    ) -> (Vec<[f64; 2]>, Vec<f64>, Vec<f64>, Vec<bool>) {
         let n = (0.5 / d).round() as i32;
         let points: Vec<[f64; 2]> = (-n..=n)
             .flat_map(|i| (-n..=n).map(move |k| [f64::from(i) * d, f64::from(k) * d]))
@@ -171,7 +181,13 @@ mod tests {
         let radii: Vec<f64> = (0..80).map(|j| f64::from(j) * d).collect();
         let weights: Vec<f64> = radii
             .iter()
-            .map(|&r| if r == 0.0 { std::f64::consts::PI * d * d / 4.0 } else { std::f64::consts::TAU * r * d })
+            .map(|&r| {
+                if r == 0.0 {
+                    std::f64::consts::PI * d * d / 4.0
+                } else {
+                    std::f64::consts::TAU * r * d
+                }
+            })
             .collect();
         let pressure: Vec<f64> = radii.iter().map(|&r| f64::from(r < 0.5 + 0.5 * d)).collect();
         let stick: Vec<bool> = radii.iter().map(|&r| r < 0.3 + 0.5 * d).collect();

@@ -13,15 +13,16 @@ the sphere, y >= 0, is modelled with u_y = 0 on the plane y = 0. Units mm, N, MP
   tangential:  Coulomb's law with history on the contact surface (the disc |q| <= mu p), with p
                from the normal problem: stick is a penalty k on the displacement (u_x, u_y) since
                the last slip s; slip carries |T| = mu p along the trial traction.
-Contact rule (as fem-3d's, src/fem/solid3d/surface.rs): each 6-node contact triangle is split into
-its four 3-node sub-triangles, on which the multipliers are interpolated linearly (hats phi_j). Node
-j's multiplier lambda_j = om_j p_j, om_j = int phi_j dA > 0 (a corner gets A/12, a midside node
-A/4 of the face's area A), acts on the body as the DOF forces A^T lambda and sees the averaged
-displacement A u, A_jk = int phi_j N_k dA / om_j (N_k the P2 shape functions): rows of A sum to
-one, so P = sum lambda, and a uniform pressure gives the consistent P2 load (corners zero). Plain
-nodal lumping instead lets the corner nodes lift off inside the contact (p ~ 0 there, every
-second node slipping). The faces are read from the mesh file (rank 0, gmsh API); candidates are
-the nodes of the contact faces wholly within r_cand of the pole.
+Contact rule (fem-3d's default, Rule::Corners in src/fem/solid3d/surface.rs): the multipliers
+live at the corners of the 6-node contact triangles and are linear on each face (hats L_j). Corner
+j's multiplier lambda_j = om_j p_j, om_j = int L_j dA > 0 (A/3 of each face's area A around it),
+acts on the body as the DOF forces A^T lambda and sees the averaged displacement A u,
+A_jk = int L_j N_k dA / om_j (N_k the P2 shape functions): rows of A sum to one, so
+P = sum lambda, and a uniform pressure gives the consistent P2 load (corners zero). A multiplier
+space one order below the displacements' is stable: multipliers at every node oscillate from node
+to node, and plain nodal lumping lets the corner nodes lift off inside the contact. The faces are
+read from the mesh file (rank 0, gmsh API); candidates are the nodes of the contact faces wholly
+within r_cand of the pole (their DOFs are condensed), the contact points their corners.
 The stiffness is assembled and factored once (MUMPS, distributed over the MPI ranks) and condensed
 onto the candidates' DOFs by multi-right-hand-side solves (u_z at every candidate; u_x, u_y where
 free): the compliance C and its inverse S. Each path step then solves, on every rank alike,
@@ -31,7 +32,8 @@ by Newton with the consistent tangent of the disc: an all-stick (elastic) predic
 increment (so a reversal restarts from stick), then Newton with an Armijo line search on the
 problem's convex energy, and a cap of maxit iterations (a capped increment is flagged, outcome 0).
 Rank 0 writes steps.csv (one row per computed step, P and Q of the whole sphere), surface.csv
-(candidate nodes of the half surface at every computed step), field_<position>.xdmf (u of the
+(the contact points of the half surface at every computed step), triangles.csv (the faces, as
+contact points), field_<position>.xdmf (u of the
 normal and of the tangential problem) at path positions, and timing.csv (CPU and wall seconds of
 the set-up and of the path).
 """
@@ -43,7 +45,9 @@ TRIANGLE6 = 9  # gmsh's 6-node triangle
 
 
 def contact_candidates():
-    """Rank 0: the candidate nodes (mm) and their nodal weights from the mesh's contact faces."""
+    """Rank 0, from the mesh's contact faces: the candidate nodes (mm), the contact points (the
+    faces' corners, mm), their weights om, the averaging A (points x nodes) and the faces as
+    triangles of points."""
     tags, coords, _ = gmsh.model.mesh.getNodes()
     xyz = np.zeros((int(tags.max()) + 1, 3))
     xyz[tags.astype(np.int64)] = coords.reshape(-1, 3) * 1000.0  # m -> mm
@@ -58,23 +62,22 @@ def contact_candidates():
     faces = faces[(r <= r_cand).all(axis=1)]
     nodes, local = np.unique(faces, return_inverse=True)
     local = local.reshape(-1, 6)
-    area = np.zeros(len(local))
-    for sub in SUBTRIANGLES:
+    corners, corner_of = np.unique(faces[:, :3], return_inverse=True)
+    corner_of = corner_of.reshape(-1, 3)
+    area = np.zeros(len(local))  # the curved face's area from its four flat sub-triangles
+    for sub in ((0, 3, 5), (3, 1, 4), (5, 4, 2), (3, 4, 5)):
         a, b, c = (xyz[nodes[local[:, i]]] for i in sub)
         area += 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    coupling = np.zeros((len(nodes), len(nodes)))
-    for face, face_area in zip(local, area):
-        coupling[np.ix_(face, face)] += 2.0 * face_area * REFERENCE_COUPLING
+    coupling = np.zeros((len(corners), len(nodes)))
+    for face, points, face_area in zip(local, corner_of, area):
+        coupling[np.ix_(points, face)] += 2.0 * face_area * REFERENCE_COUPLING
     weights = coupling.sum(axis=1)
-    return xyz[nodes], weights, coupling / weights[:, None], local
+    return xyz[nodes], xyz[corners], weights, coupling / weights[:, None], corner_of
 
 
 def reference_coupling():
-    """M[j, k] = int phi_j N_k over the reference triangle: phi_j the hat of node j on the four
-    sub-triangles, N_k the P2 shape functions (a 6-point degree-4 rule on each sub-triangle:
-    exact for the cubic products)."""
-    corners = np.array([[0, 0], [1, 0], [0, 1], [0.5, 0], [0.5, 0.5], [0, 0.5]])
-
+    """M[j, k] = int L_j N_k over the reference triangle (area 1/2): L_j the linear hat of corner
+    j, N_k the P2 shape functions (a 6-point degree-4 rule: exact for the cubic products)."""
     def shapes(x):
         l0, l1, l2 = 1 - x[0] - x[1], x[0], x[1]
         return np.array([l0 * (2 * l0 - 1), l1 * (2 * l1 - 1), l2 * (2 * l2 - 1),
@@ -82,18 +85,14 @@ def reference_coupling():
 
     a, b = 0.445948490915965, 0.091576213509771
     rule = [((a, a, 1 - 2 * a), 0.223381589678011), ((b, b, 1 - 2 * b), 0.109951743655322)]
-    M = np.zeros((6, 6))
-    for sub in SUBTRIANGLES:
-        for (l0, l1, l2), weight in rule:
-            for bary in ((l0, l1, l2), (l1, l2, l0), (l2, l0, l1)):
-                x = sum(bj * corners[i] for bj, i in zip(bary, sub))
-                for bj, j in zip(bary, sub):
-                    M[j] += weight * (1.0 / 8.0) * bj * shapes(x)
+    M = np.zeros((3, 6))
+    for (l0, l1, l2), weight in rule:
+        for bary in ((l0, l1, l2), (l1, l2, l0), (l2, l0, l1)):
+            M += 0.5 * weight * np.outer(bary, shapes(bary[1:]))
     return M
 
 
-# gmsh's 6-node triangle: corners 0 1 2, midsides 3 (0-1), 4 (1-2), 5 (2-0); its sub-triangles
-SUBTRIANGLES = ((0, 3, 5), (3, 1, 4), (5, 4, 2), (3, 4, 5))
+# gmsh's 6-node triangle: corners 0 1 2, midsides 3 (0-1), 4 (1-2), 5 (2-0)
 REFERENCE_COUPLING = reference_coupling()
 
 
@@ -105,13 +104,14 @@ if root:  # gmshio.read_from_msh is broken in 0.5.2: merge by hand, then model_t
     candidates = contact_candidates()
 msh, _, ftags = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
 gmsh.finalize()
-XC, om, Avg, faces = comm.bcast(candidates, root=0)
+XC, XP, om, Avg, faces = comm.bcast(candidates, root=0)
 msh.geometry.x[:, :] *= 1000.0  # m -> mm
-m = len(om)
+m, npt = len(XC), len(XP)  # candidate nodes, contact points
 rc = np.hypot(XC[:, 0], XC[:, 1])
-assert m > 3 and rc.min() < 1e-9 * R, "the pole must be a candidate contact node"
+assert npt > 3 and np.hypot(XP[:, 0], XP[:, 1]).min() < 1e-9 * R, "the pole must be a contact point"
 zs = R - np.sqrt(R * R - rc * rc)  # the sphere's height at each candidate (exact geometry)
-on_sym = np.abs(XC[:, 1]) <= 1e-9 * R
+on_sym = np.abs(XC[:, 1]) <= 1e-9 * R      # candidate nodes on y = 0 (u_y = 0)
+on_sym_p = np.abs(XP[:, 1]) <= 1e-9 * R    # contact points on y = 0 (q_y = 0 by symmetry)
 fdim = msh.topology.dim - 1
 dx = ufl.Measure("dx", domain=msh, metadata={"quadrature_degree": 2})
 
@@ -201,15 +201,15 @@ def nodal(v):
 
 
 def averaged(v):
-    """The averaged displacement (A u_x, A u_y) that each node's multiplier sees; its y part is
-    zero on the symmetry plane, where q_y vanishes by symmetry."""
+    """The averaged displacement (A u_x, A u_y) that each contact point's multiplier sees; its y
+    part is zero on the symmetry plane, where q_y vanishes by symmetry."""
     out = Avg @ nodal(v)
-    out[on_sym, 1] = 0.0
+    out[on_sym_p, 1] = 0.0
     return out
 
 
 def nodal_forces(T):
-    """The DOF forces A^T (om T) of the nodal tractions T (m x 2), in the unknowns' layout."""
+    """The DOF forces A^T (om T) of the points' tractions T (npt x 2), in the unknowns' layout."""
     return unknowns(Avg.T @ (om[:, None] * T))
 
 
@@ -219,8 +219,8 @@ def unknowns(a):
 
 
 def tractions(v, s, p, predictor):
-    """The return mapping on the disc: traction T (m x 2) [MPa] on the body, stick flags, and the
-    tangent dT/dv per node (m x 2 x 2, times -k).
+    """The return mapping on the disc: traction T (npt x 2) [MPa] on the body, stick flags, and
+    the tangent dT/dv per contact point (npt x 2 x 2, times -k).
 
     Trial (stick) traction T = -k (v - s); stick where |T| <= mu p (every touching node for the
     elastic predictor): T = trial, tangent I; slip: T = mu p trial/|trial|, tangent
@@ -242,20 +242,20 @@ def tractions(v, s, p, predictor):
 def jacobian_of_forces(tangent):
     """B^T (k om tangent) B, B the map from the unknowns to the averaged pairs (dense)."""
     block = k * om[:, None, None] * tangent
-    block[on_sym, 1, :] = 0.0
-    block[on_sym, :, 1] = 0.0
-    D = np.zeros((2 * m, 2 * m))
+    block[on_sym_p, 1, :] = 0.0
+    block[on_sym_p, :, 1] = 0.0
+    D = np.zeros((2 * npt, 2 * npt))
     for a in range(2):
         for b in range(2):
-            D[a * m:(a + 1) * m, b * m:(b + 1) * m] = np.diag(block[:, a, b])
+            D[a * npt:(a + 1) * npt, b * npt:(b + 1) * npt] = np.diag(block[:, a, b])
     return B.T @ D @ B
 
 
-# B: the tangential unknowns -> the averaged pairs, x block then y block (y zero on y = 0)
-B = np.zeros((2 * m, n1))
-B[:m, ix] = Avg
-B[m:, iy[~on_sym]] = Avg[:, ~on_sym]
-B[m + np.flatnonzero(on_sym), :] = 0.0
+# B: the tangential unknowns -> the points' averaged pairs, x block then y block (y zero on y = 0)
+B = np.zeros((2 * npt, n1))
+B[:npt, ix] = Avg
+B[npt:, iy[~on_sym]] = Avg[:, ~on_sym]
+B[npt + np.flatnonzero(on_sym_p), :] = 0.0
 
 
 def solve_tangential(t, v, s, p):
@@ -330,14 +330,13 @@ def full_field(dof_list, loads, name, rigid):
 clock_path, wall_path = time.process_time(), time.perf_counter()
 w = np.zeros(m)                      # u_z at the candidates
 v = np.zeros(n1)                     # (u_x, u_y) at the candidates, unknowns layout
-s = np.zeros((m, 2))                 # the history: where each node's stick spring is anchored
+s = np.zeros((npt, 2))               # the history: where each point's stick spring is anchored
 f = np.zeros(m)
 out = nodes = None
 if root:
-    with open("triangles.csv", "w", newline="") as ft:  # the faces' sub-triangles (p is linear
-        # on each), as indices of surface.csv's rows within a step
-        rows = [face[list(sub)].tolist() for face in faces for sub in SUBTRIANGLES]
-        csv.writer(ft).writerows([["a", "b", "c"]] + rows)
+    with open("triangles.csv", "w", newline="") as ft:  # the faces (p is linear on each), as
+        # indices of surface.csv's rows (the contact points) within a step
+        csv.writer(ft).writerows([["a", "b", "c"]] + faces.tolist())
     fs, fn = open("steps.csv", "w", newline=""), open("surface.csv", "w", newline="")
     out, nodes = csv.writer(fs), csv.writer(fn)
     out.writerow(["step", "d_mm", "t_mm", "P_contact_N", "P_top_N", "Q_N",
@@ -355,18 +354,18 @@ for step, d, t, position in zip(steps, dlist, tlist, fields):
     p = np.maximum(-gap, 0.0) * k
     P = 2 * f.sum()  # both halves y >= 0 and y <= 0 (the rows of A sum to one: sum f = sum om p)
     Q, its1, outcome1 = 0.0, 0, 1
-    q = np.zeros((m, 2))
+    q = np.zeros((npt, 2))
     stick = p > 0
-    slip = np.zeros((m, 2))
+    slip = np.zeros((npt, 2))
     if tangential:
-        # nodes out of contact carry no force: their history follows them
-        free = p <= 0
-        s = np.where(free[:, None], averaged(v), s)
         v, its1, outcome1 = solve_tangential(t, v, s, p)
         T, stick, _ = tractions(v, s, p, False)
-        # return mapping: a slipping node's history moves to where its trial traction is mu p
-        slipping = (p > 0) & ~stick
-        s = np.where(slipping[:, None], averaged(v) + T / k, s)
+        # return mapping: a slipping node's history moves to where its trial traction is mu p; a
+        # node out of contact carries no force (T = 0) and its history follows it, at the end of
+        # the increment: a node that comes into contact at the next one sticks from where it
+        # stood at that increment's start (its slip is measured over the increment)
+        moved = ~stick
+        s = np.where(moved[:, None], averaged(v) + T / k, s)
         q = -T                                   # the traction of the plane on the body is -T
         Q = 2 * (om * q[:, 0]).sum()             # q_y is odd in y: the halves' Q_y cancel
         slip = 2.0 * averaged(v)                 # relative displacement of the two surfaces
@@ -383,8 +382,8 @@ for step, d, t, position in zip(steps, dlist, tlist, fields):
     if root:
         out.writerow([step, repr(d), repr(t), repr(P), "", repr(Q), its0, its1,
                       outcome1 if ok0 else 0, field])
-        for i in range(m):
-            nodes.writerow([step, repr(XC[i, 0]), repr(XC[i, 1]), repr(om[i]), repr(gap[i]),
+        for i in range(npt):
+            nodes.writerow([step, repr(XP[i, 0]), repr(XP[i, 1]), repr(om[i]), repr(gap[i]),
                             repr(p[i]), repr(q[i, 0]), repr(q[i, 1]), int(stick[i] and p[i] > 0),
                             repr(slip[i, 0]), repr(slip[i, 1])])
 if root:
@@ -394,5 +393,6 @@ if root:
     with open("timing.csv", "w") as ft:
         ft.write(f"phase,seconds\nsetup,{clock_setup - clock_start!r}\npath,{clock_end - clock_path!r}\n"
                  f"setup_wall,{wall_setup - wall_start!r}\npath_wall,{wall_end - wall_path!r}\n"
-                 f"ranks,{comm.size}\ndofs,{ndofs}\ncandidates,{m}\n")
-    print(f"done: {len(steps)} steps, {m} candidates, {ndofs} DOFs, {comm.size} ranks", flush=True)
+                 f"ranks,{comm.size}\ndofs,{ndofs}\ncandidates,{m}\npoints,{npt}\n")
+    print(f"done: {len(steps)} steps, {m} candidates, {npt} contact points, {ndofs} DOFs, "
+          f"{comm.size} ranks", flush=True)

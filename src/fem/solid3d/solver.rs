@@ -18,10 +18,13 @@
 //! gave max|q_y|/max|q_x| = 0.155 against the BEM's 0.049 (and grew as the engine's tolerance
 //! tightened: a poorly determined mode), and the engine needed about 450 gradient steps an
 //! increment. With the corners (a multiplier space one order below the displacements', a
-//! quarter of the points: 286 at the default mesh) the ratio is 0.056–0.066, its box averages
-//! over c/5 within 6 % of the BEM's, the whole paper path's contact solves take under a second,
-//! and Q stays within 0.16 % of the corrected reference's peak (0.12 % with every node); p0's
-//! fit of the corner values overshoots by +0.3 % (O(h²)).
+//! quarter of the points: 286 at the default mesh) no oscillation is left but a one-point spike
+//! at the stick edge (pointwise ratio 0.056–0.12 from c_max/6 to /14); on the traction's hat
+//! averages, the values the rule determines ([`crate::fit::recovery`]), the ratio converges
+//! (0.0498, 0.0504 at c_max/10, /14; the BEM 0.0492), the whole paper path's contact solves take under a second,
+//! and Q stays within 0.16 % of the corrected reference's peak (0.12 % with every node). The
+//! corner values are not samples of the pressure (they overshoot a concave one by O(h²), +0.3 %
+//! in p0 at c_max/10): p0 is fitted to their hat averages ([`super::measures`]).
 //!
 //! The tangential algorithm: the engine's direct active-set solver cycled without converging on
 //! the paper path's first frictional increment with multipliers at every node, so fem-3d asks

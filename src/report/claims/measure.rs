@@ -1,9 +1,25 @@
 //! Measurements on a map of the surface fields at one path position — the transverse traction
-//! q_y against q_x and its sign over the four quadrants, the stick zone's semi-axes, where the
-//! largest |q| lies — read through the layout-independent [`FieldView`].
+//! q_y against q_x (pointwise and averaged over boxes) and its sign over the four quadrants, the
+//! stick zone's semi-axes, where the largest |q| lies, how far p and |q| are from axisymmetric —
+//! read through the layout-independent [`FieldView`].
 
 use crate::fit::square_root_edge;
-use crate::report::figures::surface::{FieldView, HalfAxis};
+use crate::report::figures::surface::{FieldView, HalfAxis, Layout};
+
+/// Boxes per contact radius for the box-averaged traction: squares of side c/5 hold several
+/// samples of either discretisation at the resolutions the reports use (BEM panels c/29 to c/58,
+/// fem-3d nodes c/10 to c/14 apart), so the largest box average is read from a comparable
+/// support on both. The pointwise maximum of q_y is a one-sample peak at the stick edge, where q_y
+/// changes sign over a sample: on fem-3d's corner multipliers it moved from 0.056 to 0.066 of
+/// max|q_x| under refinement of the mesh and the increments, while its c/5 box averages stayed
+/// within 0.0445–0.0455 (BEM 128²: 0.043).
+pub const BOXES_PER_RADIUS: f64 = 5.0;
+
+/// p and |q| are compared along x and along y out to this fraction of the contact radius: at the
+/// contact edge p falls as a square root, which a mesh's linear interpolation samples differently
+/// along two axes (by up to p0 √(2h/c), 45 % of p0 at h = c/10), so the last tenth would measure
+/// the mesh, not the field (as the pressure profile claim, which reads 0.1 c < r < 0.9 c).
+pub const AXIS_READ: f64 = 0.9;
 
 /// ∫ q_y dA over one quadrant, and over its stick and slip parts [N].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -43,14 +59,32 @@ pub struct MapMeasures {
     pub qx_max: f64,
     /// The largest |q_y| over the contact [Pa].
     pub qy_max: f64,
+    /// max|q̄_y| / max|q̄_x| on the values the contact rule determines: the hat averages of a map
+    /// on triangles (a mesh's multipliers overshoot at single nodes at the stick edge), a grid's
+    /// panel values ([`crate::fit::recovery::transverse_ratio`]); `None` without q_x.
+    pub recovered_ratio: Option<f64>,
+    /// The largest |area-weighted average| of q_x and of q_y over square boxes of side
+    /// c/[`BOXES_PER_RADIUS`] on a grid with a corner at the centre [Pa].
+    pub box_max: [f64; 2],
     /// ∫ q_y dA over the quadrants (x > 0, y > 0), (x < 0, y > 0), (x < 0, y < 0), (x > 0, y < 0).
     pub quadrants: [QuadrantSums; 4],
     /// The stick zone's semi-axes along x and y [m], each the mean of the two half-axes' edges.
     pub stick_axes: Option<[f64; 2]>,
+    /// The stick zone's semi-axes along x and y [m] from its area-weighted second moments (the
+    /// ellipse with the same moments, [`crate::fit::stick::semi_axes`]): integrals over the
+    /// samples, less sensitive than an edge fit to where the discrete edge falls.
+    pub stick_moments: Option<[f64; 2]>,
     /// The largest |q|.
     pub peak: Option<Peak>,
-    /// The largest difference of |q| read along x and along y at the same r [Pa].
+    /// The largest difference of |q| read along x and along y at the same r ≤ [`AXIS_READ`] c [Pa].
     pub axis_difference: f64,
+    /// True when the samples read along x and along y sit alike (a square grid's centre row and
+    /// column), so that sampling cannot differ between the axes; false on a mesh.
+    pub axes_alike: bool,
+    /// The largest p over the contact [Pa].
+    pub pressure_max: f64,
+    /// The largest difference of p read along x and along y at the same r ≤ [`AXIS_READ`] c [Pa].
+    pub pressure_axis_difference: f64,
     /// The largest |q| − |q_x| [Pa]: what the transverse component adds to the magnitude.
     pub transverse_share: f64,
     /// The departure from an axisymmetric reference traction (MD's), if given: RMS over the
@@ -95,11 +129,16 @@ impl RadialProfile {
 }
 
 impl MapMeasures {
-    /// The measures of a map with traction and stick/slip, with friction coefficient `friction`
-    /// and, if given, MD's traction `md` to measure the departure from; `None` for a profile, a
-    /// field without traction or status, or one whose model takes the traction along x (its
-    /// q_y = 0 is assumed, not measured).
-    pub fn of(view: &FieldView, friction: f64, md: Option<&RadialProfile>) -> Option<Self> {
+    /// The measures of a map with traction and stick/slip, with friction coefficient `friction`,
+    /// contact radius `contact_radius` [m] (the boxes' scale) and, if given, MD's traction `md`
+    /// to measure the departure from; `None` for a profile, a field without traction or status,
+    /// or one whose model takes the traction along x (its q_y = 0 is assumed, not measured).
+    pub fn of(
+        view: &FieldView,
+        friction: f64,
+        contact_radius: f64,
+        md: Option<&RadialProfile>,
+    ) -> Option<Self> {
         let areas = view.areas()?;
         if !view.has_traction() || view.stick(0).is_none() || !view.resolves_transverse() {
             return None;
@@ -120,6 +159,7 @@ impl MapMeasures {
             }
         }
         let stick_axes = stick_axes(view, friction);
+        let reach = AXIS_READ * contact_radius;
         let peak = contact
             .iter()
             .copied()
@@ -136,10 +176,16 @@ impl MapMeasures {
             spacing: view.spacing(),
             qx_max: largest(&|i| traction(i)[0].abs()),
             qy_max: largest(&|i| traction(i)[1].abs()),
+            recovered_ratio: recovered_ratio(view),
+            box_max: box_maxima(view, &areas, &contact, contact_radius / BOXES_PER_RADIUS),
             quadrants,
             stick_axes,
             peak,
-            axis_difference: axis_difference(view),
+            axis_difference: axis_difference(view, reach, &|i| Some(magnitude(view.traction(i)?))),
+            axes_alike: !matches!(view.layout, Layout::Triangles(_)),
+            pressure_max: largest(&|i| view.pressure(i)),
+            pressure_axis_difference: axis_difference(view, reach, &|i| Some(view.pressure(i))),
+            stick_moments: stick_moments(view, &areas),
             transverse_share: largest(&|i| magnitude(traction(i)) - traction(i)[0].abs()),
             departure: md.and_then(|md| departure(view, &|r| md.at(r))),
         })
@@ -205,13 +251,15 @@ fn stick_axes(view: &FieldView, friction: f64) -> Option<[f64; 2]> {
     Some([x, y])
 }
 
-/// The largest difference of |q| along +x and along +y at the same distance (the samples of a
-/// grid's centre row and column sit at the same distances; a mesh's probes step alike).
-fn axis_difference(view: &FieldView) -> f64 {
+/// The largest difference of a sample quantity (|q|, p) read along +x and along +y at the same
+/// distance (the samples of a grid's centre row and column sit at the same distances; a mesh's
+/// probes step alike).
+fn axis_difference(view: &FieldView, reach: f64, value: &dyn Fn(usize) -> Option<f64>) -> f64 {
     let profile = |axis| {
         view.along(axis)
             .iter()
-            .map(|p| (p.r, view.at(p, |i| view.traction(i).map(magnitude))))
+            .filter(|p| p.r <= reach)
+            .map(|p| (p.r, view.at(p, value)))
             .collect::<Vec<_>>()
     };
     profile(HalfAxis::X)
@@ -219,6 +267,47 @@ fn axis_difference(view: &FieldView) -> f64 {
         .zip(profile(HalfAxis::Y))
         .filter_map(|(a, b)| Some((a.1? - b.1?).abs()).filter(|_| (a.0 - b.0).abs() < 1e-12))
         .fold(0.0, f64::max)
+}
+
+/// The stick zone's second-moment semi-axes over the samples (each standing for its area).
+fn stick_moments(view: &FieldView, areas: &[f64]) -> Option<[f64; 2]> {
+    let points: Vec<[f64; 2]> = (0..view.len()).map(|i| view.point(i)).collect();
+    let pressure: Vec<f64> = (0..view.len()).map(|i| view.pressure(i)).collect();
+    let stick: Vec<bool> = (0..view.len()).map(|i| view.stick(i) == Some(true)).collect();
+    crate::fit::stick::semi_axes(&points, areas, &pressure, &stick)
+}
+
+/// The largest |area-weighted average| of q_x and of q_y over the contact samples of square
+/// boxes of side `side` [m] on the grid with a corner at the origin (0 without a positive side).
+/// The transverse ratio on the map's recovered values ([`MapMeasures::recovered_ratio`]).
+fn recovered_ratio(view: &FieldView) -> Option<f64> {
+    let all = 0..view.len();
+    let points: Vec<[f64; 2]> = all.clone().map(|i| view.point(i)).collect();
+    let traction: Vec<[f64; 2]> = all
+        .clone()
+        .map(|i| view.traction(i).unwrap_or([0.0, 0.0]))
+        .collect();
+    let pressure: Vec<f64> = all.map(|i| view.pressure(i)).collect();
+    crate::fit::recovery::transverse_ratio(&points, view.triangles(), &traction, &pressure)
+}
+
+fn box_maxima(view: &FieldView, areas: &[f64], contact: &[usize], side: f64) -> [f64; 2] {
+    if !side.is_finite() || side <= 0.0 {
+        return [0.0, 0.0];
+    }
+    let mut boxes: std::collections::BTreeMap<(i64, i64), [f64; 3]> = Default::default();
+    for &i in contact {
+        let [x, y] = view.point(i);
+        let key = ((x / side).floor() as i64, (y / side).floor() as i64);
+        let q = view.traction(i).unwrap_or([0.0; 2]);
+        let b = boxes.entry(key).or_insert([0.0; 3]);
+        b[0] += q[0] * areas[i];
+        b[1] += q[1] * areas[i];
+        b[2] += areas[i];
+    }
+    boxes.values().filter(|b| b[2] > 0.0).fold([0.0, 0.0], |m, b| {
+        [m[0].max((b[0] / b[2]).abs()), m[1].max((b[1] / b[2]).abs())]
+    })
 }
 
 /// The departure of a map's traction from an axisymmetric traction q_md(r) along x (MD's):
@@ -277,7 +366,7 @@ mod tests {
     fn cattaneo_field_has_a_round_stick_zone_and_its_peak_on_the_edge() {
         let (field, a, h) = cattaneo_grid(0.0);
         let view = FieldView::of(&field);
-        let m = MapMeasures::of(&view, 0.2, None).expect("a map");
+        let m = MapMeasures::of(&view, 0.2, 1.0, None).expect("a map");
         let [ax, ay] = m.stick_axes.expect("a stick zone");
         // The deficit is exactly Cattaneo's √ form: the fit finds the edge to well under a sample.
         assert!(
@@ -301,13 +390,15 @@ mod tests {
     fn a_transverse_part_odd_in_x_and_y_is_found_with_its_sign() {
         let (field, _, _) = cattaneo_grid(-0.01);
         let view = FieldView::of(&field);
-        let m = MapMeasures::of(&view, 0.2, None).expect("a map");
+        let m = MapMeasures::of(&view, 0.2, 1.0, None).expect("a map");
         assert!(m.is_odd_in_x_and_y(1e-9));
         assert!(
             m.quadrants[0].total < 0.0 && m.quadrants[1].total > 0.0,
             "q_y = −0.01 x y"
         );
         assert!(m.qy_max > 0.0 && m.transverse_share > 0.0);
+        // A grid's panel value is its own average: the recovered ratio is the samples' ratio.
+        assert_eq!(m.recovered_ratio, Some(m.qy_max / m.qx_max));
         // Against its own q_x as MD's: the whole departure is transverse.
         let root = |s: f64, r: f64| (s * s - r * r).max(0.0).sqrt();
         let [transverse, parallel] = departure(&view, &|r| 0.2 * (root(1.0, r) - root(0.5, r))).unwrap();

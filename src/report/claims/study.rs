@@ -149,8 +149,13 @@ pub fn measure(
     friction: f64,
     md: Option<&RadialProfile>,
 ) -> Option<(MapMeasures, f64)> {
-    let measures = MapMeasures::of(&FieldView::at_position(history, position)?, friction, md)?;
     let contact_radius = history.at_position(position)?.contact_radius?;
+    let measures = MapMeasures::of(
+        &FieldView::at_position(history, position)?,
+        friction,
+        contact_radius,
+        md,
+    )?;
     Some((measures, contact_radius))
 }
 

@@ -41,7 +41,7 @@ fn row<'a>(claims: &'a [Claim], start: &str) -> &'a Claim {
 fn without_the_solvers_a_claim_needs_it_says_what_it_needs() {
     let run = run(&["hertz", "mdr"]);
     let claims = claims(&run, &Study::none(), &quoted());
-    assert_eq!(claims.len(), 10);
+    assert_eq!(claims.len(), 11);
     for c in claims.iter().filter(|c| c.verdict == Verdict::NotMeasured) {
         assert!(c.measured.starts_with("not measured: needs "), "{c:?}");
         assert!(!c.measured.contains("MPa"), "no value stands in: {c:?}");
@@ -122,6 +122,7 @@ fn surface_field_claims_are_measured_on_a_map_solver_with_its_resolution() {
     assert_eq!(study.solvers[0].rungs.len(), 2, "{:?}", study.solvers[0].problems);
     let claims = claims(&run, &study, &quoted());
     for start in [
+        "The contact pressure is axisymmetric",
         "The contact status",
         "The frictional stress",
         "There is a mismatch",
@@ -152,6 +153,49 @@ fn surface_field_claims_are_measured_on_a_map_solver_with_its_resolution() {
         .measured
         .contains("odd in x and in y"));
     assert_eq!(row(&claims, "The contact status").verdict, Verdict::Confirmed);
+    // The BEM's grid reads p the same along x and along y (identical bodies: no coupling).
+    assert_eq!(
+        row(&claims, "The contact pressure is axisymmetric").verdict,
+        Verdict::Confirmed
+    );
+}
+
+#[test]
+fn a_finite_element_map_solver_is_judged_and_the_bem_measured_beside_it() {
+    let mut run = run(&["hertz", "mdr", "bem"]);
+    // A finite element solver with the BEM's own fields: the claims are judged on it, the BEM
+    // is measured beside it, and the two compare as equal.
+    let bem = run.histories["bem"].as_ref().unwrap().clone();
+    run.histories.insert("fem-fake".into(), Ok(bem));
+    run.case.solvers.push("fem-fake".into());
+    let ladder =
+        || -> Vec<Box<dyn Solver>> { vec![Box::new(Bem::with_grid(24)), Box::new(Bem::with_grid(32))] };
+    let study = Study::of(
+        &run,
+        vec![("bem".into(), ladder()), ("fem-fake".into(), ladder())],
+        4,
+    );
+    let claims = claims(&run, &study, &quoted());
+    for start in [
+        "The contact pressure is axisymmetric",
+        "The contact status",
+        "The frictional stress",
+    ] {
+        let c = row(&claims, start);
+        assert!(c.measured.starts_with("fem-fake: "), "{}", c.measured);
+        assert!(c.measured.contains(". Beside it, bem: "), "{}", c.measured);
+        assert!(!c.measured.contains("needs fem-3d"), "{}", c.measured);
+    }
+    let transverse = row(&claims, "The frictional stress");
+    assert!(
+        transverse.reading.contains("Against bem: the same sign pattern")
+            && transverse.reading.contains("0.00 % of max|q_x| apart")
+            && transverse
+                .reading
+                .contains("within what the two discretisations explain"),
+        "{}",
+        transverse.reading
+    );
 }
 
 #[test]
