@@ -7,8 +7,8 @@
 //!
 //! 1. Normal Hertz contact of the paper's spheres at δn = 17 µm: errors of P, p0, c.
 //! 2. One Cattaneo partial-slip increment at δn = 17 µm, δt = 0 → 2 µm (Q/μP ≈ 0.63): stick radius
-//!    (area-equivalent disc of the stick panels, and the mean of the semi-axes fitted to the stick
-//!    deficit on the axes) against c(1 − Q/μP)^{1/3} with BEM's own c, Q and P, and Q against
+//!    (c √(N_stick/N_contact), `fit::stick`, and the mean of the stick zone's second-moment
+//!    semi-axes) against c(1 − Q/μP)^{1/3} with BEM's own c, Q and P, and Q against
 //!    Cattaneo–Mindlin; the time of the tangential solve alone and of the whole solve (grid
 //!    set-up, normal, tangential).
 //! 3. The paper's path (cases/paper-fig7.toml) with 20 substeps a segment (220 increments): the
@@ -107,7 +107,7 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
         "\n## Cattaneo partial slip, δn = 17 µm, δt = 0 → 2 µm in one increment (Q/μP = {:.3})",
         q_ref / mu_p
     );
-    println!("| grid | Q err (vs C–M) | stick radius err, area-equivalent | stick radius err, edge fit | tangential its | median tangential | median whole solve |");
+    println!("| grid | Q err (vs C–M) | stick radius err | stick semi-axes err | tangential its | median tangential | median whole solve |");
     println!("|---|---|---|---|---|---|---|");
     let c_max = path_scene.max_contact_radius();
     for &n in ladder {
@@ -129,7 +129,9 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
         let (s, cost) = outcome.expect("at least one run");
         let (q, p) = (s.tangential_force(), s.normal_force());
         let expected = s.contact_radius() * (1.0 - q / (scene.friction * p)).cbrt();
-        let fitted = s.stick_semi_axes().map_or(f64::NAN, |[ax, ay]| 0.5 * (ax + ay));
+        let fitted = s
+            .stick_zone()
+            .map_or(f64::NAN, |z| 0.5 * (z.semi_axes[0] + z.semi_axes[1]));
         println!(
             "| {n}² | {:+.3e} | {:+.3e} | {:+.3e} | {} | {:.1} ms | {:.1} ms |",
             (q - q_ref) / q_ref,

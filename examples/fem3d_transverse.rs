@@ -16,7 +16,7 @@
 //! its value against the mean of its neighbours (a node-to-node oscillation or a one-point spike
 //! shows as a peak far above its neighbours). Then, a line above it: the ratio on the hat
 //! averages of the traction (`fit::recovery`; a grid's values as they are) and where its
-//! largest |q̄_y| lies; the stick zone's second-moment semi-axes (`fit::surface::stick_zone`);
+//! largest |q̄_y| lies; the stick zone's second-moment semi-axes (`fit::stick::semi_axes`);
 //! and at the pointwise maximum: its radius against the stick radius, |q|/μp, and how many of
 //! its neighbours stick and slip.
 
@@ -152,7 +152,7 @@ fn report(label: &str, history: &History, friction: f64) {
         .unwrap_or(f64::NAN);
     let r_k = view.point(k)[0].hypot(view.point(k)[1]);
     let sticking = |i: usize| view.stick(i) == Some(true);
-    // The second-moment semi-axes (`fit::surface::stick_zone`, fem-3d's per-step measure) on
+    // The second-moment semi-axes (`fit::stick::semi_axes`, fem-3d's per-step measure) on
     // the whole map, as the claims read them: integrals, they do not hinge on the edge's samples
     // along two lines.
     let moments = m.stick_moments;

@@ -133,7 +133,7 @@ fn the_fft_operator_and_the_dense_matrix_give_the_same_contact() {
     let dense_tangential =
         DenseCompliance::try_new(dense(&grid, &[&t.xx, &t.xy, &t.xy, &t.yy], 2), weights, 2).unwrap();
     // The products agree, and so do the columns added to a product.
-    let mut fft = FftCompliance::tangential(&grid, &compliance);
+    let mut fft = FftCompliance::<f64>::tangential(&grid, &compliance);
     let mut matrix = dense_tangential.clone();
     let load: Vec<f64> = (0..2 * grid.len()).map(|k| ((k * 7) % 13) as f64 - 6.0).collect();
     let (mut a, mut b) = (vec![0.0; load.len()], vec![0.0; load.len()]);
@@ -141,6 +141,17 @@ fn the_fft_operator_and_the_dense_matrix_give_the_same_contact() {
     matrix.apply(&load, &mut b);
     let scale = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12 * scale));
+    // In single precision (the BEM's tangential products): f32 round-off, 6e-8 a rounding, grown
+    // by the transforms' log₂(32) = 5 stages and the kernel's sum over 256 panels.
+    let mut single = FftCompliance::<f32>::tangential(&grid, &compliance);
+    let mut rounded = vec![0.0; load.len()];
+    single.apply(&load, &mut rounded);
+    let worst = rounded
+        .iter()
+        .zip(&b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale;
+    assert!(worst < 1e-6, "f32 product off by {worst:e} of the largest value");
     fft.add_columns(&[(3, 2.0), (grid.len() + 40, -1.0)], &mut a);
     matrix.add_columns(&[(3, 2.0), (grid.len() + 40, -1.0)], &mut b);
     assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12 * scale));
@@ -158,13 +169,13 @@ fn the_fft_operator_and_the_dense_matrix_give_the_same_contact() {
         ..Settings::default()
     };
     let mut with_fft = Contact::new(
-        FftCompliance::normal(&grid, &compliance),
+        FftCompliance::<f64>::normal(&grid, &compliance),
         separation.clone(),
         settings,
     )
     .unwrap()
     .with_friction(
-        FftCompliance::tangential(&grid, &compliance),
+        FftCompliance::<f64>::tangential(&grid, &compliance),
         FrictionSet::Disc,
         0.2,
     )

@@ -12,7 +12,7 @@ use common::{identical_spheres, paper_scene_with_path};
 use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::fem::FemSolid3d;
 use spherecontact::fit::recovery::transverse_ratio;
-use spherecontact::fit::surface::stick_zone;
+use spherecontact::fit::stick::semi_axes;
 use spherecontact::history::History;
 use spherecontact::report::claims::study;
 use spherecontact::report::figures::surface::FieldView;
@@ -191,7 +191,7 @@ fn a_pole_element_coarser_than_the_contact_is_warned_about_with_friction() {
 /// each converged under refinement of the mesh (c_max/8, /10, /14) and of the increments (10, 20
 /// a segment). The transverse share is read on the hat averages of the traction
 /// (`fit::recovery::transverse_ratio`), the semi-axes from the stick zone's second moments
-/// (`fit::surface::stick_zone`); the pointwise ratio of the reports is printed, not asserted: a
+/// (`fit::stick::semi_axes`); the pointwise ratio of the reports is printed, not asserted: a
 /// one-point spike at the stick edge, not a converged measure (`fit::recovery`).
 /// Heavy (fem-3d along five segments four times, c_max/14 among them, about 3 min):
 /// `cargo test --release --test fem3d_friction -- --ignored --nocapture`.
@@ -219,10 +219,8 @@ fn transverse_traction_and_stick_zone_at_position_five_converge_and_match_the_be
         let pressure: Vec<f64> = (0..n).map(|i| view.pressure(i)).collect();
         let ratio = transverse_ratio(&points, view.triangles(), &traction, &pressure).expect("traction");
         let stick: Vec<bool> = (0..n).map(|i| view.stick(i) == Some(true)).collect();
-        let points3: Vec<[f64; 3]> = points.iter().map(|p| [p[0], p[1], 0.0]).collect();
-        let axes = stick_zone(&points3, &view.areas().expect("a map"), &pressure, &stick)
-            .expect("a stick zone")
-            .semi_axes;
+        let axes =
+            semi_axes(&points, &view.areas().expect("a map"), &pressure, &stick).expect("a stick zone");
         let q: Vec<f64> = m.quadrants.iter().map(|s| s.total).collect();
         eprintln!(
             "{label}: max|q̄_y|/max|q̄_x| (hat averages) {ratio:.4}, pointwise {:.4}; ∫q_y over the \

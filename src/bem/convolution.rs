@@ -5,40 +5,63 @@
 //! A 2D real transform is a real-to-complex transform of each row (realfft, n + 1 frequencies)
 //! followed by complex transforms of each of those n + 1 columns (rustfft). Spectra are stored
 //! column by column: entry (kx, ky) at kx · 2n + ky. Only the n rows that carry data are
-//! transformed forward, and only the n rows of the window backward.
+//! transformed forward (a row of zeros, out of contact, is a row of zeros: not transformed), and
+//! only the n rows of the window backward.
+//!
+//! The transforms run in a chosen [`Precision`] (f64 or f32); fields and kernels are f64 on both
+//! sides. In f32 a transform is about twice as fast (twice the SIMD lanes, half the memory) and
+//! a product carries a relative error of about 1e-7 · log₂(2n) of its largest value.
 
 use std::sync::Arc;
 
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustfft::{Fft, FftPlanner};
+use rustfft::{Fft, FftNum, FftPlanner};
+
+/// The floating-point type the transforms run in: f64 or f32.
+pub trait Precision: FftNum + Default + Into<f64> {
+    /// The nearest value of this type.
+    fn of(value: f64) -> Self;
+}
+
+impl Precision for f64 {
+    fn of(value: f64) -> Self {
+        value
+    }
+}
+
+impl Precision for f32 {
+    fn of(value: f64) -> Self {
+        value as f32
+    }
+}
 
 /// Rows transformed and transposed together.
 const ROW_BLOCK: usize = 8;
 
 /// A 2D spectrum on the padded grid, column-major in the half-spectrum layout.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Spectrum(Vec<Complex<f64>>);
+pub struct Spectrum<T = f64>(Vec<Complex<T>>);
 
-/// FFT plans and work buffers for one grid size.
-pub struct Convolver {
+/// FFT plans and work buffers for one grid size, in precision `T`.
+pub struct Convolver<T: Precision = f64> {
     n: usize,
-    rows_forward: Arc<dyn RealToComplex<f64>>,
-    rows_inverse: Arc<dyn ComplexToReal<f64>>,
-    columns_forward: Arc<dyn Fft<f64>>,
-    columns_inverse: Arc<dyn Fft<f64>>,
-    real_row: Vec<f64>,
+    rows_forward: Arc<dyn RealToComplex<T>>,
+    rows_inverse: Arc<dyn ComplexToReal<T>>,
+    columns_forward: Arc<dyn Fft<T>>,
+    columns_inverse: Arc<dyn Fft<T>>,
+    real_row: Vec<T>,
     /// `ROW_BLOCK` rows of n + 1 frequencies.
-    block: Vec<Complex<f64>>,
-    scratch: Vec<Complex<f64>>,
+    block: Vec<Complex<T>>,
+    scratch: Vec<Complex<T>>,
 }
 
-impl Convolver {
+impl<T: Precision> Convolver<T> {
     /// Plans for an n × n field (padded to 2n × 2n).
     pub fn new(n: usize) -> Self {
         let m = 2 * n;
-        let mut real = RealFftPlanner::<f64>::new();
-        let mut complex = FftPlanner::<f64>::new();
+        let mut real = RealFftPlanner::<T>::new();
+        let mut complex = FftPlanner::<T>::new();
         let rows_forward = real.plan_fft_forward(m);
         let rows_inverse = real.plan_fft_inverse(m);
         let columns_forward = complex.plan_fft_forward(m);
@@ -58,32 +81,32 @@ impl Convolver {
             rows_inverse,
             columns_forward,
             columns_inverse,
-            real_row: vec![0.0; m],
+            real_row: vec![T::zero(); m],
             block: vec![Complex::default(); ROW_BLOCK * (n + 1)],
             scratch: vec![Complex::default(); scratch_len],
         }
     }
 
     /// The spectrum of a 2n × 2n kernel in the circulant layout of [`super::influence::Kernels`].
-    pub fn kernel_spectrum(&mut self, kernel: &[f64]) -> Spectrum {
+    pub fn kernel_spectrum(&mut self, kernel: &[f64]) -> Spectrum<T> {
         let mut spectrum = self.spectrum();
         self.forward(kernel, 2 * self.n, &mut spectrum);
         spectrum
     }
 
     /// A zero spectrum of this grid: the work space of [`Convolver::field_spectrum_into`].
-    pub fn spectrum(&self) -> Spectrum {
+    pub fn spectrum(&self) -> Spectrum<T> {
         Spectrum(vec![Complex::default(); (self.n + 1) * 2 * self.n])
     }
 
     /// The spectrum of an n × n field, zero-padded, into `out` (no allocation).
-    pub fn field_spectrum_into(&mut self, field: &[f64], out: &mut Spectrum) {
+    pub fn field_spectrum_into(&mut self, field: &[f64], out: &mut Spectrum<T>) {
         self.forward(field, self.n, out);
     }
 
     /// Forward transform of the rows of `data` (each `width` long, n or 2n), zero-padded to 2n
     /// columns and (for n rows) 2n rows.
-    fn forward(&mut self, data: &[f64], width: usize, out: &mut Spectrum) {
+    fn forward(&mut self, data: &[f64], width: usize, out: &mut Spectrum<T>) {
         let (n, m) = (self.n, 2 * self.n);
         let half = n + 1;
         let spectrum = &mut out.0;
@@ -98,14 +121,17 @@ impl Convolver {
         for (block, rows) in data.chunks(ROW_BLOCK * width).enumerate() {
             let count = rows.len() / width;
             for (r, row) in rows.chunks_exact(width).enumerate() {
-                self.real_row[..width].copy_from_slice(row);
-                self.real_row[width..].fill(0.0);
+                let spectrum_row = &mut self.block[r * half..(r + 1) * half];
+                if row.iter().all(|&v| v == 0.0) {
+                    spectrum_row.fill(Complex::default());
+                    continue;
+                }
+                for (t, &v) in self.real_row.iter_mut().zip(row) {
+                    *t = T::of(v);
+                }
+                self.real_row[width..].fill(T::zero());
                 self.rows_forward
-                    .process_with_scratch(
-                        &mut self.real_row,
-                        &mut self.block[r * half..(r + 1) * half],
-                        &mut self.scratch,
-                    )
+                    .process_with_scratch(&mut self.real_row, spectrum_row, &mut self.scratch)
                     .expect("row lengths match the plan");
             }
             let first = block * ROW_BLOCK;
@@ -122,12 +148,13 @@ impl Convolver {
 
     /// The n × n window of the inverse transform of `spectrum` (consumed as work space), into
     /// `out` (no allocation).
-    pub fn field_into(&mut self, spectrum: &mut Spectrum, out: &mut [f64]) {
+    pub fn field_into(&mut self, spectrum: &mut Spectrum<T>, out: &mut [f64]) {
         let (n, m) = (self.n, 2 * self.n);
         let half = n + 1;
         self.columns_inverse
             .process_with_scratch(&mut spectrum.0, &mut self.scratch);
         let scale = 1.0 / (m * m) as f64;
+        let zero = T::zero();
         for (block, out) in out.chunks_mut(ROW_BLOCK * n).enumerate() {
             let (first, count) = (block * ROW_BLOCK, out.len() / n);
             for kx in 0..half {
@@ -139,12 +166,13 @@ impl Convolver {
             for (r, out_row) in out.chunks_exact_mut(n).enumerate() {
                 let row = &mut self.block[r * half..(r + 1) * half];
                 // The zero and Nyquist frequencies of a real row are real: drop rounding residue.
-                row[0].im = 0.0;
-                row[n].im = 0.0;
+                row[0].im = zero;
+                row[n].im = zero;
                 self.rows_inverse
                     .process_with_scratch(row, &mut self.real_row, &mut self.scratch)
                     .expect("row lengths match the plan");
-                for (o, v) in out_row.iter_mut().zip(&self.real_row[..n]) {
+                for (o, &v) in out_row.iter_mut().zip(&self.real_row[..n]) {
+                    let v: f64 = v.into();
                     *o = v * scale;
                 }
             }
@@ -152,23 +180,23 @@ impl Convolver {
     }
 }
 
-impl Spectrum {
+impl<T: Precision> Spectrum<T> {
     /// Multiplies this spectrum by a real symbol (the spectrum of an even kernel), in place: one
     /// convolution without a new buffer.
-    pub fn times_real(&mut self, symbol: &[f64]) {
-        self.0.iter_mut().zip(symbol).for_each(|(f, k)| *f *= k);
+    pub fn times_real(&mut self, symbol: &[T]) {
+        self.0.iter_mut().zip(symbol).for_each(|(f, &k)| *f = *f * k);
     }
 
     /// The real part of each value: the symbol of a kernel even in each offset (or odd in both),
     /// whose spectrum is real up to round-off.
-    pub fn real_part(&self) -> Vec<f64> {
+    pub fn real_part(&self) -> Vec<T> {
         self.0.iter().map(|v| v.re).collect()
     }
 
     /// `(x, y) ← (a x + b y, b x + c y)` at every frequency, in place: the two components of a
     /// symmetric 2 × 2 convolution with real symbols a, b, c, in one pass.
-    pub fn mix_in_place(x: &mut Spectrum, y: &mut Spectrum, [a, b, c]: [&[f64]; 3]) {
-        for ((((x, y), a), b), c) in x.0.iter_mut().zip(y.0.iter_mut()).zip(a).zip(b).zip(c) {
+    pub fn mix_in_place(x: &mut Spectrum<T>, y: &mut Spectrum<T>, [a, b, c]: [&[T]; 3]) {
+        for ((((x, y), &a), &b), &c) in x.0.iter_mut().zip(y.0.iter_mut()).zip(a).zip(b).zip(c) {
             let (xv, yv) = (*x, *y);
             *x = xv * a + yv * b;
             *y = xv * b + yv * c;
@@ -176,7 +204,7 @@ impl Spectrum {
     }
 
     /// The values, in the half-spectrum layout.
-    pub fn values(&self) -> &[Complex<f64>] {
+    pub fn values(&self) -> &[Complex<T>] {
         &self.0
     }
 }
@@ -207,7 +235,7 @@ mod tests {
             }
         }
         let field: Vec<f64> = (0..n * n).map(|k| ((k * 7) % 11) as f64 - 5.0).collect();
-        let mut conv = Convolver::new(n);
+        let mut conv = Convolver::<f64>::new(n);
         // The kernel is not even (its 0.1 dx part): its spectrum is complex, multiplied in full.
         let ks = conv.kernel_spectrum(&kernel);
         let mut fs = conv.spectrum();

@@ -11,7 +11,7 @@
 //! increment to the next and [`solver`] runs the path with the shared walker ([`crate::driver`]).
 //!
 //! Outputs: per step the History quantities (P, Q, contact radius from the pressure edge, peak
-//! pressure, stick radius as the area-equivalent disc of the stick panels); at every path
+//! pressure, stick radius c √(N_stick / N_contact) by every solver's measure, [`crate::fit::stick`]); at every path
 //! position a `SurfaceField` over the whole grid (pressure, traction (q_x, q_y), stick/slip).
 //! [`Bem::solve_with_fields`] also returns the grid and the slip accumulated since each panel
 //! came into contact, for a grid writer (VTU).

@@ -6,10 +6,14 @@
 //! pressures and tractions, their resultant Σ h² p). A product costs four (normal: two) real 2D
 //! transforms of the 2n × 2n padded grid; a column of the kernel costs n² multiply-adds, so a
 //! product after a few changed panels adds those columns instead.
+//!
+//! The transforms run in the precision `T` ([`Precision`]: f64, or f32 at about half the cost);
+//! the symbols are computed in f64 and rounded once, the largest eigenvalue is taken from them in
+//! f64, and kernel columns are added in f64.
 
 use crate::contact::Compliance;
 
-use super::convolution::{Convolver, Spectrum};
+use super::convolution::{Convolver, Precision, Spectrum};
 use super::grid::Grid;
 use super::influence::{Kernels, PairCompliance};
 
@@ -17,21 +21,22 @@ use super::influence::{Kernels, PairCompliance};
 /// much as 20–40 columns).
 const COLUMN_BUDGET: usize = 16;
 
-/// A half-space compliance on a panel grid, applied by FFT.
-pub struct FftCompliance {
+/// A half-space compliance on a panel grid, applied by FFT in precision `T`.
+pub struct FftCompliance<T: Precision = f64> {
     grid: Grid,
-    convolver: Convolver,
-    /// The kernels in the circulant layout (row-major blocks: xx, xy, yx, yy, or zz alone).
+    convolver: Convolver<T>,
+    /// The kernels in the circulant layout: zz alone, or xx, xy (= yx), yy; the block of
+    /// components (c_i, c_j) is kernel c_i + c_j.
     kernels: Vec<Vec<f64>>,
     /// Their symbols (spectra), real: every kernel is even in each offset, or (xy) odd in both.
-    symbols: Vec<Vec<f64>>,
+    symbols: Vec<Vec<T>>,
     /// Work spectra of the load's components, transformed in place into the displacement's.
-    work: [Spectrum; 2],
+    work: [Spectrum<T>; 2],
     weights: Vec<f64>,
     largest: f64,
 }
 
-impl FftCompliance {
+impl<T: Precision> FftCompliance<T> {
     /// The Boussinesq compliance of `grid` (one component).
     pub fn normal(grid: &Grid, compliance: &PairCompliance) -> Self {
         Self::of(grid, vec![Kernels::normal(grid, compliance)])
@@ -40,14 +45,14 @@ impl FftCompliance {
     /// The Cerruti compliance of `grid` (two components, x and y).
     pub fn tangential(grid: &Grid, compliance: &PairCompliance) -> Self {
         let t = Kernels::tangential(grid, compliance);
-        Self::of(grid, vec![t.xx, t.xy.clone(), t.xy, t.yy])
+        Self::of(grid, vec![t.xx, t.xy, t.yy])
     }
 
     fn of(grid: &Grid, kernels: Vec<Vec<f64>>) -> Self {
-        let mut convolver = Convolver::new(grid.n);
+        let mut exact = Convolver::<f64>::new(grid.n);
         let symbols: Vec<Vec<f64>> = kernels
             .iter()
-            .map(|k| convolver.kernel_spectrum(k).real_part())
+            .map(|k| exact.kernel_spectrum(k).real_part())
             .collect();
         // The symbol at each frequency is real, and the largest eigenvalue of C is the largest
         // over the frequencies of the symbol's (1×1, or symmetric 2×2 [[a, b], [b, c]]) largest
@@ -56,12 +61,17 @@ impl FftCompliance {
         let largest = if symbols.len() == 1 {
             symbols[0].iter().copied().fold(0.0, f64::max)
         } else {
-            let (a, b, c) = (&symbols[0], &symbols[1], &symbols[3]);
+            let (a, b, c) = (&symbols[0], &symbols[1], &symbols[2]);
             (0..a.len())
                 .map(|f| 0.5 * (a[f] + c[f]) + (0.25 * (a[f] - c[f]).powi(2) + b[f] * b[f]).sqrt())
                 .fold(0.0, f64::max)
         };
+        let convolver = Convolver::<T>::new(grid.n);
         let work = [convolver.spectrum(), convolver.spectrum()];
+        let symbols = symbols
+            .iter()
+            .map(|s| s.iter().map(|&v| T::of(v)).collect())
+            .collect();
         Self {
             grid: *grid,
             work,
@@ -79,7 +89,7 @@ impl FftCompliance {
     }
 }
 
-impl Compliance for FftCompliance {
+impl<T: Precision> Compliance for FftCompliance<T> {
     fn points(&self) -> usize {
         self.grid.len()
     }
@@ -109,7 +119,7 @@ impl Compliance for FftCompliance {
         self.convolver.field_spectrum_into(&load[len..], qy);
         let s = &self.symbols;
         // The yx block is the xy block (the Cerruti kernels are symmetric).
-        Spectrum::mix_in_place(qx, qy, [&s[0], &s[1], &s[3]]);
+        Spectrum::mix_in_place(qx, qy, [&s[0], &s[1], &s[2]]);
         self.convolver.field_into(qx, &mut out[..len]);
         self.convolver.field_into(qy, &mut out[len..]);
     }
@@ -130,7 +140,7 @@ impl Compliance for FftCompliance {
             let (cj, panel) = (j / len, j % len);
             let (jx, jy) = (panel % n, panel / n);
             for ci in 0..k {
-                let kernel = &self.kernels[ci * k + cj];
+                let kernel = &self.kernels[ci + cj];
                 let out = &mut out[ci * len..(ci + 1) * len];
                 for iy in 0..n {
                     // Offset (ix − jx, iy − jy) wraps into the circulant layout: negative x offsets

@@ -3,6 +3,7 @@
 //! increment to the next (pressure, traction, accumulated slip) as a [`Snapshot`].
 
 use crate::contact::{Contact, ContactError, FrictionSet, Method, Settings};
+use crate::fit::stick::{self, StickZone};
 use crate::scene::Scene;
 
 use super::grid::Grid;
@@ -63,8 +64,8 @@ impl Snapshot {
         self.traction.iter().map(|q| q[0]).sum::<f64>() * self.grid.panel_area()
     }
 
-    /// Where a field that vanishes like a square root at an edge (p at the contact edge, μp − |q|
-    /// at the stick edge) reaches zero along the four half-axes +x, −x, +y, −y [m], each fitted
+    /// Where a field that vanishes like a square root at an edge (p at the contact edge) reaches
+    /// zero along the four half-axes +x, −x, +y, −y [m], each fitted
     /// through the panels from the centre out while the value is positive
     /// ([`crate::fit::square_root_edge`]). `None` when an axis has fewer than two panels in the
     /// outer half of the zone.
@@ -100,18 +101,25 @@ impl Snapshot {
         }
     }
 
-    /// The stick radius [m]: the contact radius scaled by the square root of the stick panels'
-    /// share of the contact panels, c √(N_stick / N_contact) — the stick zone's share of the
-    /// contact area, in the contact radius's own measure. It equals the contact radius at full
-    /// stick and never exceeds it (the area-equivalent radius of the stick panels alone, √(N h²/π),
-    /// exceeded the fitted contact radius by up to 5 % at full stick); 0 in gross sliding.
+    /// The stick zone by the measure of every solver ([`stick::stick_zone`]): the stick radius
+    /// c √(N_stick / N_contact) (equal panels) and the semi-axes of the stick panels' second
+    /// moments; `None` when no panel sticks.
+    pub fn stick_zone(&self) -> Option<StickZone> {
+        let weights = vec![self.grid.panel_area(); self.grid.len()];
+        let points = self.grid.centres();
+        stick::stick_zone(
+            self.contact_radius(),
+            &points,
+            &weights,
+            &self.pressure,
+            &self.stick,
+        )
+    }
+
+    /// The stick radius [m] ([`Snapshot::stick_zone`]): c at full stick, never above it, 0 in
+    /// gross sliding.
     pub fn stick_radius(&self) -> f64 {
-        let contact = self.contact().count();
-        if contact == 0 {
-            return 0.0;
-        }
-        let stick = self.contact().filter(|&k| self.stick[k]).count();
-        self.contact_radius() * (stick as f64 / contact as f64).sqrt()
+        self.stick_zone().map_or(0.0, |z| z.radius)
     }
 
     /// |q| at panel `k` [Pa].
@@ -123,23 +131,6 @@ impl Snapshot {
     /// The largest panel pressure [Pa] (the centre panel's, for a Hertz contact).
     pub fn peak_pressure(&self) -> f64 {
         self.pressure.iter().copied().fold(0.0, f64::max)
-    }
-
-    /// The stick zone's semi-axes along x (the loading direction) and y [m]: the mean edge of the
-    /// stick deficit μp − |q| on the ±x and on the ±y half-axes (see `axis_edges`); `None` when the
-    /// stick zone is too small to fit. Valid in partial slip under monotonic loading from a virgin
-    /// state, where the deficit has Cattaneo's √ form; after a reversal it does not (the locked-in
-    /// traction of the previous branch), and the area-equivalent `stick_radius` is the measure.
-    pub fn stick_semi_axes(&self) -> Option<[f64; 2]> {
-        let deficit = |k: usize| {
-            if self.stick[k] {
-                self.friction * self.pressure[k] - self.traction_magnitude(k)
-            } else {
-                0.0
-            }
-        };
-        self.axis_edges(deficit)
-            .map(|e| [0.5 * (e[0] + e[1]), 0.5 * (e[2] + e[3])])
     }
 }
 
@@ -166,10 +157,18 @@ pub enum IncrementError {
     Engine(ContactError),
 }
 
+/// The precision of the tangential products. f32: half the cost of a product, and its relative
+/// error (about 1e-7 · log₂ 2n of the largest displacement) is far below the tangential
+/// tolerance (3e-5 of the traction scale, [`super::Bem::with_grid`]); measured on the paper path
+/// at 128², Ft moves by less than 1e-6 of its peak and Cattaneo's Q by less than 1e-6 at
+/// 128²–256² (examples/bem_timing.rs). The normal products stay f64: the normal tolerance,
+/// 1e-6 (128/n)² of the approach, is within two decades of f32's round-off.
+type TangentialPrecision = f32;
+
 /// The contact's state on one grid.
 pub struct ContactState {
     grid: Grid,
-    contact: Contact<FftCompliance, FftCompliance>,
+    contact: Contact<FftCompliance<f64>, FftCompliance<TangentialPrecision>>,
     snapshot: Snapshot,
 }
 
@@ -192,12 +191,16 @@ impl ContactState {
             // Pressure per unit overlap of Hertz's order, E*/c_max, to seed the normal solver.
             seed_stiffness: Some(scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h)),
         };
-        let contact = Contact::new(FftCompliance::normal(&grid, &compliance), separation, settings)
-            .expect("one separation a panel");
+        let contact = Contact::new(
+            FftCompliance::<f64>::normal(&grid, &compliance),
+            separation,
+            settings,
+        )
+        .expect("one separation a panel");
         let contact = if scene.friction > 0.0 && !scene.path.is_normal_only() {
             contact
                 .with_friction(
-                    FftCompliance::tangential(&grid, &compliance),
+                    FftCompliance::<TangentialPrecision>::tangential(&grid, &compliance),
                     FrictionSet::Disc,
                     scene.friction,
                 )

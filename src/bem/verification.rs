@@ -161,8 +161,9 @@ fn slip_zone_carries_mu_p_and_stick_zone_is_the_central_disc() {
         }
     }
     assert!(slip_checked > 100 && stick_checked > 100);
-    // The stick zone's edge fitted on the axes (sub-panel): Cattaneo's c_s within half a panel.
-    let [ax, ay] = s.stick_semi_axes().expect("a stick zone");
+    // The stick zone's semi-axes from its panels' second moments: Cattaneo's c_s within half a
+    // panel.
+    let [ax, ay] = s.stick_zone().expect("a stick zone").semi_axes;
     eprintln!("c_s {cs:.4e}, semi-axes {ax:.4e} {ay:.4e}, h {h:.3e}");
     assert!((ax - cs).abs() < 0.5 * h && (ay - cs).abs() < 0.5 * h);
 }
@@ -304,11 +305,11 @@ fn stick_zone_axisymmetry() {
     for n in [64, 128, 256] {
         let (history, fields) = solve(n, &scene);
         let s = &fields[5].snapshot;
-        let [wx, wy] = s.stick_semi_axes().expect("a stick zone");
+        let [wx, wy] = s.stick_zone().expect("a stick zone").semi_axes;
         let c = history.at_position(5).unwrap().contact_radius.unwrap();
         eprintln!(
             "{n}²: h = {:.3e} m, stick semi-axes x {wx:.5e} m, y {wy:.5e} m, (a_y − a_x)/c = {:+.1e}, \
-             area-equivalent radius {:.4e} m",
+             stick radius {:.4e} m",
             s.grid.h,
             (wy - wx) / c,
             history.at_position(5).unwrap().stick_radius.unwrap()

@@ -245,7 +245,10 @@ impl CoulombProblem<'_> {
             &mut state.displacement,
         ));
         // x: the last iterate (state.traction, its product state.displacement); y, C y: the
-        // extrapolated point; next, C next: the new iterate. Points out of contact (g = 0) hold
+        // extrapolated point; next, C next: the new iterate. After a step is taken, next and
+        // C next hold the iterate before x until the next pass overwrites them, and y = x + w (x −
+        // that iterate) is formed in that pass (`extrapolate` = Some(w)): one pass over the
+        // points fewer a step. Points out of contact (g = 0) hold
         // q = 0 in every iterate (the classification and every projection put them there), so the
         // loops run over the contact only; the products stay whole (the displacement everywhere is
         // the next increment's C q_prev).
@@ -253,6 +256,7 @@ impl CoulombProblem<'_> {
         let (mut y, mut y_product) = (state.traction.clone(), state.displacement.clone());
         let (mut next, mut next_product) = (state.traction.clone(), vec![0.0; n]);
         let (mut momentum, mut residual) = (1.0_f64, f64::INFINITY);
+        let mut extrapolate: Option<f64> = None;
         while cost.iterations < self.max_iterations {
             cost.iterations += 1;
             let step = 1.0 / curvature;
@@ -264,11 +268,17 @@ impl CoulombProblem<'_> {
                 let mut point = [0.0; 2];
                 for (c, value) in point.iter_mut().enumerate().take(k) {
                     let j = c * m + i;
+                    if let Some(w) = extrapolate {
+                        let (x, cx) = (state.traction[j], state.displacement[j]);
+                        y[j] = x + w * (x - next[j]);
+                        y_product[j] = cx + w * (cx - next_product[j]);
+                    }
                     let gradient = y_product[j] - self.previous_displacement[j] - self.shift[c];
                     *value = y[j] - step * gradient;
                 }
-                let norm = point[..k].iter().map(|v| v * v).sum::<f64>().sqrt();
-                let scale = if norm > g { g / norm } else { 1.0 };
+                // |point|² against g²: the square root only where the point is projected.
+                let squared = point[..k].iter().map(|v| v * v).sum::<f64>();
+                let scale = if squared > g * g { g / squared.sqrt() } else { 1.0 };
                 let mut moved = 0.0;
                 for (c, value) in point.iter().enumerate().take(k) {
                     let j = c * m + i;
@@ -278,6 +288,8 @@ impl CoulombProblem<'_> {
                 }
                 largest_move = largest_move.max(moved);
             }
+            // y is stored: a step taken again with a larger L (below) starts from it.
+            extrapolate = None;
             self.op.apply(&next, &mut next_product);
             cost.products += 1;
             // The curvature along the step, ⟨Δ, CΔ⟩ / ⟨Δ, Δ⟩ (Δ vanishes off the contact).
@@ -315,16 +327,11 @@ impl CoulombProblem<'_> {
                 momentum = following;
                 w
             };
-            // y and C y are needed on the contact only (the gradient is read there).
-            for c in 0..k {
-                for &i in &contact {
-                    let j = c * m + i;
-                    y[j] = next[j] + weight * (next[j] - state.traction[j]);
-                    y_product[j] = next_product[j] + weight * (next_product[j] - state.displacement[j]);
-                }
-            }
+            // y = next + w (next − x) and C y likewise, formed in the next pass on the contact
+            // (the gradient is read there only).
             std::mem::swap(&mut state.traction, &mut next);
             std::mem::swap(&mut state.displacement, &mut next_product);
+            extrapolate = Some(weight);
         }
         Err(CoulombError::NotConverged {
             iterations: cost.iterations,

@@ -107,12 +107,16 @@ impl NormalProblem<'_> {
         let (mut previous_norm, mut restart, mut residual) = (1.0, true, f64::INFINITY);
         let mut products = 0;
         for _ in 0..self.max_iterations {
-            let (mut norm, mut active) = (0.0, 0.0);
+            // One pass: the gaps, the residual on the contact, and whether an open point
+            // penetrates.
+            let (mut norm, mut active, mut penetrates) = (0.0, 0.0, false);
             for i in 0..m {
                 gap[i] = u[i] + self.opening[i];
                 if p[i] > 0.0 {
                     norm += a[i] * gap[i] * gap[i];
                     active += a[i];
+                } else if gap[i] < -tolerance {
+                    penetrates = true;
                 }
             }
             if active == 0.0 {
@@ -129,7 +133,6 @@ impl NormalProblem<'_> {
                 continue;
             }
             residual = (norm / active).sqrt();
-            let penetrates = (0..m).any(|i| p[i] == 0.0 && gap[i] < -tolerance);
             if residual < tolerance && !penetrates {
                 return Ok(products);
             }
@@ -145,14 +148,22 @@ impl NormalProblem<'_> {
             previous_norm = norm;
             self.op.apply(&direction, &mut product);
             products += 1;
-            let (num, den) = (0..m).filter(|&i| p[i] > 0.0).fold((0.0, 0.0), |(x, y), i| {
+            // The direction vanishes off the contact: the sums run over every point.
+            let (num, den) = (0..m).fold((0.0, 0.0), |(x, y), i| {
                 (
                     x + a[i] * gap[i] * direction[i],
                     y + a[i] * product[i] * direction[i],
                 )
             });
             let step = if den > 0.0 { num / den } else { 0.0 };
+            // One pass over the points: the step, negative multipliers clamped to zero, points out
+            // of contact that penetrate re-entering (P&K, eq. 13; restarting the CG), and the
+            // displacement. When the contact set is already solved (zero gaps: step 0, e.g. one
+            // point in contact), −step·gap would keep penetrating points out for ever: they enter
+            // with the seed stiffness instead.
             changes.clear();
+            restart = false;
+            let entry = if step > 0.0 { step } else { self.seed_stiffness };
             for i in 0..m {
                 if p[i] > 0.0 {
                     let next = p[i] - step * direction[i];
@@ -161,20 +172,13 @@ impl NormalProblem<'_> {
                     }
                     p[i] = next.max(0.0);
                 }
-            }
-            // Points out of contact that penetrate re-enter (P&K, eq. 13), restarting the CG. When
-            // the contact set is already solved (zero gaps: step 0, e.g. one point in contact),
-            // −step·gap would keep them out for ever: they enter with the seed stiffness instead.
-            restart = false;
-            let entry = if step > 0.0 { step } else { self.seed_stiffness };
-            for i in 0..m {
                 if p[i] == 0.0 && gap[i] < 0.0 {
                     p[i] = -entry * gap[i];
                     changes.push((i, p[i]));
                     restart = true;
                 }
+                u[i] -= step * product[i];
             }
-            u.iter_mut().zip(&product).for_each(|(u, r)| *u -= step * r);
             products += usize::from(update_after_changes(self.op, &changes, p, u));
         }
         Err(NormalError::NotConverged {

@@ -355,8 +355,10 @@ fn history(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) ->
             tangential_force: plan.tangential.then_some(row.tangential_force),
             contact_radius: measures.radius,
             peak_pressure: measures.peak,
-            stick_radius: (plan.tangential && in_contact)
-                .then(|| surface.stick_zone().map_or(0.0, |z| z.radius)),
+            stick_radius: (plan.tangential && in_contact).then(|| {
+                let c = measures.radius.unwrap_or(0.0);
+                surface.stick_zone(c).map_or(0.0, |z| z.radius)
+            }),
             ..StepResult::at(step)
         });
     }
@@ -413,7 +415,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
     extra.insert("ranks".into(), json!(ranks));
     extra.insert(
         "contact_measures".into(),
-        json!("fem-3d's (fit::surface): c from the pressure's second moment, p0 from the smooth even fit on r ≤ c/2, the stick radius √(A/π) of the sticking nodes' area A"),
+        json!("fem-3d's (fit::surface): c from the pressure's second moment, p0 from the smooth even fit on r ≤ c/2, the stick radius c √(A_stick/A_contact) of the nodal areas (fit::stick)"),
     );
     for (phase, value) in &run.timing {
         extra.insert(format!("deck_{phase}"), json!(value));

@@ -153,7 +153,7 @@ fn metadata(
     );
     extra.insert(
         "contact_measures".into(),
-        json!("as fem-axisym, from the nodal ring forces: c from a quadratic fit of p² at the edge, p0 from an even fit of p on 0 < r ≤ c/2, stick radius midway between the last sticking and the innermost slipping node"),
+        json!("as fem-axisym, from the nodal ring forces: c from a quadratic fit of p² at the edge, p0 from an even fit of p on 0 < r ≤ c/2, stick radius c √(stick area / contact area) of the nodal rings (fit::stick)"),
     );
     extra.insert("normal_force_from_reaction_by_position".into(), json!(reaction));
     let total = |f: fn(&DeckRow) -> u32| run.rows.iter().map(|r| u64::from(f(r))).sum::<u64>();

@@ -7,8 +7,9 @@
 //! same ring forces (one recovery for every axisymmetric model, [`crate::fem::axisym::pressure`]): the
 //! contact radius from a quadratic fit of p² at the edge, p0 from an even fit of the nodal
 //! pressures on 0 < r ≤ c/2 (the axis node has ω = 0: its force says nothing about the pressure
-//! there, and its penalty value is 1–3 % off). The stick radius lies between the last sticking
-//! node and the innermost slipping one: their midpoint, within half a node spacing.
+//! there, and its penalty value is 1–3 % off). The stick radius is every solver's measure
+//! ([`crate::fit::stick`]): c √(stick area / contact area), the areas counted in the nodes' rings
+//! ω_i, so it never exceeds c and is resolved to a node spacing.
 //!
 //! Units: the file is in mm, MPa; [`Node`] is SI.
 
@@ -96,15 +97,14 @@ impl Surface {
         self.nodes.last().is_some_and(|n| n.pressure > 0.0)
     }
 
-    /// The stick radius: c when no node in contact slips, 0 when the pole slips, else the
-    /// midpoint between the innermost slipping node and the node before it.
+    /// The stick radius of contact radius `contact_radius` by the measure of every solver
+    /// ([`crate::fit::stick::stick_radius`]: c √(stick area / contact area), the nodes' rings
+    /// weighted by ω).
     pub fn stick_radius(&self, contact_radius: f64) -> f64 {
-        let slipping = self.nodes.iter().position(|n| n.pressure > 0.0 && !n.stick);
-        match slipping {
-            None => contact_radius,
-            Some(0) => 0.0,
-            Some(i) => 0.5 * (self.nodes[i - 1].r + self.nodes[i].r),
-        }
+        let weights: Vec<f64> = self.nodes.iter().map(|n| n.weight).collect();
+        let pressure: Vec<f64> = self.nodes.iter().map(|n| n.pressure).collect();
+        let stick: Vec<bool> = self.nodes.iter().map(|n| n.stick).collect();
+        crate::fit::stick::stick_radius(contact_radius, &weights, &pressure, &stick)
     }
 
     /// Q by the nodal rule, 2π Σ ω q_x [N]: the same sum the deck reports, for a consistency
@@ -233,9 +233,15 @@ mod tests {
         // Exact Hertz nodal pressures: the edge fit of p² is exact, p0 within the fit's 2e-4.
         assert!((m.contact_radius.unwrap() - 0.5e-3).abs() < 1e-9, "{m:?}");
         assert!((m.peak_pressure.unwrap() / 400e6 - 1.0).abs() < 2e-4, "{m:?}");
-        // Innermost slipping node at 0.3 mm, the last sticking one at 0.275 mm.
+        // Rings ω = r Δr (Δr = 0.025 mm) of the nodes i Δr: sticking i ≤ 11, loaded i ≤ 19, so
+        // the areas are in the ratio Σ i: 66/190, and b = c √(66/190), between the last sticking
+        // node (0.275 mm) and the innermost slipping one (0.3 mm).
         let stick = surfaces[0].stick_radius(m.contact_radius.unwrap());
-        assert!((stick - 0.2875e-3).abs() < 1e-12, "{stick}");
+        assert!(
+            (stick - 0.5e-3 * (66.0_f64 / 190.0).sqrt()).abs() < 1e-12,
+            "{stick}"
+        );
+        assert!(stick > 0.275e-3 && stick < 0.3e-3, "{stick}");
         assert!(!surfaces[0].edge_loaded());
         let field = surfaces[0].field(2, m.pressure, true);
         assert_eq!(field.points.len(), 29);
@@ -243,7 +249,7 @@ mod tests {
     }
 
     #[test]
-    fn full_stick_gives_c_and_a_slipping_pole_gives_zero() {
+    fn full_stick_gives_c_and_gross_sliding_zero() {
         let mut surface = parse_surface(&format!("{HEADER}\n{}", block(0)), &[0])
             .unwrap()
             .remove(0);
@@ -251,7 +257,9 @@ mod tests {
             n.stick = n.pressure > 0.0;
         }
         assert_eq!(surface.stick_radius(0.5e-3), 0.5e-3);
-        surface.nodes[0].stick = false;
+        for n in &mut surface.nodes {
+            n.stick = false;
+        }
         assert_eq!(surface.stick_radius(0.5e-3), 0.0);
     }
 

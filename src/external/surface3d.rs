@@ -11,7 +11,8 @@
 //! Units: the file is in mm, MPa; [`Node3`] is SI.
 
 use super::readback;
-use crate::fit::surface::{self, Measures, StickZone};
+use crate::fit::stick::{self, StickZone};
+use crate::fit::surface::{self, Measures};
 use crate::history::{SurfaceField, TangentialComponents};
 use crate::mirror::Mirror;
 
@@ -83,12 +84,14 @@ impl Surface3 {
         surface::measure(&self.positions(), triangles, &self.pressures())
     }
 
-    /// The stick zone by fem-3d's measure ([`surface::stick_zone`]: area-equivalent radius and
-    /// the semi-axes of the zone's second moments); `None` when no loaded node sticks.
-    pub fn stick_zone(&self) -> Option<StickZone> {
+    /// The stick zone of contact radius `contact_radius` by the measure of every solver
+    /// ([`stick::stick_zone`]: c √(stick area / contact area) and the semi-axes of the zone's
+    /// second moments); `None` when no loaded node sticks.
+    pub fn stick_zone(&self, contact_radius: f64) -> Option<StickZone> {
+        let points: Vec<[f64; 2]> = self.nodes.iter().map(|n| n.point).collect();
         let weights: Vec<f64> = self.nodes.iter().map(|n| n.weight).collect();
-        let stick: Vec<bool> = self.nodes.iter().map(|n| n.stick).collect();
-        surface::stick_zone(&self.positions(), &weights, &self.pressures(), &stick)
+        let flags: Vec<bool> = self.nodes.iter().map(|n| n.stick).collect();
+        stick::stick_zone(contact_radius, &points, &weights, &self.pressures(), &flags)
     }
 
     /// P by the nodal rule, 2 Σ ω p over the half surface [N].

@@ -1,9 +1,18 @@
-//! Least-squares fits shared by the solvers' post-processing (contact edges) and the
-//! convergence tests (observed rates), and the consistent recovery of a mesh's contact fields
+//! Least-squares fits shared by the solvers' post-processing (contact edges, the stick zone) and
+//! the convergence tests (observed rates), and the consistent recovery of a mesh's contact fields
 //! from their multipliers ([`recovery`]).
+//!
+//! | file | concept |
+//! |---|---|
+//! | this file | the least-squares line, the √-edge of a field along a ray |
+//! | [`profile`] | c and p0 of a radial profile from nodal ring forces |
+//! | [`recovery`] | a mesh's contact fields recovered from their multipliers (hat averages) |
+//! | [`surface`] | c and p0 of scattered nodes on triangles (second moment) |
+//! | [`stick`] | the stick radius and the stick zone's semi-axes, for every layout |
 
 pub mod profile;
 pub mod recovery;
+pub mod stick;
 pub mod surface;
 
 /// A straight line y = ȳ + slope (x − x̄) fitted by least squares.

@@ -1,4 +1,4 @@
-//! The contact radius c, the peak pressure p0 and the stick zone of a 3D contact state, from the
+//! The contact radius c and the peak pressure p0 of a 3D contact state, from the
 //! nodal values of the candidate surface (scattered nodes, not rings): the measures of `fem-3d`
 //! and of the `fenicsx-3d` deck, which share the surface's contact rule and weights.
 //!
@@ -146,44 +146,6 @@ fn moments(points: &[[f64; 3]], triangles: &[[usize; 3]], pressure: &[f64]) -> [
     sums
 }
 
-/// The stick zone of a frictional contact state on the half body y ≥ 0 (mirrored in y = 0).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StickZone {
-    /// The area-equivalent radius √(A/π), A the whole stick area [m] (the BEM's measure).
-    pub radius: f64,
-    /// Semi-axes along x and y [m]: those of the ellipse with the stick zone's area-weighted
-    /// central second moments. An ellipse of semi-axes a, b has ⟨(x − x̄)²⟩ = a²/4 and
-    /// ⟨y²⟩ = b²/4 over its area, so a = 2 √⟨(x − x̄)²⟩ and b = 2 √⟨y²⟩. Integrals, they do not
-    /// depend on where the discrete stick edge falls between nodes as much as an edge fit does.
-    pub semi_axes: [f64; 2],
-}
-
-/// The stick zone of the loaded points flagged `stick`, with the nodal areas `weights`
-/// (w_j = ∫ φ_j dA on the half); `None` when no point sticks.
-pub fn stick_zone(
-    points: &[[f64; 3]],
-    weights: &[f64],
-    pressure: &[f64],
-    stick: &[bool],
-) -> Option<StickZone> {
-    let sticking: Vec<usize> = (0..points.len())
-        .filter(|&j| stick[j] && pressure[j] > 0.0)
-        .collect();
-    let area: f64 = sticking.iter().map(|&j| weights[j]).sum();
-    if area <= 0.0 {
-        return None;
-    }
-    let mean = |f: &dyn Fn(usize) -> f64| sticking.iter().map(|&j| weights[j] * f(j)).sum::<f64>() / area;
-    let x_bar = mean(&|j| points[j][0]);
-    let xx = mean(&|j| (points[j][0] - x_bar).powi(2));
-    let yy = mean(&|j| points[j][1].powi(2));
-    Some(StickZone {
-        // The half's area, doubled by the mirror image.
-        radius: (2.0 * area / std::f64::consts::PI).sqrt(),
-        semi_axes: [2.0 * xx.sqrt(), 2.0 * yy.sqrt()],
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -315,33 +277,6 @@ mod tests {
             let expected = 1.0 / (6.0 * divisions * divisions);
             assert!((bias[k] / expected - 1.0).abs() < 0.02, "{bias:?}");
         }
-    }
-
-    #[test]
-    fn an_elliptic_stick_zone_gives_its_semi_axes() {
-        // A fine square lattice over y ≥ 0 (the row y = 0 at half weight, as the half mesh
-        // shares it with its mirror image), stick inside the ellipse a = 0.3, b = 0.2.
-        let (a, b, d) = (0.3_f64, 0.2_f64, 2e-3);
-        let (mut points, mut weights) = (Vec::new(), Vec::new());
-        for i in -200..=200 {
-            for k in 0..=150 {
-                points.push([f64::from(i) * d, f64::from(k) * d, 0.0]);
-                weights.push(if k == 0 { 0.5 * d * d } else { d * d });
-            }
-        }
-        let stick: Vec<bool> = points
-            .iter()
-            .map(|p| (p[0] / a).powi(2) + (p[1] / b).powi(2) < 1.0)
-            .collect();
-        let zone = stick_zone(&points, &weights, &vec![1.0; points.len()], &stick).unwrap();
-        // The lattice's staircase edge: errors of order d/a ≈ 0.7 %.
-        assert!((zone.semi_axes[0] / a - 1.0).abs() < 7e-3, "{zone:?}");
-        assert!((zone.semi_axes[1] / b - 1.0).abs() < 1e-2, "{zone:?}");
-        assert!((zone.radius / (a * b).sqrt() - 1.0).abs() < 1e-2, "{zone:?}");
-        assert_eq!(
-            stick_zone(&points, &weights, &vec![0.0; points.len()], &stick),
-            None
-        );
     }
 
     #[test]

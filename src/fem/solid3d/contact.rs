@@ -20,12 +20,11 @@
 use faer::Mat;
 
 use super::model::Model;
-use super::operator::LoadedColumns;
 use crate::contact::{Contact, ContactError, DenseCompliance, DenseError, FrictionSet, Settings};
 
-/// The model's contact: the engine over its dense condensed compliances, multiplied by their
-/// loaded columns only ([`LoadedColumns`]).
-pub type SolidContact = Contact<LoadedColumns, LoadedColumns>;
+/// The model's contact: the engine over its dense condensed compliances (multiplied by their
+/// loaded columns only, see [`crate::contact::dense`]).
+pub type SolidContact = Contact<DenseCompliance, DenseCompliance>;
 
 /// Point weights a_j = 2 w_j (see the module doc).
 fn weights(model: &Model) -> Vec<f64> {
@@ -80,11 +79,11 @@ pub fn engine(
     with_friction: bool,
     settings: Settings,
 ) -> Result<SolidContact, SetupError> {
-    let normal = LoadedColumns::new(normal(model)?);
+    let normal = normal(model)?;
     let contact: SolidContact = Contact::new(normal, model.surface.heights(), settings)?;
     if !with_friction {
         return Ok(contact);
     }
-    let tangential = LoadedColumns::new(tangential(model)?);
+    let tangential = tangential(model)?;
     Ok(contact.with_friction(tangential, FrictionSet::Disc, friction)?)
 }

@@ -5,7 +5,6 @@
 //! | [`system`] | DOFs (far face gripped, u_y = 0 on the symmetry plane) and the assembled stiffness |
 //! | [`surface`] | the contact candidate surface and its sub-triangulated contact rule |
 //! | [`condense`] | the condensed normal and tangential compliances from the factorisation |
-//! | [`operator`] | the condensed compliance multiplied by its loaded columns only |
 //! | [`contact`] | the contact problem on the shared engine: pressure multipliers, symmetric weights |
 //! | [`model`] | the whole set-up of one body |
 //! | [`meshing`] | the body's mesh from the scene: sizes from the largest contact radius, gmsh |
@@ -19,7 +18,6 @@ pub mod contact;
 pub use crate::fit::surface as measures;
 pub mod meshing;
 pub mod model;
-pub mod operator;
 pub mod output;
 pub mod solver;
 pub mod surface;

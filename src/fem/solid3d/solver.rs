@@ -31,7 +31,7 @@
 //! the engine for its iterative algorithms ([`Method::Iterative`]: Polonsky–Keer for the normal
 //! problem, accelerated projected gradients for the tangential one). The products read only the
 //! loaded columns and the step is set by a power estimate of the largest eigenvalue
-//! ([`super::operator`]). The tangential tolerance is 1e-5 (the engine's default is 1e-8),
+//! ([`crate::contact::dense`]). The tangential tolerance is 1e-5 (the engine's default is 1e-8),
 //! measured on the whole paper path with multipliers at every node: the worst
 //! |Q − Q_mdr-domain| was 0.119 %, 0.120 %, 0.122 % of the peak at 1e-6, 1e-5, 1e-4; at
 //! position 5 the stick semi-axes moved by 4.6 µm from 1e-6 to 1e-5 (a twentieth of an
@@ -336,7 +336,7 @@ impl Finished<'_> {
             ),
             (
                 "stick_radius_method",
-                json!("area-equivalent radius sqrt(A/pi) of the sticking nodes' areas"),
+                json!("c sqrt(A_stick / A_contact) of the nodal areas (fit::stick, every solver's measure)"),
             ),
             (
                 "p0_method",

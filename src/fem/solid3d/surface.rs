@@ -59,7 +59,7 @@ impl Surface {
         let r = |n: usize| mesh.nodes[n][0].hypot(mesh.nodes[n][1]);
         let by_radius = |mut nodes: Vec<usize>| {
             // Sorted by distance from the pole: a contact's points lead, so the engine's
-            // products read only the loaded columns ([`super::operator`]).
+            // products read only the loaded columns ([`crate::contact::dense`]).
             nodes.sort_by(|&a, &b| r(a).total_cmp(&r(b)).then(a.cmp(&b)));
             nodes
         };

@@ -7,19 +7,20 @@
 //! closes it again loads the new contact with its own shift (every point enters at q = 0).
 //!
 //! Per step: P and Q_x (the engine's resultants over the mirrored half), Q_y = 0 (the plane
-//! y = 0 is a plane of symmetry of the whole problem, so q_y is odd in y), the area-equivalent
-//! stick radius and the stick zone's semi-axes ([`measures::stick_zone`]); at path positions the
+//! y = 0 is a plane of symmetry of the whole problem, so q_y is odd in y), the stick radius
+//! and the stick zone's semi-axes ([`crate::fit::stick::stick_zone`], every solver's measure); at path positions the
 //! surface fields on the contact triangles (mirrored into y < 0) and, when asked, VTU files.
 
 use std::path::Path;
 use std::time::Instant;
 
 use super::contact::SolidContact;
-use super::measures::{self, StickZone};
+use super::measures;
 use super::model::Model;
 use super::output::{self, Loads, SurfaceValues};
 use super::surface::Surface;
 use crate::driver::{PathIncrement, PathModel};
+use crate::fit::stick;
 use crate::history::{StepResult, SurfaceField, TangentialComponents};
 use crate::mirror::Mirror;
 use crate::path::Step;
@@ -223,8 +224,12 @@ impl PathModel for Walker<'_> {
         if force > 0.0 && found.radius.is_none_or(|c| c < 2.0 * self.pole_size) {
             self.record.unresolved.push(step.delta_n);
         }
-        let zone: Option<StickZone> = (self.mode == Tangential::Solved)
-            .then(|| measures::stick_zone(&surface.points, &surface.weights, &pressure, &self.engine.stick()))
+        let zone = (self.mode == Tangential::Solved)
+            .then(|| {
+                let points: Vec<[f64; 2]> = surface.points.iter().map(|p| [p[0], p[1]]).collect();
+                let c = found.radius.unwrap_or(0.0);
+                stick::stick_zone(c, &points, &surface.weights, &pressure, &self.engine.stick())
+            })
             .flatten();
         self.record.semi_axes.push(zone.map(|z| z.semi_axes));
         if let Some(position) = step.position.filter(|&p| self.scene.records_fields_at(p)) {

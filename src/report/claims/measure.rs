@@ -71,7 +71,7 @@ pub struct MapMeasures {
     /// The stick zone's semi-axes along x and y [m], each the mean of the two half-axes' edges.
     pub stick_axes: Option<[f64; 2]>,
     /// The stick zone's semi-axes along x and y [m] from its area-weighted second moments (the
-    /// ellipse with the same moments, [`crate::fit::surface::stick_zone`]): integrals over the
+    /// ellipse with the same moments, [`crate::fit::stick::semi_axes`]): integrals over the
     /// samples, less sensitive than an edge fit to where the discrete edge falls.
     pub stick_moments: Option<[f64; 2]>,
     /// The largest |q|.
@@ -271,15 +271,10 @@ fn axis_difference(view: &FieldView, reach: f64, value: &dyn Fn(usize) -> Option
 
 /// The stick zone's second-moment semi-axes over the samples (each standing for its area).
 fn stick_moments(view: &FieldView, areas: &[f64]) -> Option<[f64; 2]> {
-    let points: Vec<[f64; 3]> = (0..view.len())
-        .map(|i| {
-            let [x, y] = view.point(i);
-            [x, y, 0.0]
-        })
-        .collect();
+    let points: Vec<[f64; 2]> = (0..view.len()).map(|i| view.point(i)).collect();
     let pressure: Vec<f64> = (0..view.len()).map(|i| view.pressure(i)).collect();
     let stick: Vec<bool> = (0..view.len()).map(|i| view.stick(i) == Some(true)).collect();
-    crate::fit::surface::stick_zone(&points, areas, &pressure, &stick).map(|zone| zone.semi_axes)
+    crate::fit::stick::semi_axes(&points, areas, &pressure, &stick)
 }
 
 /// The largest |area-weighted average| of q_x and of q_y over the contact samples of square
