@@ -199,11 +199,11 @@ impl CheckSpec {
         for row in subject.steps.iter().filter(|r| self.at.selects(r)) {
             let reference = match (&self.reference, reference_history) {
                 (Reference::Value { value, .. }, _) => Some(*value),
-                (_, Some(h)) => h.steps.get(row.step).and_then(|r| self.quantity.of(r)),
+                (_, Some(h)) => h.steps.get(row.step).and_then(|r| self.value(h, r)),
                 (_, None) => None,
             };
             let Some(reference) = reference else { continue };
-            let Some(value) = self.quantity.of(row) else {
+            let Some(value) = self.value(subject, row) else {
                 let message = format!("{} gives no {} at step {}", self.solver, self.quantity, row.step);
                 return self.outcome_without_error(Verdict::Nook, message);
             };
@@ -270,6 +270,17 @@ impl CheckSpec {
         }
     }
 
+    /// The judged quantity at `row` of `history`: the row's value, or for a map measure its
+    /// measure on the field at the row's path position ([`crate::map_measure`]).
+    fn value(&self, history: &History, row: &StepResult) -> Option<f64> {
+        if self.quantity.is_map_measure() {
+            let field = history.field_at(row.position?)?;
+            crate::map_measure::measure(self.quantity, field)
+        } else {
+            self.quantity.of(row)
+        }
+    }
+
     /// The error of `value` against `reference`, `peak` being max |r| over the looked-at steps.
     /// A zero denominator gives 0 when the difference is zero and +∞ otherwise, never NaN.
     fn error(&self, value: f64, reference: f64, peak: f64) -> f64 {
@@ -316,7 +327,7 @@ fn lookup<'a>(histories: &'a Histories, name: &str) -> Result<&'a History, (Verd
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::history::Metadata;
+    use crate::history::{Metadata, SurfaceField};
 
     fn history(values: &[Option<f64>]) -> History {
         History {
@@ -406,6 +417,37 @@ mod tests {
             spec(ErrorMeasure::Relative, Some(1.0)).evaluate(&h).verdict,
             Verdict::Unavailable
         );
+    }
+
+    #[test]
+    fn a_map_measure_is_read_from_the_fields_at_the_positions() {
+        // Four panels, q = (1, ±0.1) (subject) and (1, ±0.08) (reference), at position 1 only.
+        let field = |qy: f64| SurfaceField {
+            position: 1,
+            points: vec![[-0.5, -0.5], [0.5, -0.5], [-0.5, 0.5], [0.5, 0.5]],
+            pressure: vec![1.0; 4],
+            traction: Some(vec![[1.0, qy], [1.0, -qy], [1.0, -qy], [1.0, qy]]),
+            stick: Some(vec![true; 4]),
+            ..SurfaceField::default()
+        };
+        let mut h = histories(&[Some(1.0), Some(1.0)], &[Some(1.0), Some(1.0)]);
+        for (name, qy) in [("a", 0.1), ("b", 0.08)] {
+            h.get_mut(name).unwrap().as_mut().unwrap().fields = vec![field(qy)];
+        }
+        let check = CheckSpec {
+            quantity: Quantity::TransverseRatio,
+            at: Where::EveryPosition,
+            ..spec(ErrorMeasure::Relative, Some(0.3))
+        };
+        // Position 0 has no field in either: nothing to compare there, not a failure.
+        let outcome = check.evaluate(&h);
+        assert_eq!((outcome.verdict, outcome.worst_step), (Verdict::Ok, Some(1)));
+        assert!((outcome.error.unwrap() - 0.25).abs() < 1e-12, "{outcome:?}");
+        // The subject without its field where the reference has one: NOOK, with the reason.
+        h.get_mut("a").unwrap().as_mut().unwrap().fields.clear();
+        let outcome = check.evaluate(&h);
+        assert_eq!(outcome.verdict, Verdict::Nook);
+        assert!(outcome.message.unwrap().contains("no transverse_ratio at step 1"));
     }
 
     #[test]

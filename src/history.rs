@@ -62,6 +62,12 @@ pub enum Quantity {
     PressureProfile,
     /// The traction profile q_x(r) at one path position (checks only, as the pressure's).
     TractionProfile,
+    /// max|q̄_y| / max|q̄_x| on a map at a path position (checks only, [`crate::map_measure`]).
+    TransverseRatio,
+    /// The stick zone's semi-axis along x [m] on a map at a path position (checks only).
+    StickSemiAxisX,
+    /// The stick zone's semi-axis along y [m] on a map at a path position (checks only).
+    StickSemiAxisY,
 }
 
 impl Quantity {
@@ -77,6 +83,13 @@ impl Quantity {
     /// The profiles a check can compare (not step values: no CSV column).
     pub const PROFILES: [Quantity; 2] = [Quantity::PressureProfile, Quantity::TractionProfile];
 
+    /// The measures a check reads from a map at path positions (not step values: no CSV column).
+    pub const MAP_MEASURES: [Quantity; 3] = [
+        Quantity::TransverseRatio,
+        Quantity::StickSemiAxisX,
+        Quantity::StickSemiAxisY,
+    ];
+
     /// The name used in case files and CSV headers.
     pub fn name(self) -> &'static str {
         match self {
@@ -87,6 +100,9 @@ impl Quantity {
             Quantity::StickRadius => "stick_radius",
             Quantity::PressureProfile => "pressure_profile",
             Quantity::TractionProfile => "traction_profile",
+            Quantity::TransverseRatio => "transverse_ratio",
+            Quantity::StickSemiAxisX => "stick_semi_axis_x",
+            Quantity::StickSemiAxisY => "stick_semi_axis_y",
         }
     }
 
@@ -94,7 +110,11 @@ impl Quantity {
     pub fn unit(self) -> &'static str {
         match self {
             Quantity::NormalForce | Quantity::TangentialForce => "N",
-            Quantity::ContactRadius | Quantity::StickRadius => "m",
+            Quantity::ContactRadius
+            | Quantity::StickRadius
+            | Quantity::StickSemiAxisX
+            | Quantity::StickSemiAxisY => "m",
+            Quantity::TransverseRatio => "1",
             Quantity::PeakPressure | Quantity::PressureProfile | Quantity::TractionProfile => "Pa",
         }
     }
@@ -104,12 +124,18 @@ impl Quantity {
         Self::ALL.into_iter().find(|q| q.name() == name)
     }
 
-    /// The quantity a check may name `name`: a step quantity or a profile.
+    /// The quantity a check may name `name`: a step quantity, a profile or a map measure.
     pub fn checkable(name: &str) -> Option<Self> {
         Self::ALL
             .into_iter()
             .chain(Self::PROFILES)
+            .chain(Self::MAP_MEASURES)
             .find(|q| q.name() == name)
+    }
+
+    /// True for a measure read from a map at a path position ([`Self::MAP_MEASURES`]).
+    pub fn is_map_measure(self) -> bool {
+        Self::MAP_MEASURES.contains(&self)
     }
 
     /// This quantity's value in a step row.
@@ -120,7 +146,11 @@ impl Quantity {
             Quantity::ContactRadius => row.contact_radius,
             Quantity::PeakPressure => row.peak_pressure,
             Quantity::StickRadius => row.stick_radius,
-            Quantity::PressureProfile | Quantity::TractionProfile => None,
+            Quantity::PressureProfile
+            | Quantity::TractionProfile
+            | Quantity::TransverseRatio
+            | Quantity::StickSemiAxisX
+            | Quantity::StickSemiAxisY => None,
         }
     }
 }
@@ -229,6 +259,11 @@ impl History {
             .iter()
             .filter_map(|r| quantity.of(r))
             .fold(0.0, |m, v| m.max(v.abs()))
+    }
+
+    /// The surface field at path position `position`, if the solver wrote one.
+    pub fn field_at(&self, position: usize) -> Option<&SurfaceField> {
+        self.fields.iter().find(|f| f.position == position)
     }
 
     /// The row reaching path position `position`, if the path has it.

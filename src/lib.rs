@@ -18,7 +18,7 @@
 //!   problems over a compliance operator); [`driver`] walks a path for every incremental solver
 //!   with one rule for an open gap;
 //! - [`check`] judges a solver's [`history::History`] against a reference, with a tolerance and
-//!   its reason, as OK / NOOK / INFO;
+//!   its reason, as OK / NOOK / INFO (on a map's measures, [`map_measure`], as the reports);
 //! - [`verify`] runs cases and their checks; [`report`] prints and writes the results;
 //!   [`bench`] times solvers side by side.
 //!
@@ -44,6 +44,7 @@ pub mod hertz;
 pub mod history;
 pub mod io;
 pub mod limits;
+pub mod map_measure;
 pub mod mirror;
 pub mod number;
 pub mod pair;

@@ -23,6 +23,7 @@ impl Validator<'_> {
             let names: Vec<_> = Quantity::ALL
                 .iter()
                 .chain(&Quantity::PROFILES)
+                .chain(&Quantity::MAP_MEASURES)
                 .map(|q| q.name())
                 .collect();
             self.error(
@@ -52,6 +53,17 @@ impl Validator<'_> {
         };
         if crate::profile::Field::of(quantity).is_some() {
             self.profile_rules(raw, field, quantity, at, &reference, measure)?;
+        }
+        if quantity.is_map_measure() && at == Where::EveryStep {
+            return Err(self.error(
+                &raw.at,
+                format!("{field}.at"),
+                format!(
+                    "a {quantity} is measured on the surface fields, which solvers write at path \
+                     positions only (allowed: \"every-position\", {{ position = K }} or \
+                     {{ positions = [FIRST, LAST] }})"
+                ),
+            ));
         }
         let tolerance = match (&raw.tolerance, raw.informational) {
             (Some(t), _) => Some(self.number(
@@ -276,5 +288,27 @@ mod tests {
         );
         let unknown = check("quantity = \"shape\"\nat = { position = 1 }").unwrap_err();
         assert!(unknown.to_string().contains("pressure_profile"), "{unknown}");
+    }
+
+    #[test]
+    fn a_map_measure_is_checked_at_positions_not_at_every_step() {
+        for name in ["transverse_ratio", "stick_semi_axis_x", "stick_semi_axis_y"] {
+            let ok = format!("quantity = \"{name}\"\nat = {{ positions = [1, 1] }}");
+            assert_eq!(check(&ok).unwrap().checks[0].quantity.name(), name);
+            let every = format!("quantity = \"{name}\"\nat = \"every-position\"");
+            assert!(check(&every).is_ok(), "{name} at every position");
+            let e = check(&format!("quantity = \"{name}\"\nat = \"every-step\"")).unwrap_err();
+            let message = e.to_string();
+            assert_eq!(e.field, "checks[0].at", "{message}");
+            assert!(
+                message.contains("p.toml")
+                    && message.contains("path positions only")
+                    && message.contains("every-position")
+                    && message.contains("{ position = K }"),
+                "{message}"
+            );
+        }
+        let unknown = check("quantity = \"shape\"\nat = { position = 1 }").unwrap_err();
+        assert!(unknown.to_string().contains("stick_semi_axis_y"), "{unknown}");
     }
 }

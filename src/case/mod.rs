@@ -43,7 +43,10 @@
 //!                                       # peak_pressure, stick_radius; or a profile at one
 //!                                       # position against another solver's: pressure_profile,
 //!                                       # traction_profile (RMS over 0.1c < r < 0.9c,
-//!                                       # error = "relative-to-peak", src/profile.rs)
+//!                                       # error = "relative-to-peak", src/profile.rs);
+//!                                       # or a map's measure at positions (not every-step):
+//!                                       # transverse_ratio, stick_semi_axis_x,
+//!                                       # stick_semi_axis_y (src/map_measure.rs)
 //! at = "every-step"                     # "every-position", { position = 2 }, { positions = [1, 2] }
 //! reference = { solver = "hertz" }      # or { file = "../reference/x.toml", key = "…" }
 //! error = "relative"                    # "relative-to-peak", "absolute"

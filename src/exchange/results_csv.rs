@@ -259,7 +259,11 @@ impl Cells<'_> {
                 Quantity::PeakPressure => row.peak_pressure = value,
                 Quantity::StickRadius => row.stick_radius = value,
                 // Never a column: `Quantity::from_name` gives step quantities only.
-                Quantity::PressureProfile | Quantity::TractionProfile => {}
+                Quantity::PressureProfile
+                | Quantity::TractionProfile
+                | Quantity::TransverseRatio
+                | Quantity::StickSemiAxisX
+                | Quantity::StickSemiAxisY => {}
             }
         }
         Ok(row)

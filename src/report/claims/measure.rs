@@ -61,7 +61,8 @@ pub struct MapMeasures {
     pub qy_max: f64,
     /// max|q̄_y| / max|q̄_x| on the values the contact rule determines: the hat averages of a map
     /// on triangles (a mesh's multipliers overshoot at single nodes at the stick edge), a grid's
-    /// panel values ([`crate::fit::recovery::transverse_ratio`]); `None` without q_x.
+    /// panel values ([`crate::map_measure::transverse_ratio`], what the checks read); `None`
+    /// without q_x.
     pub recovered_ratio: Option<f64>,
     /// The largest |area-weighted average| of q_x and of q_y over square boxes of side
     /// c/[`BOXES_PER_RADIUS`] on a grid with a corner at the centre [Pa].
@@ -71,8 +72,9 @@ pub struct MapMeasures {
     /// The stick zone's semi-axes along x and y [m], each the mean of the two half-axes' edges.
     pub stick_axes: Option<[f64; 2]>,
     /// The stick zone's semi-axes along x and y [m] from its area-weighted second moments (the
-    /// ellipse with the same moments, [`crate::fit::stick::semi_axes`]): integrals over the
-    /// samples, less sensitive than an edge fit to where the discrete edge falls.
+    /// ellipse with the same moments, [`crate::map_measure::stick_semi_axes`], what the checks
+    /// read): integrals over the samples, less sensitive than an edge fit to where the discrete
+    /// edge falls.
     pub stick_moments: Option<[f64; 2]>,
     /// The largest |q|.
     pub peak: Option<Peak>,
@@ -176,7 +178,7 @@ impl MapMeasures {
             spacing: view.spacing(),
             qx_max: largest(&|i| traction(i)[0].abs()),
             qy_max: largest(&|i| traction(i)[1].abs()),
-            recovered_ratio: recovered_ratio(view),
+            recovered_ratio: crate::map_measure::transverse_ratio(view.field()),
             box_max: box_maxima(view, &areas, &contact, contact_radius / BOXES_PER_RADIUS),
             quadrants,
             stick_axes,
@@ -185,7 +187,7 @@ impl MapMeasures {
             axes_alike: !matches!(view.layout, Layout::Triangles(_)),
             pressure_max: largest(&|i| view.pressure(i)),
             pressure_axis_difference: axis_difference(view, reach, &|i| Some(view.pressure(i))),
-            stick_moments: stick_moments(view, &areas),
+            stick_moments: crate::map_measure::stick_semi_axes(view.field()),
             transverse_share: largest(&|i| magnitude(traction(i)) - traction(i)[0].abs()),
             departure: md.and_then(|md| departure(view, &|r| md.at(r))),
         })
@@ -269,28 +271,8 @@ fn axis_difference(view: &FieldView, reach: f64, value: &dyn Fn(usize) -> Option
         .fold(0.0, f64::max)
 }
 
-/// The stick zone's second-moment semi-axes over the samples (each standing for its area).
-fn stick_moments(view: &FieldView, areas: &[f64]) -> Option<[f64; 2]> {
-    let points: Vec<[f64; 2]> = (0..view.len()).map(|i| view.point(i)).collect();
-    let pressure: Vec<f64> = (0..view.len()).map(|i| view.pressure(i)).collect();
-    let stick: Vec<bool> = (0..view.len()).map(|i| view.stick(i) == Some(true)).collect();
-    crate::fit::stick::semi_axes(&points, areas, &pressure, &stick)
-}
-
 /// The largest |area-weighted average| of q_x and of q_y over the contact samples of square
 /// boxes of side `side` [m] on the grid with a corner at the origin (0 without a positive side).
-/// The transverse ratio on the map's recovered values ([`MapMeasures::recovered_ratio`]).
-fn recovered_ratio(view: &FieldView) -> Option<f64> {
-    let all = 0..view.len();
-    let points: Vec<[f64; 2]> = all.clone().map(|i| view.point(i)).collect();
-    let traction: Vec<[f64; 2]> = all
-        .clone()
-        .map(|i| view.traction(i).unwrap_or([0.0, 0.0]))
-        .collect();
-    let pressure: Vec<f64> = all.map(|i| view.pressure(i)).collect();
-    crate::fit::recovery::transverse_ratio(&points, view.triangles(), &traction, &pressure)
-}
-
 fn box_maxima(view: &FieldView, areas: &[f64], contact: &[usize], side: f64) -> [f64; 2] {
     if !side.is_finite() || side <= 0.0 {
         return [0.0, 0.0];

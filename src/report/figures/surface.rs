@@ -1,26 +1,14 @@
 //! The one adapter between the solvers' surface fields ([`SurfaceField`]) and the report: every
 //! figure and every claim reads a field through [`FieldView`], by its layout (a profile along x,
-//! grid panels, or the triangles of a surface mesh), so a change of `SurfaceField` is an edit
-//! of this file alone.
+//! grid panels, or the triangles of a surface mesh: [`Layout`], which the checks share through
+//! [`crate::map_measure`]), so a change of `SurfaceField` is an edit of this file and that one.
 //!
 //! Frame (as in `SurfaceField`): origin at the contact centre, x along δt, y across it; the
 //! traction is the one on body 1, signed so that ∫ q_x dA = Q.
 
 use crate::history::{History, SurfaceField, TangentialComponents};
-
-/// How a field's samples cover the contact plane.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Layout {
-    /// Samples along the x axis of an axisymmetric (or 1D) solution: the same on every radius.
-    Profile,
-    /// The centres of square panels of side `spacing` [m].
-    Grid {
-        /// The panel side [m].
-        spacing: f64,
-    },
-    /// The vertices of a triangulated contact surface, values at the vertices.
-    Triangles(Vec<[usize; 3]>),
-}
+use crate::map_measure::smallest_spacing;
+pub use crate::map_measure::Layout;
 
 /// A half-axis of the contact plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -79,16 +67,10 @@ impl<'a> FieldView<'a> {
     /// The view of `field`: its own triangles when it has them (a surface mesh), else samples
     /// all on y = 0 are a profile and anything else a grid of square panels (the BEM's).
     pub fn of(field: &'a SurfaceField) -> Self {
-        let layout = if let Some(triangles) = &field.triangles {
-            Layout::Triangles(triangles.clone())
-        } else if field.points.iter().all(|p| p[1] == 0.0) {
-            Layout::Profile
-        } else {
-            Layout::Grid {
-                spacing: smallest_spacing(field.points.iter().map(|p| p[0])),
-            }
-        };
-        Self { field, layout }
+        Self {
+            field,
+            layout: Layout::of(field),
+        }
     }
 
     /// The views of every field of `history`, in its order.
@@ -224,21 +206,12 @@ impl<'a> FieldView<'a> {
     /// The area each sample stands for [m²] (a panel's, or a third of the triangles around a
     /// vertex); `None` for a profile.
     pub fn areas(&self) -> Option<Vec<f64>> {
-        match &self.layout {
-            Layout::Profile => None,
-            Layout::Grid { spacing } => Some(vec![spacing * spacing; self.len()]),
-            Layout::Triangles(triangles) => {
-                let mut areas = vec![0.0; self.len()];
-                for t in triangles {
-                    let [a, b, c] = t.map(|i| self.point(i));
-                    let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs();
-                    for &i in t {
-                        areas[i] += area / 3.0;
-                    }
-                }
-                Some(areas)
-            }
-        }
+        self.layout.areas(&self.field.points)
+    }
+
+    /// The field viewed.
+    pub fn field(&self) -> &'a SurfaceField {
+        self.field
     }
 
     /// The samples nearest the line t = 0 with s ≥ 0, where (s, t) = `coordinates(point)`,
@@ -292,26 +265,7 @@ impl<'a> FieldView<'a> {
 
     /// The triangles, for a mesh.
     pub fn triangles(&self) -> Option<&[[usize; 3]]> {
-        match &self.layout {
-            Layout::Triangles(t) => Some(t),
-            _ => None,
-        }
-    }
-}
-
-/// The smallest positive spacing between coordinates [m] (0 with fewer than two).
-fn smallest_spacing(coordinates: impl Iterator<Item = f64>) -> f64 {
-    let mut xs: Vec<f64> = coordinates.collect();
-    xs.sort_by(f64::total_cmp);
-    let smallest = xs
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .filter(|d| *d > 0.0)
-        .fold(f64::INFINITY, f64::min);
-    if smallest.is_finite() {
-        smallest
-    } else {
-        0.0
+        self.layout.triangles()
     }
 }
 
