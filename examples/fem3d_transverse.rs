@@ -19,11 +19,21 @@
 //! largest |q̄_y| lies; the stick zone's second-moment semi-axes (`fit::stick::semi_axes`);
 //! and at the pointwise maximum: its radius against the stick radius, |q|/μp, and how many of
 //! its neighbours stick and slip.
+//!
+//! Along Cattaneo's shift: `cargo run --release --example fem3d_transverse -- shift [RUN…]`
+//! presses the paper's spheres to δn = 17 µm and shifts them at constant δn to δt = 1, 2, 3,
+//! 4 µm (S increments a segment, the normal one included), and prints one table: at each δt the
+//! transverse share on the hat averages (`map_measure::transverse_ratio`, what the checks read),
+//! the sign of ∫ q_y dA over the four quadrants (counter-clockwise from x, y > 0), the stick
+//! zone's second-moment semi-axes (`map_measure::stick_semi_axes`), the stick radius and the
+//! contact radius. Default runs: the BEM at 64, 128, 256 panels and fem-3d at c_max/8, /10,
+//! /14, all at 10 increments a segment, and each at its default (64², c_max/10) at 20.
 
 use spherecontact::fem::solid3d::surface::Rule;
 use spherecontact::fem::FemSolid3d;
 use spherecontact::fit::recovery::hat_averages;
 use spherecontact::history::History;
+use spherecontact::map_measure;
 use spherecontact::registry;
 use spherecontact::report::claims::study;
 use spherecontact::report::figures::surface::{FieldView, Layout};
@@ -39,6 +49,98 @@ fn scene(substeps: usize) -> Scene {
     let positions = scene.path.positions()[..6].to_vec();
     scene.path = spherecontact::path::LoadingPath::try_new(positions, vec![substeps; 5]).expect("path");
     scene
+}
+
+/// Cattaneo's shift: δn = 17 µm, then δt = 1, 2, 3, 4 µm at constant δn (positions 2–5),
+/// `substeps` increments a segment, on the paper's spheres.
+fn shift_scene(substeps: usize) -> Scene {
+    let mut scene = scene(substeps);
+    let um = |n: f64, t: f64| spherecontact::path::Position {
+        delta_n: n * 1e-6,
+        delta_t: t * 1e-6,
+    };
+    let mut positions = vec![um(0.0, 0.0), um(17.0, 0.0)];
+    positions.extend([1.0, 2.0, 3.0, 4.0].map(|t| um(17.0, t)));
+    scene.path = spherecontact::path::LoadingPath::try_new(positions, vec![substeps; 5]).expect("path");
+    scene
+}
+
+/// The shift's table: one row per run and δt.
+fn shift(runs: &[String]) {
+    let defaults = [
+        "bem:64:10",
+        "bem:128:10",
+        "bem:256:10",
+        "fem-3d:8:10",
+        "fem-3d:10:10",
+        "fem-3d:14:10",
+        "bem:64:20",
+        "fem-3d:10:20",
+    ];
+    let runs: Vec<String> = if runs.is_empty() {
+        defaults.map(str::to_owned).to_vec()
+    } else {
+        runs.to_vec()
+    };
+    let mut table = Vec::new();
+    for run in &runs {
+        let (solver, n, substeps, tolerance) = parse(run);
+        let scene = shift_scene(substeps);
+        let t = std::time::Instant::now();
+        let history = solve(solver, n, tolerance, &scene);
+        let seconds = t.elapsed().as_secs_f64();
+        eprintln!("{run}: {seconds:.0} s");
+        for position in 2..=5 {
+            table.push(shift_row(run, &history, position, scene.friction));
+        }
+    }
+    println!("| run | δt [µm] | max|q̄_y|/max|q̄_x| | ∫q_y sign by quadrant | stick semi-axes x/y [µm] | stick radius [µm] | c [µm] | h [µm] |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for row in table {
+        println!("{row}");
+    }
+}
+
+/// One row of the shift's table at `position`.
+fn shift_row(run: &str, history: &History, position: usize, friction: f64) -> String {
+    let row = history.at_position(position).expect("the position");
+    let field = history.field_at(position).expect("a map at the position");
+    let ratio = map_measure::transverse_ratio(field);
+    let axes = map_measure::stick_semi_axes(field);
+    let signs = study::measure(history, position, friction, None).map_or("—".into(), |(m, _)| {
+        m.quadrants
+            .iter()
+            .map(|q| if q.total < 0.0 { "−" } else { "+" })
+            .collect::<Vec<_>>()
+            .join(",")
+    });
+    let spacing = FieldView::of(field).spacing();
+    let um = |v: Option<f64>| v.map_or("—".into(), |v| format!("{:.1}", 1e6 * v));
+    format!(
+        "| {run} | {:.0} | {} | {signs} | {} | {} | {} | {:.1} |",
+        1e6 * row.delta_t,
+        ratio.map_or("—".into(), |r| format!("{r:.4}")),
+        axes.map_or("—".into(), |a| format!("{:.1}/{:.1}", 1e6 * a[0], 1e6 * a[1])),
+        um(row.stick_radius),
+        um(row.contact_radius),
+        1e6 * spacing
+    )
+}
+
+/// A run `SOLVER:N:S[:TOLERANCE]`: solver, resolution, increments a segment, tolerance.
+fn parse(run: &str) -> (&str, f64, usize, Option<f64>) {
+    let parts: Vec<&str> = run.split(':').collect();
+    let (solver, n, substeps, tolerance) = match parts[..] {
+        [solver, n, substeps] => (solver, n, substeps, None),
+        [solver, n, substeps, t] => (solver, n, substeps, Some(t.parse().expect("a tolerance"))),
+        _ => panic!("a run is SOLVER:N:S[:TOLERANCE], not {run}"),
+    };
+    (
+        solver,
+        n.parse().expect("a resolution"),
+        substeps.parse().expect("increments a segment"),
+        tolerance,
+    )
 }
 
 /// The history of `solver` at `n` (fem-3d: pole size c_max/n, also beyond the case files'
@@ -199,6 +301,10 @@ fn report(label: &str, history: &History, friction: f64) {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("shift") {
+        shift(&args[1..]);
+        return;
+    }
     let runs: Vec<String> = if args.is_empty() {
         [
             "bem:64:10",
@@ -213,15 +319,8 @@ fn main() {
     } else {
         args
     };
-    for run in runs {
-        let parts: Vec<&str> = run.split(':').collect();
-        let (solver, n, substeps, tolerance) = match parts[..] {
-            [solver, n, substeps] => (solver, n, substeps, None),
-            [solver, n, substeps, t] => (solver, n, substeps, Some(t.parse().expect("a tolerance"))),
-            _ => panic!("a run is SOLVER:N:S[:TOLERANCE], not {run}"),
-        };
-        let substeps: usize = substeps.parse().expect("increments a segment");
-        let n: f64 = n.parse().expect("a resolution");
+    for run in &runs {
+        let (solver, n, substeps, tolerance) = parse(run);
         let scene = scene(substeps);
         let t = std::time::Instant::now();
         let history = solve(solver, n, tolerance, &scene);
