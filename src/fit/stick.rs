@@ -245,7 +245,10 @@ mod tests {
         let (h, c) = (0.01, 0.5);
         let (radii, weights) = quadratic_rings(h, 80);
         let pressure: Vec<f64> = radii.iter().map(|&r| f64::from(r <= c + 1e-9)).collect();
-        let stick: Vec<bool> = radii.iter().map(|&r| r >= 0.1 - 1e-9 && r < 0.3 - 1e-9).collect();
+        let stick: Vec<bool> = radii
+            .iter()
+            .map(|r| (0.1 - 1e-9..0.3 - 1e-9).contains(r))
+            .collect();
         let b = stick_radius(c, &weights, &pressure, &stick);
         assert!((b - (0.09_f64 - 0.01).sqrt()).abs() < h, "{b}");
     }
