@@ -202,17 +202,22 @@ mod tests {
         assert!((b - (0.3 + 0.5 * d)).abs() < 1e-12, "{b}");
     }
 
-    /// Ring weights 2π ∫ N_j r dr of quadratic elements of length 2h with nodes r_j = j h (even j
-    /// corners, odd j midsides): 2π r_j 2h/3 at a corner, 2π r_j 4h/3 at a midside, 0 on the
-    /// axis (Simpson's rule, exact for the linear integrand: they sum to π r² at a corner).
-    fn quadratic_rings(h: f64, nodes: usize) -> (Vec<f64>, Vec<f64>) {
-        let radii: Vec<f64> = (0..nodes).map(|j| j as f64 * h).collect();
-        let weights = radii
+    /// The stick radius of a radial profile on quadratic elements of length 2h = 0.02, nodes r_j =
+    /// j h (even j corners, odd j midsides), in contact out to c = 0.5 and sticking where
+    /// `sticks(j, r_j)`. The ring weights 2π ∫ N_j r dr are 2π r_j 2h/3 at a corner, 2π r_j 4h/3
+    /// at a midside, 0 on the axis (Simpson's rule, exact for the linear integrand: they sum to
+    /// π r² at a corner), as fem-axisym's.
+    fn on_quadratic_rings(sticks: impl Fn(usize, f64) -> bool) -> f64 {
+        let (h, c) = (0.01, 0.5);
+        let radii: Vec<f64> = (0..80).map(|j| f64::from(j) * h).collect();
+        let weights: Vec<f64> = radii
             .iter()
             .enumerate()
             .map(|(j, &r)| std::f64::consts::TAU * r * h * if j % 2 == 0 { 2.0 / 3.0 } else { 4.0 / 3.0 })
             .collect();
-        (radii, weights)
+        let pressure: Vec<f64> = radii.iter().map(|&r| f64::from(r <= c + 1e-9)).collect();
+        let stick: Vec<bool> = radii.iter().enumerate().map(|(j, &r)| sticks(j, r)).collect();
+        stick_radius(c, &weights, &pressure, &stick)
     }
 
     #[test]
@@ -220,36 +225,21 @@ mod tests {
         // fem-axisym's stick edge on the paper path (step 376, c_max/40): a band of alternating
         // flags, the corners sticking and the midsides slipping. Here stick on r < 0.3, the band
         // 0.3 ≤ r < 0.4 (corners stick), slip out to c = 0.5.
-        let (h, c) = (0.01, 0.5);
-        let (radii, weights) = quadratic_rings(h, 80);
-        let pressure: Vec<f64> = radii.iter().map(|&r| f64::from(r <= c + 1e-9)).collect();
-        let stick: Vec<bool> = radii
-            .iter()
-            .enumerate()
-            .map(|(j, &r)| r < 0.3 - 1e-9 || (r < 0.4 - 1e-9 && j % 2 == 0))
-            .collect();
-        let b = stick_radius(c, &weights, &pressure, &stick);
+        let b = on_quadratic_rings(|j, r| r < 0.3 - 1e-9 || (r < 0.4 - 1e-9 && j % 2 == 0));
         // The band counts at the corners' third of its area: b is the radius of the disc of that
-        // area, √(0.3² + (0.4² − 0.3²)/3) = 0.3367, to the spacing (measured 0.3305) ...
+        // area, √(0.3² + (0.4² − 0.3²)/3) = 0.3367, to the spacing h = 0.01 (measured 0.3305) ...
         let equal_area = (0.09_f64 + (0.16 - 0.09) / 3.0).sqrt();
-        assert!((b - equal_area).abs() < h, "{b}");
+        assert!((b - equal_area).abs() < 0.01, "{b}");
         // ... where the outermost sticking node, 0.38, reads the band as sticking.
-        assert!(b < 0.38 - 4.0 * h, "{b}");
+        assert!(b < 0.34, "{b}");
     }
 
     #[test]
     fn a_slipping_centre_reads_as_the_disc_of_the_sticking_area() {
         // A slip patch r < 0.1 inside a sticking annulus 0.1 ≤ r < 0.3 (c = 0.5): the measure is
-        // the disc of the annulus's area, √(0.3² − 0.1²) = 0.2828, to the spacing (measured
-        // 0.2786); the outermost sticking node would read 0.29.
-        let (h, c) = (0.01, 0.5);
-        let (radii, weights) = quadratic_rings(h, 80);
-        let pressure: Vec<f64> = radii.iter().map(|&r| f64::from(r <= c + 1e-9)).collect();
-        let stick: Vec<bool> = radii
-            .iter()
-            .map(|r| (0.1 - 1e-9..0.3 - 1e-9).contains(r))
-            .collect();
-        let b = stick_radius(c, &weights, &pressure, &stick);
-        assert!((b - (0.09_f64 - 0.01).sqrt()).abs() < h, "{b}");
+        // the disc of the annulus's area, √(0.3² − 0.1²) = 0.2828, to the spacing h = 0.01
+        // (measured 0.2786); the outermost sticking node would read 0.29.
+        let b = on_quadratic_rings(|_, r| (0.1 - 1e-9..0.3 - 1e-9).contains(&r));
+        assert!((b - (0.09_f64 - 0.01).sqrt()).abs() < 0.01, "{b}");
     }
 }
