@@ -1,5 +1,5 @@
 //! The contact measures agree with themselves: along the paper's path the stick radius never
-//! exceeds the contact radius on any solver that reports both (bem, fem-3d: one
+//! exceeds the contact radius on any solver that reports both (bem, fem-axisym, fem-3d: one
 //! measure, c √(stick area / contact area), `fit::stick`; mdr: the bed's stick edge within Hertz's
 //! contact), equals it at full stick and lies below it in partial slip, and the BEM reports the
 //! slip it computes in its surface fields.
@@ -12,7 +12,7 @@ use spherecontact::analytic::mdr::Mdr;
 use spherecontact::bem::Bem;
 use spherecontact::case::Case;
 use spherecontact::external::toolchain::{Tool, Toolchain};
-use spherecontact::fem::FemSolid3d;
+use spherecontact::fem::{FemAxisym, FemSolid3d};
 use spherecontact::path::LoadingPath;
 use spherecontact::solver::{self, Solver};
 
@@ -59,8 +59,8 @@ fn the_finite_element_stick_radius_never_exceeds_the_contact_radius() {
     // Coarse meshes (a few seconds each): the bound holds at any resolution.
     let scene = paper(2);
     let c = scene.max_contact_radius();
-    // fem-axisym keeps its outermost-sticking-node measure for now: ported to the shared one, its
-    // paper-path stick radius left mdr-domain's by 4.7e-5 m (tolerance 2.5e-5), not yet understood.
+    let history = solver::run(&FemAxisym::with_pole_size(c / 10.0), &scene).unwrap();
+    check_stick_within_contact("fem-axisym", &history);
     if Toolchain::default().require(Tool::Gmsh).is_err() {
         eprintln!("gmsh is not installed, fem-3d is not available: fem-3d not checked");
         return;

@@ -40,9 +40,9 @@ fn worst_stick(h: &History, reference: &History, friction: f64) -> f64 {
 }
 
 /// fem-axisym on the ladder c_max/10, c_max/20, c_max/40 along `scene`'s path, each rung's stick
-/// radius held within one contact-line element of the reference's, its Q error and raw offset
-/// printed under `label`.
-fn ladder(label: &str, scene: &Scene, reference: &History, plain: &History) -> Vec<History> {
+/// radius held within `elements` contact-line elements of the reference's, its Q error and raw
+/// offset printed under `label`.
+fn ladder(label: &str, scene: &Scene, reference: &History, plain: &History, elements: f64) -> Vec<History> {
     let c = scene.max_contact_radius();
     [10.0, 20.0, 40.0]
         .iter()
@@ -56,10 +56,10 @@ fn ladder(label: &str, scene: &Scene, reference: &History, plain: &History) -> V
                 worst_q(&h, plain),
                 stick / (c / n)
             );
-            // Reason: the stick edge lies between the last sticking and the first slipping node,
-            // and the reference's edge is the exact one: one contact-line element.
+            // Reason: see the callers (the stick radius is fit::stick's c √(stick area/contact
+            // area) of the nodes' ring weights, the reference's edge the exact one).
             assert!(
-                stick <= c / n,
+                stick <= elements * c / n,
                 "{label}, pole c/{n}: stick radius off by {stick:e} m"
             );
             h
@@ -72,7 +72,8 @@ fn q_on_the_cattaneo_path_converges_and_meets_the_finite_body_reference() {
     let scene = cattaneo();
     let reference = run(&MdrDomain::default(), &scene).unwrap();
     let plain = run(&spherecontact::analytic::mdr::Mdr::default(), &scene).unwrap();
-    let ladder = ladder("Cattaneo path", &scene, &reference, &plain);
+    // The stick edge lies between the last sticking and the first slipping node: one element.
+    let ladder = ladder("Cattaneo path", &scene, &reference, &plain, 1.0);
     // Measured order 1.14 (1.09e-3, then 4.9e-4 of the peak).
     friction::assert_first_order("Cattaneo path", &ladder);
     // Against the reference: the bound is 5e-3 of the peak at c_max/40. What is left
@@ -95,7 +96,10 @@ fn q_along_the_paper_path_converges_and_meets_the_finite_body_reference() {
     let scene = common::paper_scene_with_substeps(10);
     let reference = run(&MdrDomain::default(), &scene).unwrap();
     let plain = run(&spherecontact::analytic::mdr::Mdr::default(), &scene).unwrap();
-    let ladder = ladder("paper path", &scene, &reference, &plain);
+    // The stick edge is a band up to four elements wide in which the corners stick and the
+    // midsides slip, counted at the corners' third of its ring weight (cases/paper-fig7.toml,
+    // fit::stick): two elements; measured 0.85, 0.74, 1.08 elements at c/10, c/20, c/40.
+    let ladder = ladder("paper path", &scene, &reference, &plain, 2.0);
     // Measured order 2.10 (2.5e-3, then 5.8e-4 of the peak), as on the whole path.
     friction::assert_first_order("paper path", &ladder);
     // Reason: the bound, 0.5 % of the peak |Q| at pole size c_max/40, at every step.

@@ -173,17 +173,18 @@ fn bound_violation(gradient: &[f64], traction: &[f64], g: f64, m: usize, i: usiz
 }
 
 /// Projects point `i` of `q` onto its set scaled by `g` (a disc or an interval: the same radial
-/// scaling); true when it lies on the bound.
-fn project_at(q: &mut [f64], m: usize, i: usize, g: f64) -> bool {
+/// scaling); true when it lies on the bound or within `margin` of it (a traction).
+fn project_at(q: &mut [f64], m: usize, i: usize, g: f64, margin: f64) -> bool {
     let norm = norm_at(q, m, i);
     if norm > g {
         scale_at(q, m, i, if norm > 0.0 { g / norm } else { 0.0 });
     }
-    norm >= g * (1.0 - STICK_MARGIN)
+    norm >= g - margin.max(STICK_MARGIN * g)
 }
 
 /// A point whose |q_i| is within this fraction of g_i lies on the bound (slips): the projection
-/// puts slipping points exactly on it, so this only absorbs rounding.
+/// puts slipping points exactly on it, so this absorbs rounding (the iterative method widens it
+/// to its tolerance, see [`CoulombProblem::solve_iterative`]).
 const STICK_MARGIN: f64 = 1e-6;
 
 /// The first curvature estimate of an iterative solve is λ_max over this (backtracking raises it
@@ -226,7 +227,13 @@ impl CoulombProblem<'_> {
     ///
     /// Stops when the step moves no point by more than `tolerance · g_max · λ_max / L` (the
     /// condition on G of `tolerance · λ_max · g_max` of the module doc, whatever L); the points
-    /// within [`STICK_MARGIN`] of their bound slip.
+    /// within `tolerance · g_max` of their bound slip. The iterate approaches the bound from
+    /// inside, so a point the exact solution holds on it (slipping) may stop a hair short: where
+    /// a newly loaded annulus slips by a small margin (dQ/dP a few per cent above μ, the paper
+    /// path's P1 → P2) it stopped 1e-5 of g_i inside the bound at 128², and a margin of rounding
+    /// alone ([`STICK_MARGIN`]) flagged half the annulus as sticking (the stick radius at
+    /// position 2 went from 7.09e-4 to 7.62e-4 m with f32 products; MDR: 7.03e-4 m). A point
+    /// within the tolerance of its bound cannot be told from one on it: it slips.
     pub fn solve_iterative(&mut self, state: &mut CoulombState) -> Result<CoulombCost, CoulombError> {
         let (a, k, g_max) = self.sizes();
         let (m, n) = (a.len(), a.len() * k);
@@ -311,8 +318,8 @@ impl CoulombProblem<'_> {
                 state.traction.copy_from_slice(&next);
                 state.displacement.copy_from_slice(&next_product);
                 for i in 0..m {
-                    state.slipping[i] =
-                        self.bound[i] > 0.0 && project_at(&mut state.traction, m, i, self.bound[i]);
+                    state.slipping[i] = self.bound[i] > 0.0
+                        && project_at(&mut state.traction, m, i, self.bound[i], tolerance);
                 }
                 state.curvature = Some(curvature);
                 return Ok(cost);

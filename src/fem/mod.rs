@@ -9,6 +9,7 @@
 //! | [`factor`] | sparse Cholesky with a fill-reducing ordering |
 //! | [`ordering`] | the elimination order with the contact DOFs last (their Schur complement is the factor's trailing block) |
 //! | [`condense`] | the dense compliance of a factored body at its contact DOFs |
+//! | [`nodal`] | element values (stresses) averaged at the nodes, for the VTU fields |
 //! | [`pole`] | the resolution of a FEM solver: a pole element size (`c/N` or a length) and its ladder |
 //! | [`axisym`] | the axisymmetric contact model and the `fem-axisym` solver |
 //! | [`solid3d`] | the 3D contact model (10-node tetrahedra, condensed contact surface) and the `fem-3d` solver |
@@ -26,6 +27,7 @@ pub mod condense;
 pub mod element;
 pub mod factor;
 pub mod mesh;
+pub mod nodal;
 pub mod ordering;
 pub mod pole;
 pub mod solid3d;

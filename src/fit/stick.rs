@@ -22,7 +22,13 @@
 //!   between the last sticking and the first slipping point, so b is resolved to the spacing of
 //!   the points there (a ring, a panel, a node spacing), plus c's relative error times b;
 //! - it assumes no shape of the traction: it holds after reversals and in Masing loops, where the
-//!   deficit μp − |q| inside the stick zone is not one square root.
+//!   deficit μp − |q| inside the stick zone is not one square root;
+//! - where the zone is ragged or has a hole it reads the sticking area, not its outer edge: a band
+//!   of alternating flags counts at the sticking points' share of its weight (quadratic
+//!   elements' corners carry a third of a band's ring weight, the midsides two thirds: where the
+//!   corners stick, b falls two thirds of the way into the band), and a slipping centre takes
+//!   its area off the disc. The outermost sticking point would read both as sticking out to the
+//!   band's or the annulus's outer edge.
 //!
 //! The alternative, the √-edge fit of the deficit μp − |q| = μ p0/c · √(b² − r²) (Cattaneo) like
 //! the pressure's at c, resolves b below the spacing in monotonic loading from rest, but after a
@@ -194,5 +200,46 @@ mod tests {
         let b = stick_radius(0.5 + 0.5 * d, &weights, &pressure, &stick);
         // The rings tile the discs exactly: b is the stick rings' outer radius, 0.3 + d/2.
         assert!((b - (0.3 + 0.5 * d)).abs() < 1e-12, "{b}");
+    }
+
+    /// The stick radius of a radial profile on quadratic elements of length 2h = 0.02, nodes r_j =
+    /// j h (even j corners, odd j midsides), in contact out to c = 0.5 and sticking where
+    /// `sticks(j, r_j)`. The ring weights 2π ∫ N_j r dr are 2π r_j 2h/3 at a corner, 2π r_j 4h/3
+    /// at a midside, 0 on the axis (Simpson's rule, exact for the linear integrand: they sum to
+    /// π r² at a corner), as fem-axisym's.
+    fn on_quadratic_rings(sticks: impl Fn(usize, f64) -> bool) -> f64 {
+        let (h, c) = (0.01, 0.5);
+        let radii: Vec<f64> = (0..80).map(|j| f64::from(j) * h).collect();
+        let weights: Vec<f64> = radii
+            .iter()
+            .enumerate()
+            .map(|(j, &r)| std::f64::consts::TAU * r * h * if j % 2 == 0 { 2.0 / 3.0 } else { 4.0 / 3.0 })
+            .collect();
+        let pressure: Vec<f64> = radii.iter().map(|&r| f64::from(r <= c + 1e-9)).collect();
+        let stick: Vec<bool> = radii.iter().enumerate().map(|(j, &r)| sticks(j, r)).collect();
+        stick_radius(c, &weights, &pressure, &stick)
+    }
+
+    #[test]
+    fn a_ragged_stick_edge_counts_at_its_weights_share() {
+        // fem-axisym's stick edge on the paper path (step 376, c_max/40): a band of alternating
+        // flags, the corners sticking and the midsides slipping. Here stick on r < 0.3, the band
+        // 0.3 ≤ r < 0.4 (corners stick), slip out to c = 0.5.
+        let b = on_quadratic_rings(|j, r| r < 0.3 - 1e-9 || (r < 0.4 - 1e-9 && j % 2 == 0));
+        // The band counts at the corners' third of its area: b is the radius of the disc of that
+        // area, √(0.3² + (0.4² − 0.3²)/3) = 0.3367, to the spacing h = 0.01 (measured 0.3305) ...
+        let equal_area = (0.09_f64 + (0.16 - 0.09) / 3.0).sqrt();
+        assert!((b - equal_area).abs() < 0.01, "{b}");
+        // ... where the outermost sticking node, 0.38, reads the band as sticking.
+        assert!(b < 0.34, "{b}");
+    }
+
+    #[test]
+    fn a_slipping_centre_reads_as_the_disc_of_the_sticking_area() {
+        // A slip patch r < 0.1 inside a sticking annulus 0.1 ≤ r < 0.3 (c = 0.5): the measure is
+        // the disc of the annulus's area, √(0.3² − 0.1²) = 0.2828, to the spacing h = 0.01
+        // (measured 0.2786); the outermost sticking node would read 0.29.
+        let b = on_quadratic_rings(|_, r| (0.1 - 1e-9..0.3 - 1e-9).contains(&r));
+        assert!((b - (0.09_f64 - 0.01).sqrt()).abs() < 0.01, "{b}");
     }
 }

@@ -7,6 +7,7 @@ use faer::Mat;
 use super::model::{BodyModel, Model};
 use crate::fem::element::tri6::{self, Lame, NODES};
 use crate::fem::mesh::meridian::Mesh;
+use crate::fem::nodal;
 use crate::vtu::{CellType, Grid, PointData, VtuError};
 
 /// Nodal displacements (u_r, u_z) of `body` under contact ring forces `forces` at its candidates,
@@ -30,23 +31,15 @@ pub fn displacement(body: &BodyModel, forces: &[f64], shift: f64) -> Vec<[f64; 2
 /// Stress (σ_rr, σ_zz, σ_θθ, τ_rz) at the nodes: each element's value at the node, averaged
 /// over the elements sharing it.
 pub fn nodal_stress(mesh: &Mesh, lame: Lame, u: &[[f64; 2]]) -> Vec<[f64; 4]> {
-    let mut sum = vec![[0.0; 4]; mesh.nodes.len()];
-    let mut count = vec![0u32; mesh.nodes.len()];
-    for t in &mesh.triangles {
+    let samples = mesh.triangles.iter().flat_map(|t| {
         let x = t.map(|n| mesh.nodes[n]);
         let ue = t.map(|n| u[n]);
-        for (k, at) in NODES.iter().enumerate() {
-            if let Some(strain) = tri6::strain(&x, &ue, *at) {
-                let s = lame.stress(strain);
-                (0..4).for_each(|c| sum[t[k]][c] += s[c]);
-                count[t[k]] += 1;
-            }
-        }
-    }
-    sum.iter()
-        .zip(&count)
-        .map(|(s, &c)| s.map(|v| v / f64::from(c.max(1))))
-        .collect()
+        NODES
+            .iter()
+            .zip(t)
+            .filter_map(move |(at, &n)| tri6::strain(&x, &ue, *at).map(|strain| (n, lame.stress(strain))))
+    });
+    nodal::average(mesh.nodes.len(), samples)
 }
 
 /// Writes each body's displacement and stress under the contact ring forces `forces` (approach `approach`,

@@ -5,7 +5,8 @@
 //! once per mesh) by the shared engine. It reports P from the multipliers (Σλ) and checks it
 //! against the reaction on each body's far boundary; c and p0 come from [`super::pressure`] (p0
 //! is a fit to the nodal pressures near the axis, not the axis node's multiplier); Q is the sum
-//! of the n = 1 ring forces and the stick radius the outermost loaded node that sticks.
+//! of the n = 1 ring forces and the stick radius every solver's measure, c √(|S| / |A|) of the
+//! nodes' ring weights ([`crate::fit::stick::stick_radius`]).
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -23,6 +24,7 @@ use crate::external::toolchain::Toolchain;
 use crate::fem::element::tri6::Integration;
 use crate::fem::factor::Ordering;
 use crate::fem::pole::{self, PoleSized};
+use crate::fit::stick;
 use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{PoleLimits, ResolutionError};
@@ -290,7 +292,10 @@ impl Run {
         let (tangential_force, stick_radius) = match self.mode {
             Mode::Solved => (
                 Some(self.contact.tangential_force(0)),
-                (force > 0.0).then(|| tangential::stick_radius(&model.radii, &forces, &self.contact.stick())),
+                (force > 0.0).then(|| {
+                    let c = profile.radius.unwrap_or(0.0);
+                    stick::stick_radius(c, &model.weights, &profile.pressure, &self.contact.stick())
+                }),
             ),
             Mode::Zero => (Some(0.0), None),
             Mode::Absent | Mode::NotApplicable(_) => (None, None),

@@ -161,33 +161,3 @@ impl Shear {
 pub fn shift(reduction: Reduction, delta_t: f64) -> f64 {
     reduction.approach(delta_t)
 }
-
-/// The stick radius: the largest radius of a loaded node that sticks (0 when every loaded node
-/// slips), from the engine's stick flags and the normal forces.
-pub fn stick_radius(radii: &[f64], normal: &[f64], stick: &[bool]) -> f64 {
-    radii
-        .iter()
-        .zip(normal)
-        .zip(stick)
-        .filter(|((_, &p), &s)| p > 0.0 && s)
-        .map(|((&r, _), _)| r)
-        .fold(0.0, f64::max)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_stick_radius_is_the_outermost_loaded_sticking_node() {
-        let radii = [0.0, 1.0, 2.0, 3.0, 4.0];
-        let normal = [1.0, 1.0, 1.0, 1.0, 0.0];
-        assert_eq!(
-            stick_radius(&radii, &normal, &[true, true, false, false, true]),
-            1.0
-        );
-        assert_eq!(stick_radius(&radii, &normal, &[false; 5]), 0.0);
-        // A node out of contact (λ = 0) never counts, whatever its flag.
-        assert_eq!(stick_radius(&radii, &normal, &[true; 5]), 3.0);
-    }
-}

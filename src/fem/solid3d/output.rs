@@ -10,6 +10,7 @@ use super::model::Model;
 use crate::fem::element::tet10::{self, VTK_ORDER};
 use crate::fem::element::tri6::Lame;
 use crate::fem::mesh::solid::SolidMesh;
+use crate::fem::nodal;
 use crate::vtu::{CellType, Grid, PointData, VtuError};
 
 /// The multipliers of one contact state, acting on the modelled body (force-like: λ_j = w_j p_j).
@@ -52,23 +53,14 @@ pub fn displacement(model: &Model, loads: Loads<'_>) -> Vec<[f64; 3]> {
 /// Stress (σ_xx, σ_yy, σ_zz, τ_yz, τ_xz, τ_xy) at the nodes: each element's value at the node,
 /// averaged over the elements sharing it.
 pub fn nodal_stress(mesh: &SolidMesh, lame: Lame, u: &[[f64; 3]]) -> Vec<[f64; 6]> {
-    let mut sum = vec![[0.0; 6]; mesh.nodes.len()];
-    let mut count = vec![0u32; mesh.nodes.len()];
-    for (e, t) in mesh.tetrahedra.iter().enumerate() {
+    let samples = mesh.tetrahedra.iter().enumerate().flat_map(|(e, t)| {
         let x = mesh.coords(e);
         let ue = t.map(|n| u[n]);
-        for (k, at) in tet10::NODES.iter().enumerate() {
-            if let Some(strain) = tet10::strain(&x, &ue, *at) {
-                let s = tet10::stress(lame, strain);
-                (0..6).for_each(|c| sum[t[k]][c] += s[c]);
-                count[t[k]] += 1;
-            }
-        }
-    }
-    sum.iter()
-        .zip(&count)
-        .map(|(s, &c)| s.map(|v| v / f64::from(c.max(1))))
-        .collect()
+        tet10::NODES.iter().zip(t).filter_map(move |(at, &n)| {
+            tet10::strain(&x, &ue, *at).map(|strain| (n, tet10::stress(lame, strain)))
+        })
+    });
+    nodal::average(mesh.nodes.len(), samples)
 }
 
 /// The von Mises stress of (σ_xx, σ_yy, σ_zz, τ_yz, τ_xz, τ_xy).
