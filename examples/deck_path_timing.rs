@@ -21,7 +21,7 @@ use std::path::Path;
 
 use spherecontact::bench::{self, worst_error};
 use spherecontact::case::Case;
-use spherecontact::history::{History, Quantity, StepResult};
+use spherecontact::history::{History, Quantity};
 use spherecontact::registry;
 use spherecontact::solver::{self, Solver};
 
@@ -130,9 +130,7 @@ fn main() {
                 .filter_map(|(n, h)| Some((n.to_owned(), h.clone()?))),
         )
         .collect();
-    let quantities: [(&str, fn(&StepResult) -> Option<f64>); 2] =
-        [("P", |r| r.normal_force), ("Q", |r| r.tangential_force)];
-    for (title, quantity) in quantities {
+    for (title, quantity) in [("P", Quantity::NormalForce), ("Q", Quantity::TangentialForce)] {
         println!("\n{title} [N] at the path positions");
         print!("{:<15}", "position");
         rows.iter().for_each(|(name, _)| print!(" {name:>15}"));
@@ -140,7 +138,7 @@ fn main() {
         for position in 0..scene.path.positions().len() {
             print!("{position:<15}");
             for (_, h) in &rows {
-                let value = h.at_position(position).and_then(quantity);
+                let value = h.at_position(position).and_then(|r| quantity.of(r));
                 print!(" {:>15}", value.map_or_else(|| "—".to_owned(), newtons));
             }
             println!();
