@@ -167,7 +167,7 @@ fn solve(solver: &str, n: f64, tolerance: Option<f64>, scene: &Scene) -> History
 fn neighbours(view: &FieldView) -> Vec<Vec<usize>> {
     let n = view.len();
     let mut around = vec![Vec::new(); n];
-    match &view.layout {
+    match view.layout() {
         Layout::Triangles(triangles) => {
             for t in triangles {
                 for &a in t {

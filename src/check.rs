@@ -327,7 +327,7 @@ fn lookup<'a>(histories: &'a Histories, name: &str) -> Result<&'a History, (Verd
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::history::{Metadata, SurfaceField};
+    use crate::history::{Layout, Metadata, SurfaceField};
 
     fn history(values: &[Option<f64>]) -> History {
         History {
@@ -428,6 +428,7 @@ mod tests {
             pressure: vec![1.0; 4],
             traction: Some(vec![[1.0, qy], [1.0, -qy], [1.0, -qy], [1.0, qy]]),
             stick: Some(vec![true; 4]),
+            layout: Layout::Grid { spacing: 1.0 },
             ..SurfaceField::default()
         };
         let mut h = histories(&[Some(1.0), Some(1.0)], &[Some(1.0), Some(1.0)]);

@@ -229,11 +229,55 @@ pub struct SurfaceField {
     pub slip: Option<Vec<[f64; 2]>>,
     /// Which components of `traction` and `slip` the solver resolved.
     pub components: TangentialComponents,
-    /// The samples' triangulation (indices into `points`) for fields on a surface mesh: the
-    /// layout reports draw them on; `None` for grids and profiles, whose layout the samples
-    /// themselves show.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub triangles: Option<Vec<[usize; 3]>>,
+    /// How the samples cover the contact plane: what reports draw them on, what areas the map
+    /// measures ([`crate::map_measure`]) give them.
+    pub layout: Layout,
+}
+
+/// How a surface field's samples cover the contact plane.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Layout {
+    /// Samples along the x axis of an axisymmetric (or 1D) solution: the same on every radius.
+    #[default]
+    Profile,
+    /// The centres of square panels of side `spacing` [m].
+    Grid {
+        /// The panel side [m].
+        spacing: f64,
+    },
+    /// The vertices of a triangulated contact surface (indices into the field's points), values
+    /// at the vertices.
+    Triangles(Vec<[usize; 3]>),
+}
+
+impl Layout {
+    /// The area each of `points` stands for [m²] (a panel's, or a third of the triangles around
+    /// a vertex); `None` for a profile.
+    pub fn areas(&self, points: &[[f64; 2]]) -> Option<Vec<f64>> {
+        match self {
+            Layout::Profile => None,
+            Layout::Grid { spacing } => Some(vec![spacing * spacing; points.len()]),
+            Layout::Triangles(triangles) => {
+                let mut areas = vec![0.0; points.len()];
+                for t in triangles {
+                    let area = crate::fit::triangle_area(t.map(|i| points[i]));
+                    for &i in t {
+                        areas[i] += area / 3.0;
+                    }
+                }
+                Some(areas)
+            }
+        }
+    }
+
+    /// The triangles, for a mesh.
+    pub fn triangles(&self) -> Option<&[[usize; 3]]> {
+        match self {
+            Layout::Triangles(t) => Some(t),
+            _ => None,
+        }
+    }
 }
 
 /// A solver's result along a whole path.
@@ -269,5 +313,30 @@ impl History {
     /// The row reaching path position `position`, if the path has it.
     pub fn at_position(&self, position: usize) -> Option<&StepResult> {
         self.steps.iter().find(|r| r.position == Some(position))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_layout_gives_areas_and_names_itself_in_json() {
+        // The unit square as two triangles: each corner of the diagonal carries a third of both.
+        let points = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]];
+        let mesh = Layout::Triangles(vec![[0, 1, 2], [1, 3, 2]]);
+        assert_eq!(
+            mesh.areas(&points),
+            Some(vec![1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0])
+        );
+        assert_eq!(Layout::Grid { spacing: 0.5 }.areas(&points), Some(vec![0.25; 4]));
+        assert_eq!(Layout::Profile.areas(&points), None);
+        let json = |layout: &Layout| serde_json::to_string(layout).unwrap();
+        assert_eq!(json(&Layout::Profile), r#""profile""#);
+        assert_eq!(
+            json(&Layout::Grid { spacing: 0.5 }),
+            r#"{"grid":{"spacing":0.5}}"#
+        );
+        assert_eq!(json(&mesh), r#"{"triangles":[[0,1,2],[1,3,2]]}"#);
     }
 }

@@ -125,7 +125,7 @@ fn interpolate(profile: &[(f64, f64)], r: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::history::{StepResult, TangentialComponents};
+    use crate::history::{Layout, StepResult, TangentialComponents};
 
     fn history(points: &[f64], pressure: impl Fn(f64) -> f64, c: f64) -> History {
         History {
@@ -143,7 +143,7 @@ mod tests {
                 stick: None,
                 slip: None,
                 components: TangentialComponents::AlongX,
-                triangles: None,
+                layout: Layout::Profile,
             }],
             ..History::default()
         }

@@ -4,7 +4,7 @@
 //! Format: VTK File Formats, "XML File Formats: UnstructuredGrid" (Kitware, VTK User's Guide,
 //! 11th ed., ch. 19). Written atomically through [`crate::io::write_atomically`].
 
-use crate::history::SurfaceField;
+use crate::history::{Layout, SurfaceField};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -202,9 +202,12 @@ fn escape(name: &str) -> String {
 impl Grid {
     /// A surface field sampled on a full rectangular grid, as quads joining neighbouring samples
     /// on the plane z = 0, with point data `pressure`, `traction` (q_x, q_y, 0) and `stick`
-    /// (1 stick, 0 slip, −1 out of contact); `None` when the samples are not such a grid (a
-    /// profile along the axis, for instance).
+    /// (1 stick, 0 slip, −1 out of contact); `None` when the field's layout is not a grid (a
+    /// profile along the axis, triangles) or its samples do not fill the rectangle.
     pub fn of_surface_field(field: &SurfaceField) -> Option<Grid> {
+        if !matches!(field.layout, Layout::Grid { .. }) {
+            return None;
+        }
         let axis = |k: usize| {
             let mut values: Vec<f64> = field.points.iter().map(|p| p[k]).collect();
             values.sort_by(f64::total_cmp);
@@ -264,7 +267,7 @@ impl Grid {
 
 #[cfg(test)]
 mod tests {
-    use crate::history::{SurfaceField, TangentialComponents};
+    use crate::history::{Layout, SurfaceField, TangentialComponents};
 
     #[test]
     fn a_profile_is_not_a_grid_and_a_grid_becomes_quads() {
@@ -276,7 +279,7 @@ mod tests {
             stick: None,
             slip: None,
             components: TangentialComponents::InPlane,
-            triangles: None,
+            layout: Layout::Profile,
         };
         assert!(Grid::of_surface_field(&profile).is_none());
         let points: Vec<[f64; 2]> = (0..12).map(|k| [(k % 4) as f64, (k / 4) as f64]).collect();
@@ -291,7 +294,7 @@ mod tests {
             slip: None,
             components: TangentialComponents::InPlane,
             points,
-            triangles: None,
+            layout: Layout::Grid { spacing: 1.0 },
         };
         let grid = Grid::of_surface_field(&field).unwrap();
         assert_eq!(grid.cells.len(), 3 * 2, "4 × 3 samples make 3 × 2 quads");

@@ -27,7 +27,7 @@
 //! reports itself not applicable otherwise (MDR covers varying loads).
 
 use crate::hertz::Hertz;
-use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
+use crate::history::{History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -222,7 +222,7 @@ fn surface_field(
         stick: Some(radii.iter().map(|&r| r < stick_radius.unwrap_or(c)).collect()),
         slip: None,
         components: TangentialComponents::AlongX,
-        triangles: None,
+        layout: Layout::Profile,
     }
 }
 

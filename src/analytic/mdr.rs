@@ -35,7 +35,7 @@
 
 use crate::driver::{self, PathIncrement, PathModel};
 use crate::hertz::Hertz;
-use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
+use crate::history::{History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MAX_MDR_SPRINGS;
 use crate::path::Step;
 use crate::resolution::{self, ResolutionError};
@@ -310,7 +310,7 @@ impl SpringBed {
             stick: Some(radii.iter().map(|&r| r < stick_radius).collect()),
             slip: None,
             components: TangentialComponents::AlongX,
-            triangles: None,
+            layout: Layout::Profile,
         }
     }
 }

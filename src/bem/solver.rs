@@ -4,7 +4,7 @@
 use serde_json::json;
 
 use crate::driver::{self, PathIncrement, PathModel};
-use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
+use crate::history::{History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MAX_BEM_GRID;
 use crate::path::Step;
 use crate::resolution::{self, ResolutionError};
@@ -208,7 +208,7 @@ fn surface_field(fields: &PositionFields) -> SurfaceField {
         // shift, so it is the relative slip (body 1 − body 2), as fem-axisym and fem-3d report it.
         slip: Some(s.slip.clone()),
         components: TangentialComponents::InPlane,
-        triangles: None,
+        layout: Layout::Grid { spacing: s.grid.h },
     }
 }
 

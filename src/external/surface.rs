@@ -15,7 +15,7 @@
 
 use super::readback;
 use crate::fit::profile as pressure;
-use crate::history::{SurfaceField, TangentialComponents};
+use crate::history::{Layout, SurfaceField, TangentialComponents};
 
 /// The columns of `surface.csv`, in order.
 pub const SURFACE_COLUMNS: [&str; 8] = [
@@ -124,7 +124,7 @@ impl Surface {
             stick: tangential.then(|| self.nodes.iter().map(|n| n.stick).collect()),
             slip: tangential.then(|| self.nodes.iter().map(|n| [n.slip, 0.0]).collect()),
             components: TangentialComponents::AlongX,
-            triangles: None,
+            layout: Layout::Profile,
         }
     }
 }

@@ -13,7 +13,7 @@
 use super::readback;
 use crate::fit::stick::{self, StickZone};
 use crate::fit::surface::{self, Measures};
-use crate::history::{SurfaceField, TangentialComponents};
+use crate::history::{Layout, SurfaceField, TangentialComponents};
 use crate::mirror::Mirror;
 
 /// The columns of the 3D `surface.csv`, in order.
@@ -135,7 +135,7 @@ impl Surface3 {
             stick: tangential.then(|| mirror.even(&nodes.iter().map(|n| n.stick).collect::<Vec<_>>())),
             slip: tangential.then(|| pairs(|n| n.slip)),
             components: TangentialComponents::InPlane,
-            triangles: Some(mirror.triangles(triangles)),
+            layout: Layout::Triangles(mirror.triangles(triangles)),
         }
     }
 }
@@ -281,7 +281,7 @@ mod tests {
         let sum_qy: f64 = q.iter().map(|t| t[1]).sum();
         assert!(sum_qy.abs() < 1e-6, "q_y is odd in y: {sum_qy}");
         assert!(f.points.iter().any(|p| p[1] < 0.0));
-        assert_eq!(f.triangles.unwrap().len(), 2);
+        assert_eq!(f.layout.triangles().map(<[_]>::len), Some(2));
         assert_eq!(parse_triangles("a,b,c\n0,1,2\n", 3).unwrap(), [[0, 1, 2]]);
         let e = parse_triangles("a,b,c\n0,1,3\n", 3).unwrap_err();
         assert!(e.contains("row 1") && e.contains("c = `3`"), "{e}");

@@ -4,7 +4,7 @@
 //!
 //! | file | concept |
 //! |---|---|
-//! | this file | the least-squares line, the √-edge of a field along a ray |
+//! | this file | the least-squares line, the √-edge of a field along a ray, a triangle's area |
 //! | [`profile`] | c and p0 of a radial profile from nodal ring forces |
 //! | [`recovery`] | a mesh's contact fields recovered from their multipliers (hat averages) |
 //! | [`surface`] | c and p0 of scattered nodes on triangles (second moment) |
@@ -14,6 +14,12 @@ pub mod profile;
 pub mod recovery;
 pub mod stick;
 pub mod surface;
+
+/// The area of the triangle with vertices `a`, `b`, `c` (x, y) [m²]: half the magnitude of the
+/// cross product of two edges.
+pub fn triangle_area([a, b, c]: [[f64; 2]; 3]) -> f64 {
+    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs()
+}
 
 /// A straight line y = ȳ + slope (x − x̄) fitted by least squares.
 #[derive(Clone, Copy, Debug, PartialEq)]

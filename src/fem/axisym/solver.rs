@@ -25,7 +25,7 @@ use crate::fem::element::tri6::Integration;
 use crate::fem::factor::Ordering;
 use crate::fem::pole::{self, PoleSized};
 use crate::fit::stick;
-use crate::history::{History, Metadata, StepResult, SurfaceField, TangentialComponents};
+use crate::history::{History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{PoleLimits, ResolutionError};
 use crate::scene::Scene;
@@ -262,7 +262,7 @@ impl Run {
                 stick: solved.then(|| self.contact.stick()),
                 slip: solved.then(|| self.slip(model)),
                 components: TangentialComponents::AlongX,
-                triangles: None,
+                layout: Layout::Profile,
             };
             if let Some(dir) = vtu_dir {
                 let stem = format!("{}-fem-axisym-{position}", scene.name);

@@ -21,7 +21,7 @@ use super::output::{self, Loads, SurfaceValues};
 use super::surface::Surface;
 use crate::driver::{PathIncrement, PathModel};
 use crate::fit::stick;
-use crate::history::{StepResult, SurfaceField, TangentialComponents};
+use crate::history::{Layout, StepResult, SurfaceField, TangentialComponents};
 use crate::mirror::Mirror;
 use crate::path::Step;
 use crate::scene::Scene;
@@ -285,7 +285,7 @@ fn mirrored_field(
         stick: frictional.then_some(stick),
         slip: slip.then(|| mirror.odd_y(&values.slip)),
         components: TangentialComponents::InPlane,
-        triangles: Some(mirror.triangles(&surface.triangles)),
+        layout: Layout::Triangles(mirror.triangles(&surface.triangles)),
     }
 }
 

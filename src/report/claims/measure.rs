@@ -184,7 +184,7 @@ impl MapMeasures {
             stick_axes,
             peak,
             axis_difference: axis_difference(view, reach, &|i| Some(magnitude(view.traction(i)?))),
-            axes_alike: !matches!(view.layout, Layout::Triangles(_)),
+            axes_alike: !matches!(view.layout(), Layout::Triangles(_)),
             pressure_max: largest(&|i| view.pressure(i)),
             pressure_axis_difference: axis_difference(view, reach, &|i| Some(view.pressure(i))),
             stick_moments: crate::map_measure::stick_semi_axes(view.field()),
@@ -311,7 +311,7 @@ fn departure(view: &FieldView, md: &dyn Fn(f64) -> f64) -> Option<[f64; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::history::{SurfaceField, TangentialComponents};
+    use crate::history::{Layout, SurfaceField, TangentialComponents};
 
     /// A grid with Cattaneo's traction (q_x only, stick disc of radius a, contact radius c) plus
     /// a transverse part ε·x·y inside the contact.
@@ -339,7 +339,7 @@ mod tests {
             stick: Some(stick),
             slip: None,
             components: TangentialComponents::InPlane,
-            triangles: None,
+            layout: Layout::Grid { spacing: h },
         };
         (field, a, h)
     }

@@ -78,7 +78,7 @@ fn panel(name: &str, view: &FieldView, component: Component) -> Option<MapPanel>
     if values.iter().all(Option::is_none) {
         return None;
     }
-    let cells = match &view.layout {
+    let cells = match view.layout() {
         Layout::Grid { spacing } => Cells::Squares { side: spacing * 1e6 },
         Layout::Triangles(triangles) => Cells::Triangles(triangles.clone()),
         Layout::Profile => return None,

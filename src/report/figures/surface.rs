@@ -1,14 +1,12 @@
 //! The one adapter between the solvers' surface fields ([`SurfaceField`]) and the report: every
 //! figure and every claim reads a field through [`FieldView`], by its layout (a profile along x,
-//! grid panels, or the triangles of a surface mesh: [`Layout`], which the checks share through
-//! [`crate::map_measure`]), so a change of `SurfaceField` is an edit of this file and that one.
+//! grid panels, or the triangles of a surface mesh: the field's [`Layout`]), so a change of `SurfaceField` is an edit of this file and that one.
 //!
 //! Frame (as in `SurfaceField`): origin at the contact centre, x along δt, y across it; the
 //! traction is the one on body 1, signed so that ∫ q_x dA = Q.
 
+pub use crate::history::Layout;
 use crate::history::{History, SurfaceField, TangentialComponents};
-use crate::map_measure::smallest_spacing;
-pub use crate::map_measure::Layout;
 
 /// A half-axis of the contact plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -59,18 +57,17 @@ pub struct Probe {
 #[derive(Clone, Debug, PartialEq)]
 pub struct FieldView<'a> {
     field: &'a SurfaceField,
-    /// How the samples cover the plane.
-    pub layout: Layout,
 }
 
 impl<'a> FieldView<'a> {
-    /// The view of `field`: its own triangles when it has them (a surface mesh), else samples
-    /// all on y = 0 are a profile and anything else a grid of square panels (the BEM's).
+    /// The view of `field`.
     pub fn of(field: &'a SurfaceField) -> Self {
-        Self {
-            field,
-            layout: Layout::of(field),
-        }
+        Self { field }
+    }
+
+    /// How the samples cover the plane.
+    pub fn layout(&self) -> &'a Layout {
+        &self.field.layout
     }
 
     /// The views of every field of `history`, in its order.
@@ -94,7 +91,7 @@ impl<'a> FieldView<'a> {
 
     /// True when the field covers the plane (a grid or triangles), not only the x axis.
     pub fn is_map(&self) -> bool {
-        self.layout != Layout::Profile
+        *self.layout() != Layout::Profile
     }
 
     /// The number of samples.
@@ -163,7 +160,7 @@ impl<'a> FieldView<'a> {
     /// The sample spacing [m]: the panel side, the mean edge of the mesh, or the profile's step:
     /// the resolution of any position read from the field.
     pub fn spacing(&self) -> f64 {
-        match &self.layout {
+        match self.layout() {
             Layout::Grid { spacing } => *spacing,
             Layout::Profile => smallest_spacing(self.field.points.iter().map(|p| p[0])),
             Layout::Triangles(triangles) => {
@@ -181,7 +178,7 @@ impl<'a> FieldView<'a> {
     /// or column through the centre) and a profile (the same on y as on x: axisymmetric);
     /// interpolation in the triangles the axis crosses, every half mesh size, for a mesh.
     pub fn along(&self, axis: HalfAxis) -> Vec<Probe> {
-        match &self.layout {
+        match self.layout() {
             Layout::Profile => self.row(|p| HalfAxis::X.coordinates(p)),
             Layout::Grid { .. } => self.row(|p| axis.coordinates(p)),
             Layout::Triangles(triangles) => {
@@ -206,7 +203,7 @@ impl<'a> FieldView<'a> {
     /// The area each sample stands for [m²] (a panel's, or a third of the triangles around a
     /// vertex); `None` for a profile.
     pub fn areas(&self) -> Option<Vec<f64>> {
-        self.layout.areas(&self.field.points)
+        self.layout().areas(&self.field.points)
     }
 
     /// The field viewed.
@@ -265,13 +262,29 @@ impl<'a> FieldView<'a> {
 
     /// The triangles, for a mesh.
     pub fn triangles(&self) -> Option<&[[usize; 3]]> {
-        self.layout.triangles()
+        self.layout().triangles()
     }
 }
 
 /// The distance between two points [m].
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// The smallest positive spacing between coordinates [m] (0 with fewer than two).
+fn smallest_spacing(coordinates: impl Iterator<Item = f64>) -> f64 {
+    let mut xs: Vec<f64> = coordinates.collect();
+    xs.sort_by(f64::total_cmp);
+    let smallest = xs
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| *d > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    if smallest.is_finite() {
+        smallest
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]
@@ -290,7 +303,7 @@ mod tests {
             slip: None,
             components: TangentialComponents::InPlane,
             points,
-            triangles: None,
+            layout: Layout::Grid { spacing: 0.5 },
         }
     }
 
@@ -298,7 +311,6 @@ mod tests {
     fn a_grid_is_read_along_its_centre_row_and_column() {
         let field = grid();
         let view = FieldView::of(&field);
-        assert_eq!(view.layout, Layout::Grid { spacing: 0.5 });
         let x: Vec<f64> = view.along(HalfAxis::X).iter().map(|p| p.r).collect();
         assert_eq!(x, vec![0.0, 0.5]);
         let y = view.along(HalfAxis::Y);
@@ -319,28 +331,11 @@ mod tests {
             stick: None,
             slip: None,
             components: TangentialComponents::InPlane,
-            triangles: None,
+            layout: Layout::Profile,
         };
         let view = FieldView::of(&field);
-        assert_eq!(view.layout, Layout::Profile);
         assert_eq!(view.along(HalfAxis::X), view.along(HalfAxis::Y));
         assert_eq!(view.spacing(), 1.0);
-    }
-
-    #[test]
-    fn a_field_with_its_own_triangles_is_read_on_them() {
-        // Four samples off the x axis that would otherwise be read as grid panels.
-        let field = SurfaceField {
-            position: 0,
-            points: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]],
-            pressure: vec![1.0, 2.0, 3.0, 4.0],
-            triangles: Some(vec![[0, 1, 2], [1, 3, 2]]),
-            ..SurfaceField::default()
-        };
-        assert_eq!(
-            FieldView::of(&field).layout,
-            Layout::Triangles(vec![[0, 1, 2], [1, 3, 2]])
-        );
     }
 
     #[test]
@@ -354,12 +349,9 @@ mod tests {
             stick: None,
             slip: None,
             components: TangentialComponents::InPlane,
-            triangles: None,
-        };
-        let view = FieldView {
-            field: &field,
             layout: Layout::Triangles(vec![[0, 1, 2], [1, 3, 2]]),
         };
+        let view = FieldView::of(&field);
         let along_y = view.along(HalfAxis::Y);
         let p: Vec<f64> = along_y
             .iter()
