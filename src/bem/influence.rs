@@ -100,10 +100,24 @@ struct VertexTable {
 }
 
 impl VertexTable {
-    fn of(f: impl Fn(f64, f64) -> f64, n: usize, h: f64) -> Self {
+    /// F tabulated, for F odd in each argument (`odd`) or even in each. The vertices are
+    /// symmetric, w(2n − 1 − i) = −w(i): F is evaluated on the quadrant i, j ≥ n and mirrored
+    /// with the sign of its parity (exact: the primitives here flip sign, or not, bit for bit).
+    fn of(f: impl Fn(f64, f64) -> f64, odd: bool, n: usize, h: f64) -> Self {
         let side = 2 * n;
         let w = |i: usize| (i as f64 - n as f64 + 0.5) * h;
-        let values = (0..side * side).map(|k| f(w(k % side), w(k / side))).collect();
+        let sign = if odd { -1.0 } else { 1.0 };
+        let mut values = vec![0.0; side * side];
+        for j in n..side {
+            for i in n..side {
+                let v = f(w(i), w(j));
+                let (mi, mj) = (side - 1 - i, side - 1 - j);
+                values[j * side + i] = v;
+                values[j * side + mi] = sign * v;
+                values[mj * side + i] = sign * v;
+                values[mj * side + mi] = v;
+            }
+        }
         Self { values, side }
     }
 
@@ -121,7 +135,7 @@ impl Kernels {
     fn for_each_offset(grid: &Grid, mut fill: impl FnMut(usize, f64, f64, (isize, isize))) {
         let (n, m) = (grid.n, 2 * grid.n);
         // ∫∫ Y²/ρ³ at offset (dx, dy) is ∫∫ X²/ρ³ at (dy, dx): one table serves both.
-        let x2 = VertexTable::of(primitive_x2, n, grid.h);
+        let x2 = VertexTable::of(primitive_x2, true, n, grid.h);
         let offset = |a: usize| match a.cmp(&n) {
             std::cmp::Ordering::Less => Some(a as isize),
             std::cmp::Ordering::Greater => Some(a as isize - m as isize),
@@ -154,7 +168,7 @@ impl Kernels {
             xy: vec![0.0; len],
             yy: vec![0.0; len],
         };
-        let xy = VertexTable::of(primitive_xy, grid.n, grid.h);
+        let xy = VertexTable::of(primitive_xy, false, grid.n, grid.h);
         let tau = 2.0 * std::f64::consts::PI;
         Self::for_each_offset(grid, |k, cx2, cy2, (dx, dy)| {
             let inverse = cx2 + cy2;

@@ -161,8 +161,11 @@ pub enum IncrementError {
 /// error (about 1e-7 · log₂ 2n of the largest displacement) is far below the tangential
 /// tolerance (3e-5 of the traction scale, [`super::Bem::with_grid`]); measured on the paper path
 /// at 128², Ft moves by less than 1e-6 of its peak and Cattaneo's Q by less than 1e-6 at
-/// 128²–256² (examples/bem_timing.rs). The normal products stay f64: the normal tolerance,
-/// 1e-6 (128/n)² of the approach, is within two decades of f32's round-off.
+/// 128²–256² (examples/bem_timing.rs). The normal products stay f64 (the normal tolerance,
+/// 1e-6 (128/n)² of the approach, is within two decades of f32's round-off; all-f32 normal
+/// products moved p0 at 256² from 2.7e-6 to −1.1e-5 off Hertz), but its conjugate-gradient
+/// corrections run in f32 ([`FftCompliance::with_f32_corrections`]): their errors are relative
+/// to the correction, and the solver forms the answer in f64 before it stops.
 type TangentialPrecision = f32;
 
 /// The contact's state on one grid.
@@ -192,7 +195,7 @@ impl ContactState {
             seed_stiffness: Some(scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h)),
         };
         let contact = Contact::new(
-            FftCompliance::<f64>::normal(&grid, &compliance),
+            FftCompliance::<f64>::normal(&grid, &compliance).with_f32_corrections(),
             separation,
             settings,
         )

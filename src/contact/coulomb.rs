@@ -37,6 +37,7 @@
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat, Side};
 
+use super::lanes;
 use super::operator::{update_after_changes, Compliance};
 use super::set::{dot_at, norm_at, scale_at};
 
@@ -124,6 +125,26 @@ pub fn slip_increment(problem: &CoulombProblem, state: &CoulombState) -> Vec<f64
     gradient(problem, m, state, &mut g);
     g.iter_mut().for_each(|v| *v = -*v);
     g
+}
+
+/// The points with g > 0, as runs [start, end) of consecutive indices (on a grid, a run a row of
+/// the contact): the iterative solver's loops run over slices.
+fn runs(bound: &[f64]) -> Vec<(usize, usize)> {
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for (i, _) in bound.iter().enumerate().filter(|(_, &g)| g > 0.0) {
+        match runs.last_mut() {
+            Some((_, end)) if *end == i => *end += 1,
+            _ => runs.push((i, i + 1)),
+        }
+    }
+    runs
+}
+
+/// `out = x + w (x − before)`: an extrapolation along the last step.
+fn extrapolated(out: &mut [f64], x: &[f64], before: &[f64], w: f64) {
+    for ((o, &x), &b) in out.iter_mut().zip(x).zip(before) {
+        *o = x + w * (x - b);
+    }
 }
 
 /// Puts the guess into the sets: zero where g = 0, on the bound where it reaches it (slipping),
@@ -259,41 +280,65 @@ impl CoulombProblem<'_> {
         // q = 0 in every iterate (the classification and every projection put them there), so the
         // loops run over the contact only; the products stay whole (the displacement everywhere is
         // the next increment's C q_prev).
-        let contact: Vec<usize> = (0..m).filter(|&i| self.bound[i] > 0.0).collect();
+        let contact = runs(self.bound);
         let (mut y, mut y_product) = (state.traction.clone(), state.displacement.clone());
         let (mut next, mut next_product) = (state.traction.clone(), vec![0.0; n]);
+        // Per point: |point|², then the projection's scale; how far the step moves the point.
+        let (mut scale, mut moved) = (vec![0.0; m], vec![0.0; m]);
         let (mut momentum, mut residual) = (1.0_f64, f64::INFINITY);
         let mut extrapolate: Option<f64> = None;
         while cost.iterations < self.max_iterations {
             cost.iterations += 1;
             let step = 1.0 / curvature;
-            // One pass: the projected step, how far it moves, and ⟨y − next, next − x⟩ (the
-            // restart test, below).
+            // One sweep of each run: the projected step, how far it moves, and ⟨y − next, next − x⟩
+            // (the restart test, below). Each run is swept component by component over slices, so
+            // that the loops vectorise.
             let (mut largest_move, mut against) = (0.0_f64, 0.0);
-            for &i in &contact {
-                let g = self.bound[i];
-                let mut point = [0.0; 2];
-                for (c, value) in point.iter_mut().enumerate().take(k) {
-                    let j = c * m + i;
+            for &(s, e) in &contact {
+                let len = e - s;
+                for c in 0..k {
+                    let r = c * m + s..c * m + e;
                     if let Some(w) = extrapolate {
-                        let (x, cx) = (state.traction[j], state.displacement[j]);
-                        y[j] = x + w * (x - next[j]);
-                        y_product[j] = cx + w * (cx - next_product[j]);
+                        extrapolated(&mut y[r.clone()], &state.traction[r.clone()], &next[r.clone()], w);
+                        extrapolated(
+                            &mut y_product[r.clone()],
+                            &state.displacement[r.clone()],
+                            &next_product[r.clone()],
+                            w,
+                        );
                     }
-                    let gradient = y_product[j] - self.previous_displacement[j] - self.shift[c];
-                    *value = y[j] - step * gradient;
+                    let shift = self.shift[c];
+                    let (y, y_product, previous) = (
+                        &y[r.clone()],
+                        &y_product[r.clone()],
+                        &self.previous_displacement[r.clone()],
+                    );
+                    for (i, value) in next[r].iter_mut().enumerate() {
+                        *value = y[i] - step * (y_product[i] - previous[i] - shift);
+                    }
                 }
                 // |point|² against g²: the square root only where the point is projected.
-                let squared = point[..k].iter().map(|v| v * v).sum::<f64>();
-                let scale = if squared > g * g { g / squared.sqrt() } else { 1.0 };
-                let mut moved = 0.0;
-                for (c, value) in point.iter().enumerate().take(k) {
-                    let j = c * m + i;
-                    next[j] = value * scale;
-                    moved += (next[j] - y[j]).powi(2);
-                    against += a[i] * (y[j] - next[j]) * (next[j] - state.traction[j]);
+                let (scale, moved) = (&mut scale[s..e], &mut moved[s..e]);
+                scale.fill(0.0);
+                moved.fill(0.0);
+                for c in 0..k {
+                    let r = c * m + s..c * m + e;
+                    scale.iter_mut().zip(&next[r]).for_each(|(sq, v)| *sq += v * v);
                 }
-                largest_move = largest_move.max(moved);
+                for (sq, &g) in scale.iter_mut().zip(&self.bound[s..e]) {
+                    *sq = if *sq > g * g { g / sq.sqrt() } else { 1.0 };
+                }
+                for c in 0..k {
+                    let r = c * m + s..c * m + e;
+                    let (y, x, a) = (&y[r.clone()], &state.traction[r.clone()], &a[s..e]);
+                    let next = &mut next[r];
+                    for (i, value) in next.iter_mut().enumerate() {
+                        *value *= scale[i];
+                        moved[i] += (*value - y[i]).powi(2);
+                    }
+                    against += lanes::sum(len, |i| a[i] * (y[i] - next[i]) * (next[i] - x[i]));
+                }
+                largest_move = lanes::max(len, largest_move, |i| moved[i]);
             }
             // y is stored: a step taken again with a larger L (below) starts from it.
             extrapolate = None;
@@ -302,11 +347,14 @@ impl CoulombProblem<'_> {
             // The curvature along the step, ⟨Δ, CΔ⟩ / ⟨Δ, Δ⟩ (Δ vanishes off the contact).
             let (mut bent, mut length) = (0.0, 0.0);
             for c in 0..k {
-                for &i in &contact {
-                    let j = c * m + i;
-                    let delta = next[j] - y[j];
-                    bent += a[i] * delta * (next_product[j] - y_product[j]);
-                    length += a[i] * delta * delta;
+                for &(s, e) in &contact {
+                    let r = c * m + s..c * m + e;
+                    let (a, next, y) = (&a[s..e], &next[r.clone()], &y[r.clone()]);
+                    let (next_product, y_product) = (&next_product[r.clone()], &y_product[r]);
+                    bent += lanes::sum(e - s, |i| {
+                        a[i] * (next[i] - y[i]) * (next_product[i] - y_product[i])
+                    });
+                    length += lanes::sum(e - s, |i| a[i] * (next[i] - y[i]).powi(2));
                 }
             }
             if curvature < largest && bent > curvature * length {

@@ -6,6 +6,7 @@
 //! |---|---|
 //! | [`operator`] | the [`Compliance`] trait: u = C λ on m points × k components, point weights |
 //! | [`dense`] | [`DenseCompliance`]: C held as a faer `Mat` (a condensed FEM compliance) |
+//! | [`lanes`] | sums and maxima in interleaved accumulators (the iterative solvers' loops) |
 //! | [`set`] | [`FrictionSet`]: an interval (1 tangential component) or a disc (2) |
 //! | [`normal`] | the normal problem: Polonsky–Keer CG (any operator), active set + dense Cholesky |
 //! | [`coulomb`] | one tangential increment: accelerated projected gradients (any operator), or active sets + dense Cholesky |
@@ -70,6 +71,7 @@
 
 pub mod coulomb;
 pub mod dense;
+pub(crate) mod lanes;
 pub mod normal;
 pub mod operator;
 pub mod set;

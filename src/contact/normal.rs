@@ -12,7 +12,9 @@
 //!   Tribol. Lett. 66:29): CG on the points in contact, negative multipliers clamped to zero,
 //!   penetrating points re-admitted (restarting the conjugate directions). One product with C a
 //!   step; the displacement u = Cλ is carried between calls, and changes at a few points are
-//!   added column by column where the operator makes that cheaper.
+//!   added column by column where the operator makes that cheaper. The step's product is a
+//!   correction ([`Compliance::apply_correction`]: u moves by step × product); where the operator
+//!   computes corrections in a lower precision, u is formed exactly before the solver stops.
 //! - [`NormalProblem::solve_direct`], for an operator that holds its matrix: the primal–dual active set method
 //!   (Hintermüller, Ito & Kunisch 2003, a semi-smooth Newton method), C_AA λ_A = −o_A on the
 //!   active set A by faer's dense Cholesky, λ = 0 off it, until A repeats: exact to round-off.
@@ -106,6 +108,9 @@ impl NormalProblem<'_> {
         let mut changes: Vec<(usize, f64)> = Vec::new();
         let (mut previous_norm, mut restart, mut residual) = (1.0, true, f64::INFINITY);
         let mut products = 0;
+        // Whether u carries rough corrections (see `Compliance::rough_corrections`) since it was
+        // last formed exactly.
+        let mut rough = false;
         for _ in 0..self.max_iterations {
             // One pass: the gaps, the residual on the contact, and whether an open point
             // penetrates.
@@ -134,7 +139,19 @@ impl NormalProblem<'_> {
             }
             residual = (norm / active).sqrt();
             if residual < tolerance && !penetrates {
-                return Ok(products);
+                if !rough {
+                    return Ok(products);
+                }
+                // Converged on a displacement that carries the corrections' round-off: form it
+                // exactly and test again, going on (with a new conjugate sequence) if the exact
+                // gaps miss the tolerance. Each correction's error is relative to the correction,
+                // which shrinks as the iteration converges, so the exact test passes after few
+                // such rounds (iterative refinement).
+                self.op.apply(p, u);
+                products += 1;
+                rough = false;
+                restart = true;
+                continue;
             }
             // Conjugate direction on the contact set (Polonsky & Keer, eq. 10).
             let beta = if restart { 0.0 } else { norm / previous_norm };
@@ -146,8 +163,9 @@ impl NormalProblem<'_> {
                 };
             }
             previous_norm = norm;
-            self.op.apply(&direction, &mut product);
+            self.op.apply_correction(&direction, &mut product);
             products += 1;
+            rough |= self.op.rough_corrections();
             // The direction vanishes off the contact: the sums run over every point.
             let (num, den) = (0..m).fold((0.0, 0.0), |(x, y), i| {
                 (
@@ -179,7 +197,11 @@ impl NormalProblem<'_> {
                 }
                 u[i] -= step * product[i];
             }
-            products += usize::from(update_after_changes(self.op, &changes, p, u));
+            if update_after_changes(self.op, &changes, p, u) {
+                // A full product forms u afresh, exactly.
+                products += 1;
+                rough = false;
+            }
         }
         Err(NormalError::NotConverged {
             iterations: self.max_iterations,

@@ -26,6 +26,20 @@ pub trait Compliance {
     /// `out = C load` (component-major, length m·k each).
     fn apply(&mut self, load: &[f64], out: &mut [f64]);
 
+    /// `out = C load` as a correction: a product the solver scales by a step and adds to an exact
+    /// displacement, so that only its error relative to the correction matters, not relative to
+    /// the displacement. The default is [`Compliance::apply`]; an operator may run it in a lower
+    /// precision and say so with [`Compliance::rough_corrections`].
+    fn apply_correction(&mut self, load: &[f64], out: &mut [f64]) {
+        self.apply(load, out);
+    }
+
+    /// True when [`Compliance::apply_correction`] is less precise than [`Compliance::apply`]: a
+    /// solver that used it checks its answer with an exact product before it stops.
+    fn rough_corrections(&self) -> bool {
+        false
+    }
+
     /// An upper bound of the largest eigenvalue of C (in the work product): scales the
     /// tangential tolerance.
     fn largest_eigenvalue(&self) -> f64;
