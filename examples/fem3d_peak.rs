@@ -75,11 +75,7 @@ fn main() {
             let rel = |v: Option<f64>, r: Option<f64>| {
                 100.0 * (v.expect("a value") / r.expect("a reference") - 1.0)
             };
-            let field = solid
-                .fields
-                .iter()
-                .find(|f| f.position == position)
-                .expect("a field");
+            let field = solid.field_at(position).expect("a field");
             let radii: Vec<f64> = field.points.iter().map(|p| p[0].hypot(p[1])).collect();
             let c = s.contact_radius.expect("c");
             let nodal = peak_pressure(&radii, &field.pressure, &field.pressure, c);

@@ -84,9 +84,7 @@ pub fn compare(
 /// The surface field of `history` at `position`.
 fn field_at<'a>(history: &'a History, position: usize, who: &str) -> Result<&'a SurfaceField, String> {
     history
-        .fields
-        .iter()
-        .find(|f| f.position == position)
+        .field_at(position)
         .ok_or_else(|| format!("{who} has no surface field at position {position}"))
 }
 

@@ -103,7 +103,7 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
         assert!((row.peak_pressure.unwrap() / p0 - 1.0).abs() < 3e-3, "{row:?}");
         assert!((row.contact_radius.unwrap() / c - 1.0).abs() < 5e-3, "{row:?}");
         // The field at position 1: the pole carries the fitted p0, zero well outside.
-        let field = history.fields.iter().find(|f| f.position == 1).unwrap();
+        let field = history.field_at(1).unwrap();
         assert!(field.points[0][0] == 0.0 && field.pressure[0] == row.peak_pressure.unwrap());
         assert!(field
             .points

@@ -66,7 +66,7 @@ fn fem_3d_on_the_deck_mesh(scene: &Scene) -> History {
 
 /// The surface field of path position `position`.
 fn field(history: &History, position: usize) -> &SurfaceField {
-    history.fields.iter().find(|f| f.position == position).unwrap()
+    history.field_at(position).unwrap()
 }
 
 /// The largest |q_y| of a surface field [Pa].

@@ -71,7 +71,7 @@ fn the_decks_walk_a_frictional_path_with_history() {
             "the reversal sticks the contact again: {stick:?}"
         );
         // Fields at positions: |q_x| <= μ p everywhere, = μ p on slipping nodes in contact.
-        let field = history.fields.iter().find(|f| f.position == 2).unwrap();
+        let field = history.field_at(2).unwrap();
         let traction = field.traction.as_ref().unwrap();
         let sticking = field.stick.as_ref().unwrap();
         for ((q, p), &stuck) in traction.iter().zip(&field.pressure).zip(sticking) {

@@ -229,7 +229,7 @@ fn the_slip_field_grows_by_the_shift_in_gross_sliding_and_vanishes_where_it_stic
     let scene = sheared(&[1.0, 5.0, 6.0]);
     let c = scene.max_contact_radius();
     let h = run(&FemAxisym::with_pole_size(c / 20.0), &scene).unwrap();
-    let field = |p: usize| h.fields.iter().find(|f| f.position == p).unwrap();
+    let field = |p: usize| h.field_at(p).unwrap();
     let (partial, five, six) = (field(2), field(3), field(4));
     let stick = partial.stick.as_ref().unwrap();
     let slip = partial.slip.as_ref().unwrap();

@@ -125,7 +125,7 @@ fn the_axis_node_of_the_gmsh_mesh_carries_its_neighbours_pressure_and_traction()
         &scene,
     )
     .unwrap();
-    let field = h.fields.iter().find(|f| f.position == 2).unwrap();
+    let field = h.field_at(2).unwrap();
     let traction = field.traction.as_ref().unwrap();
     assert_eq!(field.points[0][0], 0.0);
     // Reason: p is flat at the pole (p0 (1 − r²/c²)^½ moves by 1e-4 over one c/20 element) and

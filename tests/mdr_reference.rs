@@ -106,9 +106,7 @@ fn mdr_tractions_match_cattaneo_mindlin_profiles() {
     let p0 = scene.hertz().peak_pressure(17e-6);
     for position in 2..=4 {
         let field = |h: &History| {
-            h.fields
-                .iter()
-                .find(|f| f.position == position)
+            h.field_at(position)
                 .cloned()
                 .expect("a field at every contact position")
         };

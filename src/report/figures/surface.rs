@@ -82,11 +82,7 @@ impl<'a> FieldView<'a> {
 
     /// The view of `history`'s field at path position `position`, if it has one.
     pub fn at_position(history: &'a History, position: usize) -> Option<Self> {
-        history
-            .fields
-            .iter()
-            .find(|f| f.position == position)
-            .map(Self::of)
+        history.field_at(position).map(Self::of)
     }
 
     /// True when the field covers the plane (a grid or triangles), not only the x axis.
