@@ -74,6 +74,28 @@ impl Grid {
     }
 }
 
+impl Grid {
+    /// The bilinear interpolant at `point` [m] of `field` (one value a panel centre), zero beyond
+    /// the outermost centres (a contact field vanishes at the window's edge).
+    pub fn interpolate(&self, field: &[f64], [x, y]: [f64; 2]) -> f64 {
+        let half = (self.n / 2) as f64;
+        // Position in panel-index units; the four centres around it and the weights.
+        let (u, v) = (x / self.h + half, y / self.h + half);
+        let (iu, iv) = (u.floor(), v.floor());
+        let (fu, fv) = (u - iu, v - iv);
+        let value = |i: f64, j: f64| {
+            let inside = (0.0..self.n as f64).contains(&i) && (0.0..self.n as f64).contains(&j);
+            if inside {
+                field[j as usize * self.n + i as usize]
+            } else {
+                0.0
+            }
+        };
+        (1.0 - fv) * ((1.0 - fu) * value(iu, iv) + fu * value(iu + 1.0, iv))
+            + fv * ((1.0 - fu) * value(iu, iv + 1.0) + fu * value(iu + 1.0, iv + 1.0))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -86,5 +108,19 @@ mod tests {
         let first = grid.coordinate(0) - 0.5 * grid.h;
         assert!((last - 1.0).abs() < 1e-12 && first < -1.0);
         assert!(grid.is_on_edge(0) && grid.is_on_edge(63) && !grid.is_on_edge(9));
+    }
+
+    #[test]
+    fn interpolation_is_exact_for_a_linear_field_inside_and_zero_beyond_the_centres() {
+        let grid = Grid::covering(8, 1.0);
+        let linear = |[x, y]: [f64; 2]| 2.0 + 3.0 * x - 0.5 * y;
+        let field: Vec<f64> = grid.centres().into_iter().map(linear).collect();
+        let (first, last) = (grid.coordinate(0), grid.coordinate(7));
+        for point in [[0.1, -0.2], [first, last], [0.5 * (first + last), 0.33]] {
+            let value = grid.interpolate(&field, point);
+            assert!((value - linear(point)).abs() < 1e-12, "{point:?}: {value}");
+        }
+        assert_eq!(grid.interpolate(&field, [last + grid.h, 0.0]), 0.0);
+        assert_eq!(grid.interpolate(&field, [0.0, first - grid.h]), 0.0);
     }
 }

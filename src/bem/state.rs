@@ -137,7 +137,8 @@ impl Snapshot {
 /// What an increment reports besides the fields.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct IncrementCost {
-    /// Conjugate-gradient iterations of the normal problem.
+    /// Conjugate-gradient iterations of the normal problem (with those on the coarser grids of a
+    /// contact from rest, each a quarter of the cost of the finer).
     pub normal_iterations: usize,
     /// Accelerated projected-gradient iterations of the tangential problem.
     pub tangential_iterations: usize,
@@ -168,10 +169,86 @@ pub enum IncrementError {
 /// to the correction, and the solver forms the answer in f64 before it stops.
 type TangentialPrecision = f32;
 
+/// The engine on a grid: the Boussinesq compliance (f64 products, f32 corrections) and, with
+/// friction, the Cerruti one.
+type GridContact = Contact<FftCompliance<f64>, FftCompliance<TangentialPrecision>>;
+
+/// Nested iteration goes no coarser than this many panels a side: below it a solve costs less
+/// than the set-up of another level.
+const COARSEST: usize = 32;
+
+/// A guess needs no more accuracy than its interpolation onto the finer grid keeps (the pressure
+/// near the edge is off by O(h) there), so the coarser levels stop at this multiple of the
+/// normal tolerance. Measured on Hertz at δn = 17 µm (`bem_timing normal`, CPU): at 256² 84, 80,
+/// 82 and 87 ms for 1×, 10×, 100× and 1000× (99 ms without nested iteration), at 512² 555, 544,
+/// 580 and 776 ms (749 ms without).
+const COARSE_TOLERANCE_FACTOR: f64 = 10.0;
+
+/// What it takes to set up the normal problem on any grid of the window: nested iteration solves
+/// the same problem on coarser grids.
+#[derive(Clone, Copy, Debug)]
+struct NormalModel {
+    compliance: PairCompliance,
+    /// The effective radius R*: the separation of the undeformed surfaces is r²/2R*.
+    r_star: f64,
+    settings: Settings,
+}
+
+impl NormalModel {
+    /// The frictionless contact on `grid`, at rest.
+    fn contact(&self, grid: &Grid, settings: Settings) -> GridContact {
+        let separation = grid
+            .centres()
+            .iter()
+            .map(|[x, y]| (x * x + y * y) / (2.0 * self.r_star))
+            .collect();
+        Contact::new(
+            FftCompliance::<f64>::normal(grid, &self.compliance).with_f32_corrections(),
+            separation,
+            settings,
+        )
+        .expect("one separation a panel")
+    }
+
+    /// Nested iteration (e.g. Venner & Lubrecht 2000, *Multilevel Methods in Lubrication*, §3):
+    /// the pressure at approach `delta_n` solved on the grid of half as many panels a side over
+    /// the same window (itself started so, down to [`COARSEST`]), interpolated bilinearly onto
+    /// the centres of `grid`; with the coarse iterations spent. A start for the conjugate
+    /// gradients of a contact from rest, in place of the seed from the overlap: the smooth part of
+    /// the pressure is right from the start, and the fine iterations only correct the rest.
+    /// `None` where `grid` has no even coarser level, or when the coarse solve fails (the fine
+    /// solve then starts from the seed, as without a guess).
+    fn coarse_guess(&self, grid: &Grid, delta_n: f64) -> Option<(Vec<f64>, usize)> {
+        let n = grid.n / 2;
+        if n < COARSEST || !n.is_multiple_of(2) {
+            return None;
+        }
+        let coarse = Grid::covering(n, grid.coordinate(grid.n - 1) + 0.5 * grid.h);
+        let settings = Settings {
+            normal_tolerance: COARSE_TOLERANCE_FACTOR * self.settings.normal_tolerance,
+            ..self.settings
+        };
+        let mut contact = self.contact(&coarse, settings);
+        let mut iterations = 0;
+        if let Some((guess, spent)) = self.coarse_guess(&coarse, delta_n) {
+            contact.guess_normal(guess).ok()?;
+            iterations += spent;
+        }
+        iterations += contact.advance(delta_n, &[]).ok()?.normal_iterations;
+        let pressure = contact.pressure();
+        let guess = grid
+            .centres()
+            .into_iter()
+            .map(|c| coarse.interpolate(pressure, c).max(0.0));
+        Some((guess.collect(), iterations))
+    }
+}
+
 /// The contact's state on one grid.
 pub struct ContactState {
     grid: Grid,
-    contact: Contact<FftCompliance<f64>, FftCompliance<TangentialPrecision>>,
+    model: NormalModel,
+    contact: GridContact,
     snapshot: Snapshot,
 }
 
@@ -180,12 +257,6 @@ impl ContactState {
     /// scene has friction and a tangential path.
     pub fn new(scene: &Scene, grid: Grid, tolerances: Tolerances) -> Self {
         let compliance = PairCompliance::of(&scene.pair);
-        let r_star = scene.pair.effective_radius();
-        let separation = grid
-            .centres()
-            .iter()
-            .map(|[x, y]| (x * x + y * y) / (2.0 * r_star))
-            .collect();
         let settings = Settings {
             normal_tolerance: tolerances.normal,
             tangential_tolerance: tolerances.tangential,
@@ -194,12 +265,12 @@ impl ContactState {
             // Pressure per unit overlap of Hertz's order, E*/c_max, to seed the normal solver.
             seed_stiffness: Some(scene.pair.effective_modulus() / scene.max_contact_radius().max(grid.h)),
         };
-        let contact = Contact::new(
-            FftCompliance::<f64>::normal(&grid, &compliance).with_f32_corrections(),
-            separation,
+        let model = NormalModel {
+            compliance,
+            r_star: scene.pair.effective_radius(),
             settings,
-        )
-        .expect("one separation a panel");
+        };
+        let contact = model.contact(&grid, settings);
         let contact = if scene.friction > 0.0 && !scene.path.is_normal_only() {
             contact
                 .with_friction(
@@ -213,6 +284,7 @@ impl ContactState {
         };
         let len = grid.len();
         Self {
+            model,
             contact,
             snapshot: Snapshot {
                 grid,
@@ -243,6 +315,14 @@ impl ContactState {
 
     /// Moves to approach `delta_n` with a tangential shift increment `shift` along x.
     pub fn advance(&mut self, delta_n: f64, shift: f64) -> Result<IncrementCost, IncrementError> {
+        // A contact from rest starts from the coarser grids' answer (nested iteration).
+        let mut coarse_iterations = 0;
+        if self.contact.normal_force() == 0.0 {
+            if let Some((guess, spent)) = self.model.coarse_guess(&self.grid, delta_n) {
+                self.contact.guess_normal(guess).map_err(IncrementError::Engine)?;
+                coarse_iterations = spent;
+            }
+        }
         let cost = self
             .contact
             .advance(delta_n, &[shift, 0.0])
@@ -261,7 +341,7 @@ impl ContactState {
         };
         self.check_window()?;
         Ok(IncrementCost {
-            normal_iterations: cost.normal_iterations,
+            normal_iterations: coarse_iterations + cost.normal_iterations,
             tangential_iterations: cost.tangential.iterations,
         })
     }

@@ -108,6 +108,8 @@ pub struct Contact<N: Compliance, T: Compliance> {
     change: Vec<f64>,
     displacement_change: Vec<f64>,
     last_step: f64,
+    /// A starting guess of λ for the next normal solve ([`Contact::guess_normal`]).
+    guess: Option<Vec<f64>>,
     tangential: Option<Tangential<T>>,
 }
 
@@ -140,6 +142,7 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
             change: vec![0.0; m],
             displacement_change: vec![0.0; m],
             last_step: 0.0,
+            guess: None,
             tangential: None,
         })
     }
@@ -204,6 +207,7 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
         let previous = self.state.clone();
         let step = approach - self.approach;
         self.approach = approach;
+        let guess = self.guess.take();
         let iterations = if opening.iter().all(|&o| o >= 0.0) {
             // λ = 0 meets every condition where nothing overlaps.
             self.state.multipliers.fill(0.0);
@@ -211,7 +215,11 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
             0
         } else {
             let direct = use_direct(self.settings.method, &self.normal);
-            if !direct {
+            if let Some(guess) = guess {
+                self.state.multipliers = guess;
+                self.normal
+                    .apply(&self.state.multipliers, &mut self.state.displacement);
+            } else if !direct {
                 self.predict_normal(step);
             }
             let seed_stiffness = self
@@ -238,6 +246,24 @@ impl<N: Compliance, T: Compliance> Contact<N, T> {
         }
         self.last_step = step;
         Ok(iterations)
+    }
+
+    /// A starting guess λ ≥ 0 of the next normal solve in place of the last answer (e.g. a
+    /// coarser discretisation's answer, interpolated: nested iteration). It changes where the
+    /// solver starts, not the answer it converges to, nor the memory of the path (the change
+    /// the next predictor extrapolates is still measured from the last answer).
+    pub fn guess_normal(&mut self, multipliers: Vec<f64>) -> Result<(), ContactError> {
+        if multipliers.len() != self.separation.len()
+            || !multipliers.iter().all(|p| p.is_finite() && *p >= 0.0)
+        {
+            return Err(ContactError::Mismatch(format!(
+                "a normal guess needs one finite λ ≥ 0 a point ({} points, got {} values)",
+                self.separation.len(),
+                multipliers.len()
+            )));
+        }
+        self.guess = Some(multipliers);
+        Ok(())
     }
 
     /// Starts the normal solve from the last answer extrapolated along the last change.

@@ -195,3 +195,40 @@ fn a_point_penetrating_beside_a_solved_contact_set_enters_it() {
     let p = &state.multipliers;
     assert!((p[0] - 1.0).abs() < 1e-12 && (p[1] - 0.5).abs() < 1e-12, "{p:?}");
 }
+
+#[test]
+fn a_normal_guess_changes_the_start_not_the_answer() {
+    // Requirement: a guess (nested iteration's interpolated coarse answer) leaves the converged
+    // pressures along a path as without it (both solve to 1e-13 of λ ~ 0.1–1); a guess that does
+    // not fit the points is refused.
+    let m = 10;
+    let h: Vec<f64> = (0..m).map(|i| 0.03 * (i as f64 - 4.5).powi(2)).collect();
+    let path = [0.4, 0.5, 0.6];
+    let run = |guess: Option<Vec<f64>>| {
+        let op = DenseCompliance::scalar(spd(m, 4)).unwrap();
+        let mut contact =
+            Contact::<_, DenseCompliance>::new(op, h.clone(), settings(Method::Iterative)).unwrap();
+        if let Some(g) = guess {
+            contact.guess_normal(g).unwrap();
+        }
+        path.iter()
+            .map(|&d| {
+                contact.advance(d, &[]).unwrap();
+                contact.pressure().to_vec()
+            })
+            .collect::<Vec<_>>()
+    };
+    let plain = run(None);
+    // A poor guess: pressure everywhere, the wrong shape.
+    let guessed = run(Some((0..m).map(|i| 0.05 * i as f64).collect()));
+    for (step, (a, b)) in plain.iter().zip(&guessed).enumerate() {
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() < 1e-9, "step {step}: {x} vs {y}");
+        }
+    }
+    let op = DenseCompliance::scalar(spd(m, 4)).unwrap();
+    let mut contact = Contact::<_, DenseCompliance>::new(op, h, settings(Method::Iterative)).unwrap();
+    assert!(contact.guess_normal(vec![0.1; m - 1]).is_err());
+    assert!(contact.guess_normal(vec![-0.1; m]).is_err());
+    assert!(contact.guess_normal(vec![f64::NAN; m]).is_err());
+}
