@@ -3,7 +3,9 @@
 //! Run in release: `cargo run --release --example bem_timing` (add `quick` to skip 512²; name
 //! sections `normal`, `cattaneo`, `path` to run only those; `n=128,256` chooses the grids, e.g.
 //! `cargo run --release --example bem_timing -- cattaneo path n=128,256`).
-//! Times are the thread's CPU time (the machine is shared), medians of repeated runs.
+//! Times are medians of repeated runs, each as the process's CPU time (all threads: the FFT
+//! products run on rayon's pool) and the wall time; on a shared machine the CPU time is the
+//! steadier, the wall time what a user waits.
 //!
 //! 1. Normal Hertz contact of the paper's spheres at δn = 17 µm: errors of P, p0, c.
 //! 2. One Cattaneo partial-slip increment at δn = 17 µm, δt = 0 → 2 µm (Q/μP ≈ 0.63): stick radius
@@ -14,7 +16,7 @@
 //! 3. The paper's path (cases/paper-fig7.toml) with 20 substeps a segment (220 increments): the
 //!    time and the largest tangential-force error against MDR over the positions.
 
-use cpu::Instant;
+use clock::{Clock as Instant, Span};
 use std::path::Path;
 
 use spherecontact::analytic::cattaneo_mindlin::CattaneoMindlin;
@@ -29,6 +31,13 @@ use spherecontact::solver::Solver;
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]
+}
+
+/// "CPU / wall" of the median of each, in `unit` (1e3: ms) with `digits` decimals.
+fn medians(spans: &[Span], unit: f64, digits: usize) -> String {
+    let cpu = median(spans.iter().map(|s| s.cpu).collect());
+    let wall = median(spans.iter().map(|s| s.wall).collect());
+    format!("{:.digits$} / {:.digits$}", unit * cpu, unit * wall)
 }
 
 fn case(name: &str) -> Case {
@@ -71,7 +80,7 @@ fn normal(scene: &Scene, ladder: &[usize]) {
         hertz.peak_pressure(17e-6),
     );
     println!("\n## Normal Hertz, δn = 17 µm (P = {p:.3} N, c = {c:.5e} m, p0 = {p0:.4e} Pa)");
-    println!("| grid | h/c | P err | p0 err | c err | CG its | median CPU |");
+    println!("| grid | h/c | P err | p0 err | c err | CG its | median CPU / wall [ms] |");
     println!("|---|---|---|---|---|---|---|");
     for &n in ladder {
         let bem = Bem::with_grid(n);
@@ -80,20 +89,20 @@ fn normal(scene: &Scene, ladder: &[usize]) {
         for _ in 0..repeats(n) {
             let start = Instant::now();
             let history = bem.solve(&scene).expect("normal solve");
-            times.push(start.elapsed().as_secs_f64());
+            times.push(start.elapsed());
             last = Some(history);
         }
         let history = last.expect("at least one run");
         let row = &history.steps[0];
         let rel = |v: Option<f64>, r: f64| (v.unwrap_or(f64::NAN) - r) / r;
         println!(
-            "| {n}² | {:.4} | {:+.3e} | {:+.3e} | {:+.3e} | {} | {:.2} ms |",
+            "| {n}² | {:.4} | {:+.3e} | {:+.3e} | {:+.3e} | {} | {} |",
             history.metadata.extra["panel_size_m"].as_f64().unwrap_or(0.0) / c,
             rel(row.normal_force, p),
             rel(row.peak_pressure, p0),
             rel(row.contact_radius, c),
             history.metadata.extra["normal_cg_iterations"],
-            1e3 * median(times)
+            medians(&times, 1e3, 2)
         );
     }
 }
@@ -107,7 +116,7 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
         "\n## Cattaneo partial slip, δn = 17 µm, δt = 0 → 2 µm in one increment (Q/μP = {:.3})",
         q_ref / mu_p
     );
-    println!("| grid | Q err (vs C–M) | stick radius err | stick semi-axes err | tangential its | median tangential | median whole solve |");
+    println!("| grid | Q err (vs C–M) | stick radius err | stick semi-axes err | tangential its | median tangential CPU / wall [ms] | median whole solve CPU / wall [ms] |");
     println!("|---|---|---|---|---|---|---|");
     let c_max = path_scene.max_contact_radius();
     for &n in ladder {
@@ -122,8 +131,8 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
             let split = Instant::now();
             let cost = state.advance(17e-6, 2e-6).expect("tangential");
             let end = Instant::now();
-            tangential.push((end - split).as_secs_f64());
-            whole.push((end - start).as_secs_f64());
+            tangential.push(end - split);
+            whole.push(end - start);
             outcome = Some((state.snapshot().clone(), cost));
         }
         let (s, cost) = outcome.expect("at least one run");
@@ -133,13 +142,13 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
             .stick_zone()
             .map_or(f64::NAN, |z| 0.5 * (z.semi_axes[0] + z.semi_axes[1]));
         println!(
-            "| {n}² | {:+.3e} | {:+.3e} | {:+.3e} | {} | {:.1} ms | {:.1} ms |",
+            "| {n}² | {:+.3e} | {:+.3e} | {:+.3e} | {} | {} | {} |",
             (q - q_ref) / q_ref,
             (s.stick_radius() - expected) / expected,
             (fitted - expected) / expected,
             cost.tangential_iterations,
-            1e3 * median(tangential),
-            1e3 * median(whole)
+            medians(&tangential, 1e3, 1),
+            medians(&whole, 1e3, 1)
         );
     }
 }
@@ -159,7 +168,7 @@ fn paper_path(scene: &Scene, ladder: &[usize]) {
         "\n## Paper path, {} increments: Ft against MDR at the positions (relative to peak |Ft| = {peak:.3} N)",
         scene.steps().len() - 1
     );
-    println!("| grid | max Ft err / peak | normal CG its | tangential its | median CPU |");
+    println!("| grid | max Ft err / peak | normal CG its | tangential its | median CPU / wall [s] |");
     println!("|---|---|---|---|---|");
     for &n in ladder {
         let bem = Bem::with_grid(n);
@@ -169,7 +178,7 @@ fn paper_path(scene: &Scene, ladder: &[usize]) {
         for _ in 0..runs {
             let start = Instant::now();
             last = Some(bem.solve(&scene).expect("path"));
-            times.push(start.elapsed().as_secs_f64());
+            times.push(start.elapsed());
         }
         let history = last.expect("at least one run");
         let error = history
@@ -181,10 +190,10 @@ fn paper_path(scene: &Scene, ladder: &[usize]) {
             .fold(0.0, f64::max)
             / peak;
         println!(
-            "| {n}² | {error:.3e} | {} | {} | {:.3} s |",
+            "| {n}² | {error:.3e} | {} | {} | {} |",
             history.metadata.extra["normal_cg_iterations"],
             history.metadata.extra["tangential_apg_iterations"],
-            median(times)
+            medians(&times, 1.0, 3)
         );
     }
 }
@@ -227,37 +236,52 @@ fn main() {
     }
 }
 
-/// The thread's CPU time, with the interface of `std::time::Instant` (the machine is shared:
-/// wall time also counts the waits for a core).
-mod cpu {
+/// The process's CPU time (every thread) and the wall time, read together.
+mod clock {
+    /// A reading of both clocks.
     #[derive(Clone, Copy)]
-    pub struct Instant(f64);
-    pub struct Span(f64);
-    impl Span {
-        pub fn as_secs_f64(&self) -> f64 {
-            self.0
-        }
+    pub struct Clock {
+        cpu: f64,
+        wall: std::time::Instant,
     }
-    fn thread_seconds() -> f64 {
+
+    /// The time between two readings [s].
+    #[derive(Clone, Copy)]
+    pub struct Span {
+        pub cpu: f64,
+        pub wall: f64,
+    }
+
+    fn process_seconds() -> f64 {
         let mut now = libc::timespec {
             tv_sec: 0,
             tv_nsec: 0,
         };
-        unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut now) };
+        // SAFETY: `now` is a valid, writable timespec; CLOCK_PROCESS_CPUTIME_ID exists on Linux.
+        unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut now) };
         now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9
     }
-    impl Instant {
+
+    impl Clock {
         pub fn now() -> Self {
-            Instant(thread_seconds())
+            Clock {
+                cpu: process_seconds(),
+                wall: std::time::Instant::now(),
+            }
         }
+
         pub fn elapsed(&self) -> Span {
-            Span(thread_seconds() - self.0)
+            Clock::now() - *self
         }
     }
-    impl std::ops::Sub for Instant {
+
+    impl std::ops::Sub for Clock {
         type Output = Span;
-        fn sub(self, other: Instant) -> Span {
-            Span(self.0 - other.0)
+        fn sub(self, other: Clock) -> Span {
+            Span {
+                cpu: self.cpu - other.cpu,
+                wall: (self.wall - other.wall).as_secs_f64(),
+            }
         }
     }
 }

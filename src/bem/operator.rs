@@ -14,7 +14,7 @@
 
 use crate::contact::Compliance;
 
-use super::convolution::{Convolver, Precision, Spectrum};
+use super::convolution::{Convolver, Precision, Symbol};
 use super::grid::Grid;
 use super::influence::{Kernels, PairCompliance};
 
@@ -35,49 +35,36 @@ pub struct FftCompliance<T: Precision = f64> {
     largest: f64,
 }
 
-/// Products by FFT in one precision: the plans, the kernels' symbols, work spectra.
+/// Products by FFT in one precision: the plans and the kernels' symbols.
 struct Products<T: Precision> {
     convolver: Convolver<T>,
     /// The kernels' symbols (spectra), real: every kernel is even in each offset, or (xy) odd in
     /// both.
-    symbols: Vec<Vec<T>>,
-    /// Work spectra of the load's components, transformed in place into the displacement's.
-    work: [Spectrum<T>; 2],
+    symbols: Vec<Symbol<T>>,
 }
 
 impl<T: Precision> Products<T> {
     /// Plans for `grid` and the symbols, rounded once from f64.
-    fn new(grid: &Grid, symbols: &[Vec<f64>]) -> Self {
-        let convolver = Convolver::<T>::new(grid.n);
-        let work = [convolver.spectrum(), convolver.spectrum()];
-        let symbols = symbols
-            .iter()
-            .map(|s| s.iter().map(|&v| T::of(v)).collect())
-            .collect();
+    fn new(grid: &Grid, symbols: &[Symbol<f64>]) -> Self {
         Self {
-            convolver,
-            symbols,
-            work,
+            convolver: Convolver::<T>::new(grid.n),
+            symbols: symbols.iter().map(Symbol::to).collect(),
         }
     }
 
     /// `out = C load` (one component, or two: x then y).
     fn apply(&mut self, load: &[f64], out: &mut [f64]) {
-        let [qx, qy] = &mut self.work;
         let s = &self.symbols;
         if s.len() == 1 {
-            self.convolver.field_spectrum_into(load, qx);
-            qx.times_real(&s[0]);
-            self.convolver.field_into(qx, out);
+            self.convolver.convolve(load, &s[0], out);
             return;
         }
         let len = load.len() / 2;
-        self.convolver.field_spectrum_into(&load[..len], qx);
-        self.convolver.field_spectrum_into(&load[len..], qy);
+        let (x, y) = load.split_at(len);
+        let (u, v) = out.split_at_mut(len);
         // The yx block is the xy block (the Cerruti kernels are symmetric).
-        Spectrum::mix_in_place(qx, qy, [&s[0], &s[1], &s[2]]);
-        self.convolver.field_into(qx, &mut out[..len]);
-        self.convolver.field_into(qy, &mut out[len..]);
+        self.convolver
+            .convolve_pair([x, y], [&s[0], &s[1], &s[2]], [u, v]);
     }
 }
 
@@ -94,19 +81,15 @@ impl<T: Precision> FftCompliance<T> {
     }
 
     fn of(grid: &Grid, kernels: Vec<Vec<f64>>) -> Self {
-        let mut exact = Convolver::<f64>::new(grid.n);
-        let symbols: Vec<Vec<f64>> = kernels
-            .iter()
-            .map(|k| exact.kernel_spectrum(k).real_part())
-            .collect();
+        let symbols: Vec<Symbol<f64>> = kernels.iter().map(|k| Symbol::of_kernel(grid.n, k)).collect();
         // The symbol at each frequency is real, and the largest eigenvalue of C is the largest
         // over the frequencies of the symbol's (1×1, or symmetric 2×2 [[a, b], [b, c]]) largest
         // eigenvalue, (a+c)/2 + √(((a−c)/2)² + b²) — the padded circulant bounds the window's
         // operator.
         let largest = if symbols.len() == 1 {
-            symbols[0].iter().copied().fold(0.0, f64::max)
+            symbols[0].values().iter().copied().fold(0.0, f64::max)
         } else {
-            let (a, b, c) = (&symbols[0], &symbols[1], &symbols[2]);
+            let (a, b, c) = (symbols[0].values(), symbols[1].values(), symbols[2].values());
             (0..a.len())
                 .map(|f| 0.5 * (a[f] + c[f]) + (0.25 * (a[f] - c[f]).powi(2) + b[f] * b[f]).sqrt())
                 .fold(0.0, f64::max)
@@ -126,9 +109,7 @@ impl<T: Precision> FftCompliance<T> {
     /// An iterative solver then forms its answer exactly before it stops, so the answer is that
     /// of `T`.
     pub fn with_f32_corrections(mut self) -> Self {
-        let symbols: Vec<Vec<f64>> = (self.products.symbols.iter())
-            .map(|s| s.iter().map(|&v| v.into()).collect())
-            .collect();
+        let symbols: Vec<Symbol<f64>> = self.products.symbols.iter().map(Symbol::to).collect();
         self.corrections = Some(Products::new(&self.grid, &symbols));
         self
     }
