@@ -3,9 +3,8 @@
 //! Run in release: `cargo run --release --example bem_timing` (add `quick` to skip 512²; name
 //! sections `normal`, `cattaneo`, `path` to run only those; `n=128,256` chooses the grids, e.g.
 //! `cargo run --release --example bem_timing -- cattaneo path n=128,256`).
-//! Times are medians of repeated runs, each as the process's CPU time (all threads: the FFT
-//! products run on rayon's pool) and the wall time; on a shared machine the CPU time is the
-//! steadier, the wall time what a user waits.
+//! Times are medians of repeated runs, each as the process's CPU time (all threads) and the wall
+//! time; on a shared machine the CPU time is the steadier, the wall time what a user waits.
 //!
 //! 1. Normal Hertz contact of the paper's spheres at δn = 17 µm: errors of P, p0, c.
 //! 2. One Cattaneo partial-slip increment at δn = 17 µm, δt = 0 → 2 µm (Q/μP ≈ 0.63): stick radius

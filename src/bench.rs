@@ -2,10 +2,10 @@
 //!
 //! Every timed solver (or every rung of its resolution ladder) runs the same scene several times
 //! in one process, interleaved round by round so that machine noise hits all alike, and the
-//! median is reported. Both wall time and the process's CPU time (all its threads: the BEM's FFT
-//! products run on a thread pool) are kept: on a shared, loaded machine the wall time also counts
-//! the time spent waiting for a core, the CPU time does not; on an idle one a solver that uses
-//! several cores takes less wall than CPU time.
+//! median is reported. Both wall time and the process's CPU time (all its threads) are kept: on a
+//! shared, loaded machine the wall time also counts the time spent waiting for a core, the CPU
+//! time does not; on an idle one a solver that used several cores would take less wall than CPU
+//! time.
 //!
 //! Errors are measured against the references every report uses: P against Hertz (relative, at
 //! every step in contact), Q against MDR on a bed far finer than any rung (relative to its peak
