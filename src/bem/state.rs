@@ -173,13 +173,15 @@ type TangentialPrecision = f32;
 /// friction, the Cerruti one.
 type GridContact = Contact<FftCompliance<f64>, FftCompliance<TangentialPrecision>>;
 
-/// Nested iteration goes no coarser than this many panels a side: below it a solve costs less
-/// than the set-up of another level.
-const COARSEST: usize = 32;
+/// Nested iteration goes no coarser than this many panels a side: below it the coarse level costs
+/// more than it saves. Measured on Hertz at δn = 17 µm (`bem_timing normal`, CPU): at 64² a 32²
+/// level took the solve from 2.24 to 2.51 ms; at 128² a 64² level from 14.5 to 12 ms.
+const COARSEST: usize = 64;
 
 /// A guess needs no more accuracy than its interpolation onto the finer grid keeps (the pressure
 /// near the edge is off by O(h) there), so the coarser levels stop at this multiple of the
-/// normal tolerance. Measured on Hertz at δn = 17 µm (`bem_timing normal`, CPU): at 256² 84, 80,
+/// normal tolerance. Measured on Hertz at δn = 17 µm (`bem_timing normal`, CPU, with levels down
+/// to 32²): at 256² 84, 80,
 /// 82 and 87 ms for 1×, 10×, 100× and 1000× (99 ms without nested iteration), at 512² 555, 544,
 /// 580 and 776 ms (749 ms without).
 const COARSE_TOLERANCE_FACTOR: f64 = 10.0;
