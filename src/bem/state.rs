@@ -181,9 +181,8 @@ const COARSEST: usize = 64;
 /// A guess needs no more accuracy than its interpolation onto the finer grid keeps (the pressure
 /// near the edge is off by O(h) there), so the coarser levels stop at this multiple of the
 /// normal tolerance. Measured on Hertz at δn = 17 µm (`bem_timing normal`, CPU, with levels down
-/// to 32²): at 256² 84, 80,
-/// 82 and 87 ms for 1×, 10×, 100× and 1000× (99 ms without nested iteration), at 512² 555, 544,
-/// 580 and 776 ms (749 ms without).
+/// to 32²): at 256² 84, 80, 82 and 87 ms for 1×, 10×, 100× and 1000× (99 ms without nested
+/// iteration), at 512² 555, 544, 580 and 776 ms (749 ms without).
 const COARSE_TOLERANCE_FACTOR: f64 = 10.0;
 
 /// What it takes to set up the normal problem on any grid of the window: nested iteration solves
