@@ -89,9 +89,6 @@ impl<T: Precision> Symbol<T> {
     }
 }
 
-/// The product of the spectra of column kx (one or two components) with the symbols, in place.
-type Multiply<'a, T> = dyn Fn(usize, [&mut [Complex<T>]; 2]) + Sync + 'a;
-
 /// The FFT plans of one grid size: rows and columns of the padded grid, both of length 2n.
 struct Plans<T: Precision> {
     rows_forward: Arc<dyn RealToComplex<T>>,
@@ -156,7 +153,7 @@ impl<T: Precision> Convolver<T> {
     /// `out = K * load` for a kernel of symbol `symbol` (n × n fields).
     pub fn convolve(&mut self, load: &[f64], symbol: &Symbol<T>, out: &mut [f64]) {
         let m = 2 * self.n;
-        self.run([load], [out], &|kx, [x, _]| {
+        self.run([load], [out], |kx, [x, _]| {
             let s = &symbol.0[kx * m..(kx + 1) * m];
             x.iter_mut().zip(s).for_each(|(v, &k)| *v = *v * k);
         });
@@ -171,7 +168,7 @@ impl<T: Precision> Convolver<T> {
         [u, v]: [&mut [f64]; 2],
     ) {
         let m = 2 * self.n;
-        self.run([x, y], [u, v], &|kx, [x, y]| {
+        self.run([x, y], [u, v], |kx, [x, y]| {
             let range = kx * m..(kx + 1) * m;
             let (a, b, c) = (&a.0[range.clone()], &b.0[range.clone()], &c.0[range]);
             for i in 0..m {
@@ -183,8 +180,13 @@ impl<T: Precision> Convolver<T> {
     }
 
     /// The three passes for K components (1 or 2): rows forward, columns (forward,
-    /// `multiply(kx, spectra of column kx)`, inverse), rows inverse into `outs`.
-    fn run<const K: usize>(&mut self, loads: [&[f64]; K], outs: [&mut [f64]; K], multiply: &Multiply<'_, T>) {
+    /// `multiply(kx, spectra of column kx)` in place, inverse), rows inverse into `outs`.
+    fn run<const K: usize>(
+        &mut self,
+        loads: [&[f64]; K],
+        outs: [&mut [f64]; K],
+        mut multiply: impl FnMut(usize, [&mut [Complex<T>]; 2]),
+    ) {
         let (n, plans, buffers) = (self.n, &self.plans, &mut self.buffers);
         for (load, half) in loads.iter().zip(&mut self.half) {
             buffers.rows_forward(plans, n, load, half);

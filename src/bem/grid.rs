@@ -72,9 +72,7 @@ impl Grid {
     pub fn equivalent_radius(&self, panels: usize) -> f64 {
         (panels as f64 * self.panel_area() / std::f64::consts::PI).sqrt()
     }
-}
 
-impl Grid {
     /// The bilinear interpolant at `point` [m] of `field` (one value a panel centre), zero beyond
     /// the outermost centres (a contact field vanishes at the window's edge).
     pub fn interpolate(&self, field: &[f64], [x, y]: [f64; 2]) -> f64 {
