@@ -15,7 +15,7 @@
 //! 3. The paper's path (cases/paper-fig7.toml) with 20 substeps a segment (220 increments): the
 //!    time and the largest tangential-force error against MDR over the positions.
 
-use clock::{Clock as Instant, Span};
+use clock::{Clock, Span};
 use std::path::Path;
 
 use spherecontact::analytic::cattaneo_mindlin::CattaneoMindlin;
@@ -86,7 +86,7 @@ fn normal(scene: &Scene, ladder: &[usize]) {
         let mut times = Vec::new();
         let mut last = None;
         for _ in 0..repeats(n) {
-            let start = Instant::now();
+            let start = Clock::now();
             let history = bem.solve(&scene).expect("normal solve");
             times.push(start.elapsed());
             last = Some(history);
@@ -124,12 +124,12 @@ fn cattaneo(scene: &Scene, ladder: &[usize]) {
         let (mut tangential, mut whole) = (Vec::new(), Vec::new());
         let mut outcome = None;
         for _ in 0..repeats(n) {
-            let start = Instant::now();
+            let start = Clock::now();
             let mut state = ContactState::new(&path_scene, grid, bem.tolerances);
             state.advance(17e-6, 0.0).expect("normal");
-            let split = Instant::now();
+            let split = Clock::now();
             let cost = state.advance(17e-6, 2e-6).expect("tangential");
-            let end = Instant::now();
+            let end = Clock::now();
             tangential.push(end - split);
             whole.push(end - start);
             outcome = Some((state.snapshot().clone(), cost));
@@ -175,7 +175,7 @@ fn paper_path(scene: &Scene, ladder: &[usize]) {
         let mut times = Vec::new();
         let mut last = None;
         for _ in 0..runs {
-            let start = Instant::now();
+            let start = Clock::now();
             last = Some(bem.solve(&scene).expect("path"));
             times.push(start.elapsed());
         }
@@ -251,20 +251,10 @@ mod clock {
         pub wall: f64,
     }
 
-    fn process_seconds() -> f64 {
-        let mut now = libc::timespec {
-            tv_sec: 0,
-            tv_nsec: 0,
-        };
-        // SAFETY: `now` is a valid, writable timespec; CLOCK_PROCESS_CPUTIME_ID exists on Linux.
-        unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut now) };
-        now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9
-    }
-
     impl Clock {
         pub fn now() -> Self {
             Clock {
-                cpu: process_seconds(),
+                cpu: spherecontact::bench::process_cpu_seconds(),
                 wall: std::time::Instant::now(),
             }
         }

@@ -21,6 +21,7 @@
 
 use std::time::Instant;
 
+use spherecontact::bench::process_cpu_seconds;
 use spherecontact::case::Case;
 use spherecontact::contact::operator::work;
 use spherecontact::contact::{Compliance, Method, Settings as ContactSettings};
@@ -52,17 +53,6 @@ fn peak_memory_gb() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1048576.0)
 }
 
-/// CPU time of this process so far (every thread) [s].
-fn cpu_seconds() -> f64 {
-    let mut now = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `now` is a valid, writable timespec; CLOCK_PROCESS_CPUTIME_ID exists on Linux.
-    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut now) };
-    now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9
-}
-
 /// Median of the values (sorted here).
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
@@ -75,10 +65,10 @@ fn normal_increments(model: &Model) {
     let mut engine = contact::engine(model, 0.0, false, ContactSettings::default()).unwrap();
     let (mut wall, mut cpu) = (Vec::new(), Vec::new());
     for k in 1..=25 {
-        let (start, cpu0) = (Instant::now(), cpu_seconds());
+        let (start, cpu0) = (Instant::now(), process_cpu_seconds());
         engine.advance(0.5e-6 * f64::from(k), &[]).unwrap();
         wall.push(start.elapsed().as_secs_f64());
-        cpu.push(cpu_seconds() - cpu0);
+        cpu.push(process_cpu_seconds() - cpu0);
     }
     println!(
         "    normal increments (δn 1 … 25 µm): median {:.4} s wall, {:.4} s CPU; max {:.4} s wall",
@@ -146,10 +136,10 @@ fn report(label: &str, model: &Model, pair: &ContactPair, friction: bool) {
     let (mut times, mut cpu) = (Vec::new(), Vec::new());
     for k in 1..=60 {
         let dt = 0.1e-6 * k as f64;
-        let (start, cpu0) = (Instant::now(), cpu_seconds());
+        let (start, cpu0) = (Instant::now(), process_cpu_seconds());
         let cost = engine.advance(0.5 * d, &[0.05e-6, 0.0]).unwrap();
         times.push(start.elapsed().as_secs_f64());
-        cpu.push(cpu_seconds() - cpu0);
+        cpu.push(process_cpu_seconds() - cpu0);
         if k % 10 == 0 {
             let q = engine.tangential_force(0);
             let reference = mu * force * (1.0 - (1.0 - (dt / slide).min(1.0)).powf(1.5));
@@ -186,7 +176,7 @@ fn paper_path(substeps: usize, method: Method, tolerance: f64, rule: Rule) {
         solver::run(solver.as_ref(), &scene).unwrap_or_else(|e| panic!("{name}: {e}"))
     };
     let (mdr, corrected) = (run("mdr"), run("mdr-domain"));
-    let (start, cpu0) = (Instant::now(), cpu_seconds());
+    let (start, cpu0) = (Instant::now(), process_cpu_seconds());
     let solver = FemSolid3d {
         rule,
         contact: ContactSettings {
@@ -197,7 +187,7 @@ fn paper_path(substeps: usize, method: Method, tolerance: f64, rule: Rule) {
         ..FemSolid3d::default()
     };
     let history = solver::run(&solver, &scene).expect("fem-3d");
-    let (wall, cpu) = (start.elapsed().as_secs_f64(), cpu_seconds() - cpu0);
+    let (wall, cpu) = (start.elapsed().as_secs_f64(), process_cpu_seconds() - cpu0);
     let extra = &history.metadata.extra;
     let number = |key: &str| extra.get(key).and_then(|v| v.as_f64()).unwrap_or(f64::NAN);
     let peak = corrected.peak(Quantity::TangentialForce);

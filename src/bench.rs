@@ -50,17 +50,22 @@ pub fn median(sorted: &[f64]) -> f64 {
     }
 }
 
-/// The CPU time consumed so far by this process (every thread) and by the external programs it
-/// has run (gmsh, FreeFem++, python3: external solvers do their work in child processes) [s].
-/// Solvers are timed one at a time, so the process's time is the timed solver's.
-fn cpu_time() -> f64 {
+/// The CPU time consumed so far by this process, every thread [s].
+pub fn process_cpu_seconds() -> f64 {
     let mut now = libc::timespec {
         tv_sec: 0,
         tv_nsec: 0,
     };
     // SAFETY: `now` is a valid, writable timespec; CLOCK_PROCESS_CPUTIME_ID exists on Linux.
     unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut now) };
-    now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9 + crate::external::process::child_cpu_seconds()
+    now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9
+}
+
+/// The CPU time consumed so far by this process (every thread) and by the external programs it
+/// has run (gmsh, FreeFem++, python3: external solvers do their work in child processes) [s].
+/// Solvers are timed one at a time, so the process's time is the timed solver's.
+fn cpu_time() -> f64 {
+    process_cpu_seconds() + crate::external::process::child_cpu_seconds()
 }
 
 /// Runs every solver `repeat` times (≥ 1) on `scene`, round-robin, after one warm-up run each.
