@@ -2,7 +2,8 @@
 //!
 //! Run in release: `cargo run --release --example bem_timing` (add `quick` to skip 512²; name
 //! sections `normal`, `cattaneo`, `path` to run only those; `n=128,256` chooses the grids, e.g.
-//! `cargo run --release --example bem_timing -- cattaneo path n=128,256`).
+//! `cargo run --release --example bem_timing -- cattaneo path n=128,256`; `threads=1` runs the
+//! FFT products on one thread, [`spherecontact::team`]).
 //! Times are medians of repeated runs, each as the process's CPU time (all threads) and the wall
 //! time; on a shared machine the CPU time is the steadier, the wall time what a user waits.
 //!
@@ -197,8 +198,8 @@ fn paper_path(scene: &Scene, ladder: &[usize]) {
     }
 }
 
-/// Arguments: `quick` (skip 512²), sections `normal`, `cattaneo`, `path` (all when none), and
-/// `n=128,256` to choose the grids.
+/// Arguments: `quick` (skip 512²), sections `normal`, `cattaneo`, `path` (all when none),
+/// `n=128,256` to choose the grids, and `threads=1` (or 2) for the team of the FFT products.
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let chosen: Option<Vec<usize>> = args.iter().find_map(|a| a.strip_prefix("n=")).map(|list| {
@@ -207,6 +208,9 @@ fn main() {
             .collect()
     });
     let quick = args.iter().any(|a| a == "quick");
+    if let Some(threads) = args.iter().find_map(|a| a.strip_prefix("threads=")) {
+        spherecontact::team::set_threads(threads.parse().expect("threads=count"));
+    }
     let ladder: Vec<usize> = chosen.clone().unwrap_or_else(|| {
         if quick {
             vec![32, 64, 128, 256]

@@ -56,5 +56,6 @@ pub mod report;
 pub mod resolution;
 pub mod scene;
 pub mod solver;
+pub mod team;
 pub mod verify;
 pub mod vtu;
