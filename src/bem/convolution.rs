@@ -486,7 +486,10 @@ mod tests {
             [u, p, q].map(|v| v.iter().map(|v| v.to_bits()).collect::<Vec<_>>())
         };
         let alone = products(1);
-        assert!(alone[0].iter().any(|&b| b != 0), "a product of zeros tests nothing");
+        assert!(
+            alone[0].iter().any(|&b| b != 0),
+            "a product of zeros tests nothing"
+        );
         for threads in [2, 3] {
             assert_eq!(products(threads), alone, "{threads} threads");
         }
