@@ -7,8 +7,9 @@
 //! carry data are transformed forward (a row of zeros, out of contact, is a row of zeros: not
 //! transformed), and only the n rows of the window backward. A column's forward transform, its
 //! product with the kernel's symbol and its inverse run one after the other while the column
-//! sits in the cache, so the spectrum of the whole grid is never stored: between the passes only
-//! the row transforms of the n data rows are (n + 1 columns of n values).
+//! sits in the cache, so the spectrum of the whole grid is never stored: only the row transforms
+//! of the n data rows are, and the n window rows of each transformed column (n + 1 columns of n
+//! values each).
 //!
 //! The columns are transformed at their full length 2n although their rows n..2n are zero. With
 //! w_j = exp(−iπ j/n), X_{2k} = FFT_n(x)[k] and X_{2k+1} = FFT_n(x_j w_j)[k] (j < n) would save
@@ -21,8 +22,8 @@
 //! a block, so that a part writes one contiguous piece; the column pass writes its columns apart
 //! from them. A row or column is transformed by the same code whichever thread takes it, so a
 //! product is the same, bit for bit, on any team. Measured on the paper path at 128² (two cores,
-//! `examples/bem_timing.rs`): 1.8 s wall on two threads (3.4 s CPU, the worker's spinning
-//! included) against 2.2 s on one.
+//! `examples/bem_timing.rs`, medians of 5 side by side): 1.66 s wall on two threads (3.19 s CPU,
+//! the worker's spinning included) against 2.14 s on one.
 //!
 //! The transforms run in a chosen [`Precision`] (f64 or f32); fields and kernels are f64 on both
 //! sides. In f32 a transform is about twice as fast (twice the SIMD lanes, half the memory) and
@@ -56,10 +57,11 @@ impl Precision for f32 {
 }
 
 /// Rows transformed and transposed together, and the unit of the row passes' parts: each column
-/// takes 16 consecutive values (two cache lines in f32) from a block. Measured, one f32 convolution (medians of 7, thread CPU) at
-/// 128² (256²), in the layout before columns were multiplied one by one: blocks of 8 rows in a
-/// loop of variable length 111 µs (507 µs), of 16 rows unrolled 104 µs (494 µs), of 32 rows
-/// unrolled 102 µs (499 µs); 16 rows of 257 f32 frequencies (33 kB) still fit a level-1 cache.
+/// takes 16 consecutive values (two cache lines in f32) from a block. Measured, one f32
+/// convolution (medians of 7, thread CPU) at 128² (256²), in the layout before columns were
+/// multiplied one by one: blocks of 8 rows in a loop of variable length 111 µs (507 µs), of 16
+/// rows unrolled 104 µs (494 µs), of 32 rows unrolled 102 µs (499 µs); 16 rows of 257 f32
+/// frequencies (33 kB) still fit a level-1 cache.
 const ROW_BLOCK: usize = 16;
 
 /// The real spectrum of a kernel even in each offset (or odd in both) on the padded grid: n + 1
@@ -195,10 +197,11 @@ impl<T: Precision> Convolver<T> {
         });
     }
 
-    /// The three passes for K components (1 or 2), each spread over `team`: rows forward (blocks of rows), columns (ranges of kx: forward,
-    /// `multiply(kx, spectra of column kx)` in place, inverse), rows inverse into `outs` (blocks
-    /// of rows). The parts of a pass are independent, and each row and column is transformed by
-    /// the same code on any thread: the product is the same, bit for bit, on any team.
+    /// The three passes for K components (1 or 2), each spread over `team`: rows forward (blocks
+    /// of rows), columns (ranges of kx: forward, `multiply(kx, spectra of column kx)` in place,
+    /// inverse), rows inverse into `outs` (blocks of rows). The parts of a pass are independent,
+    /// and each row and column is transformed by the same code on any thread: the product is the
+    /// same, bit for bit, on any team.
     fn run<const K: usize>(
         &mut self,
         team: &Team,
