@@ -217,11 +217,12 @@ impl NormalModel {
     /// the centres of `grid`; with the coarse iterations spent. A start for the conjugate
     /// gradients of a contact from rest, in place of the seed from the overlap: the smooth part of
     /// the pressure is right from the start, and the fine iterations only correct the rest.
-    /// `None` where `grid` has no even coarser level, or when the coarse solve fails (the fine
+    /// `None` where nothing overlaps (δn ≤ 0: the answer is no pressure, found without a
+    /// solve), where `grid` has no even coarser level, or when the coarse solve fails (the fine
     /// solve then starts from the seed, as without a guess).
     fn coarse_guess(&self, grid: &Grid, delta_n: f64) -> Option<(Vec<f64>, usize)> {
         let n = grid.n / 2;
-        if n < COARSEST || !n.is_multiple_of(2) {
+        if delta_n <= 0.0 || n < COARSEST || !n.is_multiple_of(2) {
             return None;
         }
         let coarse = Grid::covering(n, grid.coordinate(grid.n - 1) + 0.5 * grid.h);
@@ -230,11 +231,7 @@ impl NormalModel {
             ..self.settings
         };
         let mut contact = self.contact(&coarse, settings);
-        let mut iterations = 0;
-        if let Some((guess, spent)) = self.coarse_guess(&coarse, delta_n) {
-            contact.guess_normal(guess).ok()?;
-            iterations += spent;
-        }
+        let mut iterations = self.start_from_coarse(&mut contact, &coarse, delta_n).ok()?;
         iterations += contact.advance(delta_n, &[]).ok()?.normal_iterations;
         let pressure = contact.pressure();
         let guess = grid
@@ -242,6 +239,21 @@ impl NormalModel {
             .into_iter()
             .map(|c| coarse.interpolate(pressure, c).max(0.0));
         Some((guess.collect(), iterations))
+    }
+
+    /// Gives `contact` (on `grid`, at rest) the coarser grids' answer at `delta_n` as the start
+    /// of its next normal solve, where there is one ([`NormalModel::coarse_guess`]); returns the
+    /// coarse iterations spent.
+    fn start_from_coarse(
+        &self,
+        contact: &mut GridContact,
+        grid: &Grid,
+        delta_n: f64,
+    ) -> Result<usize, ContactError> {
+        match self.coarse_guess(grid, delta_n) {
+            Some((guess, spent)) => contact.guess_normal(guess).map(|()| spent),
+            None => Ok(0),
+        }
     }
 }
 
@@ -317,13 +329,13 @@ impl ContactState {
     /// Moves to approach `delta_n` with a tangential shift increment `shift` along x.
     pub fn advance(&mut self, delta_n: f64, shift: f64) -> Result<IncrementCost, IncrementError> {
         // A contact from rest starts from the coarser grids' answer (nested iteration).
-        let mut coarse_iterations = 0;
-        if self.contact.normal_force() == 0.0 {
-            if let Some((guess, spent)) = self.model.coarse_guess(&self.grid, delta_n) {
-                self.contact.guess_normal(guess).map_err(IncrementError::Engine)?;
-                coarse_iterations = spent;
-            }
-        }
+        let coarse_iterations = if self.contact.normal_force() == 0.0 {
+            (self.model)
+                .start_from_coarse(&mut self.contact, &self.grid, delta_n)
+                .map_err(IncrementError::Engine)?
+        } else {
+            0
+        };
         let cost = self
             .contact
             .advance(delta_n, &[shift, 0.0])
