@@ -44,6 +44,23 @@ pub struct SolidGeometry {
     pub max_size: f64,
 }
 
+impl std::fmt::Display for SolidGeometry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "R = {:e} m, H = {:e} m, pole size {:e} m, fine radius {:e} m, fine depth {:e} m, \
+             growth {}, largest size {:e} m",
+            self.radius,
+            self.height,
+            self.pole_size,
+            self.fine_radius,
+            self.fine_depth,
+            self.growth,
+            self.max_size
+        )
+    }
+}
+
 impl SolidGeometry {
     /// Checks the parameters: a sphere, a far face between the fine zone and the equator, a
     /// pole size below the fine distance.
@@ -61,7 +78,7 @@ impl SolidGeometry {
         .all(|v| v.is_finite() && *v > 0.0);
         if !finite {
             return Err(format!(
-                "every mesh parameter must be positive and finite: {self:?}"
+                "every mesh parameter must be positive and finite: {self}"
             ));
         }
         let fine = self.fine_radius + self.fine_depth;
@@ -75,7 +92,7 @@ impl SolidGeometry {
         }
         if self.pole_size > 0.5 * self.fine_radius || self.max_size < self.pole_size {
             return Err(format!(
-                "need pole size ≤ half the fine radius and ≤ the largest size: {self:?}"
+                "need pole size ≤ half the fine radius and ≤ the largest size: {self}"
             ));
         }
         Ok(())
