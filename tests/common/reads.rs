@@ -3,7 +3,7 @@
 //! it, and the command line run with a guard against hangs.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
@@ -16,19 +16,27 @@ pub fn hostile(name: &str) -> PathBuf {
 }
 
 /// Runs the command line with `args` in `cwd`, with [`SECRET`] in its environment. A run that
-/// has not ended after two minutes is a hang (a FIFO read, say): the test fails rather than wait
-/// for ever. Nothing about speed is asserted.
+/// has not ended after two minutes is a hang (a FIFO read, say): it is killed and the test fails
+/// rather than wait for ever. Nothing about speed is asserted.
 pub fn spherecontact_guarded(args: &[&str], cwd: &Path) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_spherecontact"));
-    command
+    let child = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
         .args(args)
         .current_dir(cwd)
-        .env("SPHERECONTACT_TEST_SECRET", SECRET);
+        .env("SPHERECONTACT_TEST_SECRET", SECRET)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
     let (send, receive) = mpsc::channel();
-    std::thread::spawn(move || send.send(command.output().unwrap()));
+    std::thread::spawn(move || send.send(child.wait_with_output().unwrap()));
     receive
         .recv_timeout(Duration::from_secs(120))
-        .unwrap_or_else(|_| panic!("spherecontact {args:?} hung"))
+        .unwrap_or_else(|_| {
+            // SAFETY: kill(2) on the pid of our own child, which has not been reaped (it hangs).
+            unsafe { libc::kill(pid as libc::pid_t, libc::SIGKILL) };
+            panic!("spherecontact {args:?} hung")
+        })
 }
 
 /// Stdout and stderr, as text.
@@ -47,7 +55,8 @@ pub fn raw_controls(text: &str) -> Vec<char> {
 
 /// A project folder in a temporary folder: `project/cases/` (the case under test, and
 /// `data/good.csv`, hertz's own results for the base path), `project/reference/values.toml`, and
-/// beside the project `secret.csv`, `secret.toml` and `outside.csv` (a copy of good.csv).
+/// beside the project `secret.csv`, `secret.toml` (a valid reference value whose source is the
+/// secret) and `outside.csv` (a copy of good.csv).
 pub struct Project {
     /// The temporary folder: `project/` and the secrets.
     pub dir: tempfile::TempDir,
@@ -72,7 +81,9 @@ impl Project {
         .unwrap();
         std::fs::write(
             dir.path().join("secret.toml"),
-            format!("[force_17um]\nquantity = \"{SECRET}\"\n"),
+            format!(
+                "[force_17um]\nquantity = \"normal_force\"\nvalue = 803.76\nunit = \"N\"\nsource = \"{SECRET}\"\n"
+            ),
         )
         .unwrap();
         let project = Self { dir };

@@ -5,7 +5,8 @@
 //! file, a folder, `/dev/zero`, `/proc/self/environ`, names with `..`, absolute names and control
 //! characters.
 //!
-//! Every input is loaded in the process (no panic; a case or an error) and, when it loads, verified
+//! Every input is loaded in the process (no panic; a case or an error; a case reads no file outside
+//! its tree, each name resolved here on its own) and, when it loads, verified
 //! with its solvers (hertz and the stored results); every text a user would see (the error, the
 //! `verify` rows, the summary, JUnit, one in ten times the compare report) must hold neither the
 //! secret nor a raw control character. One input in 50 is also run through the command line
@@ -18,6 +19,7 @@ use std::path::{Path, PathBuf};
 use super::common::reads::{raw_controls, spherecontact_guarded, symlink, text, Project, SECRET};
 use super::Rng;
 use spherecontact::case::{Case, CaseSolver, ReadRoots};
+use spherecontact::check::Reference;
 use spherecontact::report::{compare, junit, summary, table};
 use spherecontact::verify;
 
@@ -35,6 +37,9 @@ const NAMES: &[&str] = &[
     "./data/good.csv",
     "../../secret.csv",
     "../../secret.toml",
+    "../../outside.csv",
+    "@ABS@/outside.csv",
+    "data/link-outside.csv",
     "@ABS@/secret.csv",
     "@ABS@/secret.toml",
     "@ABS@/project/cases/data/good.csv",
@@ -79,6 +84,7 @@ fn hostile_project() -> Project {
     let data = p.cases().join("data");
     symlink(&data.join("good.csv"), &data.join("link-in.csv"));
     symlink(&p.dir.path().join("secret.csv"), &data.join("link-out.csv"));
+    symlink(&p.dir.path().join("outside.csv"), &data.join("link-outside.csv"));
     symlink(Path::new("/dev/zero"), &data.join("zero"));
     symlink(
         &p.dir.path().join("secret.toml"),
@@ -191,17 +197,42 @@ struct Tally {
     commands: u64,
 }
 
+/// The file a loaded case reads from outside its tree (`project/cases/`, `project/reference/`),
+/// if any: its stored results and its reference files, resolved here on their own.
+fn read_outside(case: &Case, project: &Path) -> Option<String> {
+    let inside = |file: &Path| {
+        file.canonicalize()
+            .is_ok_and(|f| f.starts_with(project.join("cases")) || f.starts_with(project.join("reference")))
+    };
+    let stored = case.own_solvers.iter().filter_map(|s| match s {
+        CaseSolver::Stored(s) => Some(s.file.clone()),
+        CaseSolver::Command(_) => None,
+    });
+    let references = case.checks.iter().filter_map(|c| match &c.reference {
+        Reference::Value { key, .. } => Some(project.join("cases").join(key.rsplit_once('#')?.0)),
+        Reference::Solver(_) => None,
+    });
+    let mut files = stored.chain(references);
+    files
+        .find(|f| !inside(f))
+        .map(|f| format!("read {} outside the tree", f.display()))
+}
+
 /// Loads and verifies one input in the process: what is wrong with it, if anything, and whether
 /// the command line may run it (it does not load, or its solvers are cheap).
-fn judge(file: &Path, text: &str, report: bool, tally: &mut Tally) -> (Option<String>, bool) {
+fn judge(project: &Path, text: &str, report: bool, tally: &mut Tally) -> (Option<String>, bool) {
+    let file = project.join("cases/fuzz.toml");
     let loaded = catch_unwind(AssertUnwindSafe(|| {
-        Case::parse_with(file, text, &ReadRoots::default())
+        Case::parse_with(&file, text, &ReadRoots::default())
     }));
     let case = match loaded {
         Err(_) => return (Some("Case::parse panicked".into()), false),
         Ok(Err(e)) => {
             tally.refused += 1;
             return (leaks("the error", &e.to_string()), true);
+        }
+        Ok(Ok(case)) if read_outside(&case, project).is_some() => {
+            return (read_outside(&case, project), false);
         }
         Ok(Ok(case)) if !cheap(&case) => {
             tally.loaded_only += 1;
@@ -253,7 +284,8 @@ pub fn fuzz(seed: u64, iterations: u64, corpus: &[String]) {
             .replace("@REFERENCE@", "../reference/values.toml"),
     )
     .unwrap();
-    let file = p.cases().join("fuzz.toml");
+    let project = p.project().canonicalize().unwrap();
+    let file = project.join("cases/fuzz.toml");
     let mut rng = Rng(seed);
     let mut crashers: Vec<PathBuf> = Vec::new();
     let mut tally = Tally::default();
@@ -262,7 +294,7 @@ pub fn fuzz(seed: u64, iterations: u64, corpus: &[String]) {
     std::panic::set_hook(Box::new(|_| {}));
     for done in 0..iterations {
         let text = mutant(&base, &abs, &mut rng, corpus);
-        let (mut problem, runnable) = judge(&file, &text, done % 10 == 0, &mut tally);
+        let (mut problem, runnable) = judge(&project, &text, done % 10 == 0, &mut tally);
         if problem.is_none() && runnable && done % 50 == 0 {
             tally.commands += 1;
             std::fs::write(&file, &text).unwrap();
