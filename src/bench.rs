@@ -17,6 +17,7 @@ use std::time::Instant;
 
 use crate::analytic::hertz::HertzSolver;
 use crate::analytic::mdr::Mdr;
+use crate::case::{Case, CaseSolver};
 use crate::fem::MdrDomain;
 use crate::history::{History, Quantity};
 use crate::registry;
@@ -234,6 +235,70 @@ pub fn sweep(
         .into_iter()
         .map(|result| result.map(|timing| references.score(timing)))
         .collect())
+}
+
+/// A solver that `bench` cannot sweep.
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    /// A solver the case defines, named on the command line.
+    #[error(
+        "--solver `{name}`: {what} defined by the case has no resolutions to sweep and no timing \
+         of its own (allowed: a solver of this build, see `spherecontact list`; `verify` and \
+         `compare` check it)"
+    )]
+    CaseDefined {
+        /// Its name.
+        name: String,
+        /// What it is, in words.
+        what: &'static str,
+    },
+    /// Nothing left to sweep.
+    #[error(
+        "{case}: every solver of the case is defined by the case ({names}), none can be swept \
+         (allowed: `--solver NAME` with a solver of this build, see `spherecontact list`)"
+    )]
+    Nothing {
+        /// The case's name.
+        case: String,
+        /// The solvers left out.
+        names: String,
+    },
+}
+
+/// The solvers of `plan` that `bench` sweeps: this build's. A solver the case defines (stored
+/// results, a command) has no resolution ladder and is not in the registry: named on the
+/// command line (`named`) it is refused; from the case's own list it is left out, and its name
+/// is returned among those left out.
+pub fn sweepable(
+    case: &Case,
+    plan: Vec<Box<dyn Solver>>,
+    named: bool,
+) -> Result<(Vec<Box<dyn Solver>>, Vec<String>), PlanError> {
+    let mut kept = Vec::new();
+    let mut left_out = Vec::new();
+    for solver in plan {
+        let Some(own) = case.own_solvers.iter().find(|s| s.name() == solver.name()) else {
+            kept.push(solver);
+            continue;
+        };
+        if named {
+            return Err(PlanError::CaseDefined {
+                name: own.name().to_owned(),
+                what: match own {
+                    CaseSolver::Command(_) => "a command",
+                    CaseSolver::Stored(_) => "stored results",
+                },
+            });
+        }
+        left_out.push(own.name().to_owned());
+    }
+    if kept.is_empty() {
+        return Err(PlanError::Nothing {
+            case: case.name().to_owned(),
+            names: left_out.join(", "),
+        });
+    }
+    Ok((kept, left_out))
 }
 
 #[cfg(test)]

@@ -57,5 +57,6 @@ pub mod resolution;
 pub mod scene;
 pub mod solver;
 pub mod team;
+pub mod text;
 pub mod verify;
 pub mod vtu;

@@ -12,6 +12,12 @@ use crate::resolution::PoleLimits;
 /// memory per byte of TOML, and a case that lists a million positions is under 3 MiB.
 pub const MAX_INPUT_BYTES: u64 = 4 << 20;
 
+/// The largest stored-results file (`[[stored_results]]`, a History CSV) [bytes] (256 MiB): the
+/// longest path ([`MAX_INCREMENTS`] increments) written with all nine columns at 17 significant
+/// digits is about 200 MB. The file is read row by row into the steps (about 100 bytes each), so
+/// this bounds the time of the read and the longest row held at once, not the memory of the steps.
+pub const MAX_STORED_RESULTS_BYTES: u64 = 256 << 20;
+
 /// The longest case name [characters].
 pub const MAX_NAME_CHARS: usize = 64;
 

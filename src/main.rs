@@ -8,10 +8,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use spherecontact::case::{limits, Case};
+use spherecontact::case::{limits, Case, ReadRoots};
 use spherecontact::external::{geo, toolchain::Toolchain};
 use spherecontact::report::{history_files, junit, summary, table};
-use spherecontact::{io, registry, resolution, solver, verify};
+use spherecontact::{io, registry, resolution, solver, text, verify};
 
 #[derive(Parser)]
 #[command(
@@ -22,6 +22,10 @@ use spherecontact::{io, registry, resolution, solver, verify};
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// A folder whose files case files may also read (stored results, reference values), besides
+    /// their own folder and the nearest `reference/` folder; repeatable (docs/security.md).
+    #[arg(long = "allow-read", value_name = "DIR", global = true)]
+    allow_read: Vec<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -138,6 +142,11 @@ impl<E: std::fmt::Display> From<E> for InputError {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let roots = match ReadRoots::new(&cli.allow_read) {
+        Ok(roots) => roots,
+        Err(e) => return input_error(&e.to_string()),
+    };
+    let roots = &roots;
     let result = match cli.command {
         Command::Run {
             case,
@@ -146,45 +155,55 @@ fn main() -> ExitCode {
             vtu,
             resolution,
             ranks,
-        } => run(&case, &solvers, &out, vtu, &resolution, ranks),
+        } => run(&case, &solvers, &out, vtu, &resolution, ranks, roots),
         Command::Verify {
             cases,
             junit,
             require_external,
             resolution,
             ranks,
-        } => verify_cases(cases, junit.as_deref(), require_external, &resolution, ranks),
+        } => verify_cases(
+            cases,
+            junit.as_deref(),
+            require_external,
+            &resolution,
+            ranks,
+            roots,
+        ),
         Command::Mesh {
             case,
             resolution,
             out,
-        } => mesh(&case, resolution.as_deref(), &out),
+        } => mesh(&case, resolution.as_deref(), &out, roots),
         Command::Doctor => Ok(doctor()),
-        Command::List => list(),
+        Command::List => list(roots),
         Command::Compare {
             case,
             out,
             resolution,
-        } => report(&case, out, &resolution, Report::Compare),
+        } => report(&case, out, &resolution, Report::Compare, roots),
         Command::ReproducePaper {
             out,
             case,
             resolution,
-        } => report(&case, Some(out), &resolution, Report::Paper),
+        } => report(&case, Some(out), &resolution, Report::Paper, roots),
         Command::Bench {
             case,
             solvers,
             repeat,
             out,
-        } => bench(&case, &solvers, repeat as usize, out),
+        } => bench(&case, &solvers, repeat as usize, out, roots),
     };
     match result {
         Ok(code) => code,
-        Err(InputError(message)) => {
-            eprintln!("error: {message}");
-            ExitCode::from(2)
-        }
+        Err(InputError(message)) => input_error(&message),
     }
+}
+
+/// Prints a bad-input error (its control characters escaped) and gives exit code 2.
+fn input_error(message: &str) -> ExitCode {
+    eprintln!("error: {}", text::lines(message));
+    ExitCode::from(2)
 }
 
 /// Every `.toml` file under `dir`, recursively, in sorted order. Symbolic links to folders are
@@ -223,8 +242,13 @@ fn resolution_options(options: &[String]) -> Result<Vec<(String, String)>, Input
 }
 
 /// Loads the case at `file` with the command line's ranks and resolutions over its own.
-fn load_case(file: &Path, ranks: Option<u32>, resolutions: &[(String, String)]) -> Result<Case, InputError> {
-    let mut case = Case::load(file)?;
+fn load_case(
+    file: &Path,
+    ranks: Option<u32>,
+    resolutions: &[(String, String)],
+    roots: &ReadRoots,
+) -> Result<Case, InputError> {
+    let mut case = Case::load_with(file, roots)?;
     case.ranks = ranks.unwrap_or(case.ranks);
     for (name, value) in resolutions {
         case.set_resolution(name, value).map_err(|e| {
@@ -272,9 +296,10 @@ fn run(
     vtu: bool,
     resolution: &[String],
     ranks: Option<u32>,
+    roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
     // Plan: the case and every solver named must be valid before anything is written.
-    let case = load_case(case, ranks, &resolution_options(resolution)?)?;
+    let case = load_case(case, ranks, &resolution_options(resolution)?, roots)?;
     let mut plan = planned_solvers(&case, solvers)?;
     output_folder("--out", out)?;
     if vtu {
@@ -314,7 +339,7 @@ fn run(
                 );
             }
             Err(e) => {
-                eprintln!("error: {}: {e}", solver.name());
+                eprintln!("error: {}: {}", solver.name(), text::lines(&e.to_string()));
                 code = ExitCode::FAILURE;
             }
         }
@@ -328,6 +353,7 @@ fn verify_cases(
     require_external: bool,
     resolution: &[String],
     ranks: Option<u32>,
+    roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
     let resolutions = resolution_options(resolution)?;
     let files = if files.is_empty() {
@@ -340,7 +366,7 @@ fn verify_cases(
     }
     let cases = files
         .iter()
-        .map(|f| load_case(f, ranks, &resolutions))
+        .map(|f| load_case(f, ranks, &resolutions, roots))
         .collect::<Result<Vec<_>, _>>()?;
     if let Some(file) = junit_file {
         io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
@@ -369,9 +395,14 @@ fn verify_cases(
     )
 }
 
-fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, InputError> {
+fn mesh(
+    case: &Path,
+    resolution: Option<&str>,
+    out: &Path,
+    roots: &ReadRoots,
+) -> Result<ExitCode, InputError> {
     // Plan: the case and the resolution must be valid before anything is written.
-    let case = Case::load(case)?;
+    let case = Case::load_with(case, roots)?;
     // The pole sizes of fem-axisym's and the decks' `[resolution]` (c/N or a length).
     let resolution = match resolution {
         Some(text) => resolution::pole_size("mesh", &case.scene, text, limits::MERIDIAN_POLE)
@@ -420,9 +451,14 @@ fn bench(
     solvers: &[String],
     repeat: usize,
     out: Option<PathBuf>,
+    roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
-    let case = Case::load(case)?;
-    let plan = planned_solvers(&case, solvers)?;
+    let case = Case::load_with(case, roots)?;
+    let (plan, left_out) =
+        spherecontact::bench::sweepable(&case, planned_solvers(&case, solvers)?, !solvers.is_empty())?;
+    for name in left_out {
+        eprintln!("note: {name} is defined by the case (stored results or a command): not swept");
+    }
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("bench-{}", case.name())));
     output_folder("--out", &out)?;
     if cfg!(debug_assertions) {
@@ -493,11 +529,20 @@ fn report(
     out: Option<PathBuf>,
     resolution: &[String],
     kind: Report,
+    roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
-    let case = load_case(case, None, &resolution_options(resolution)?)?;
+    let case = load_case(case, None, &resolution_options(resolution)?, roots)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
     output_folder("--out", &out)?;
-    let reference_dir = case.file.parent().unwrap_or(Path::new(".")).join("../reference");
+    // The paper's quoted values are read before any solver runs: a missing file is bad input.
+    let paper_references = match kind {
+        Report::Paper => Some(
+            spherecontact::report::paper::Quoted::for_case(&case)
+                .map_err(|e| InputError(format!("{}: {e}", case.file.display())))?
+                .0,
+        ),
+        Report::Compare => None,
+    };
     let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg}")
@@ -510,9 +555,9 @@ fn report(
         bar.set_message(name.to_owned());
     });
     bar.finish_and_clear();
-    let document = match kind {
-        Report::Compare => spherecontact::report::compare::document(&run),
-        Report::Paper => {
+    let document = match paper_references {
+        None => spherecontact::report::compare::document(&run),
+        Some(reference_dir) => {
             // The surface-field claims at the finest rungs of each map solver's ladder.
             let study = spherecontact::report::claims::Study::of_ladders(&run);
             spherecontact::report::paper::document(&run, &study, &reference_dir)
@@ -531,7 +576,7 @@ fn report(
     })
 }
 
-fn list() -> Result<ExitCode, InputError> {
+fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
     println!("solvers:");
     let solvers = registry::registry();
     let width = solvers
@@ -544,14 +589,14 @@ fn list() -> Result<ExitCode, InputError> {
     }
     println!("cases:");
     for file in case_files(Path::new("cases")).unwrap_or_default() {
-        match Case::load(&file) {
+        match Case::load_with(&file, roots) {
             Ok(case) => println!(
                 "  {:<22} {}  {}",
                 case.name(),
-                file.display(),
-                case.description.lines().next().unwrap_or("")
+                text::one_line(&file.display().to_string()),
+                text::one_line(case.description.lines().next().unwrap_or(""))
             ),
-            Err(e) => println!("  (invalid) {e}"),
+            Err(e) => println!("  (invalid) {}", text::one_line(&e.to_string())),
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -147,7 +147,7 @@ fn garbage_output_is_reported_with_file_line_and_column() {
         // NaN for a force
         (
             corrupted(r#"sed -i "3s/,[^,]*,\([^,]*\),\([^,]*\)\$/,nan,\1,\2/" history.csv"#),
-            "`nan` is not finite",
+            "not finite (allowed: a finite number in SI units, or empty)",
         ),
         // the last rows missing
         (

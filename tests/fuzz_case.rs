@@ -9,6 +9,11 @@
 //! solve it without a panic or a non-finite value. A failing input is written to
 //! `target/fuzz-crashers/` and fails the test; it then becomes a regular test.
 //!
+//! The read fuzzer ([`fuzz_reads`], `tests/fuzz_reads/mod.rs`) mutates the sections that name
+//! files (stored results, reference values) and the texts a case shows, in a project folder with
+//! secrets beside it, links, a FIFO and a sparse file: no panic, exit code 0/1/2 only, nothing of a
+//! file outside the case's tree and no raw control character in any output (docs/security.md).
+//!
 //! In CI (`cargo test`): 60 000 iterations from seeds 1 and 24 302, in two halves run in parallel
 //! (about 40 s on two cores in the dev profile). By hand, longer, with another seed:
 //!
@@ -18,6 +23,7 @@
 //! ```
 
 mod common;
+mod fuzz_reads;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
@@ -447,7 +453,7 @@ fn judge(text: &str, solvers: &[Box<dyn Solver>], tally: &mut Tally) -> Option<S
 /// The corpus: every shipped case and every hostile test case.
 fn corpus() -> Vec<String> {
     let mut files = common::all_case_files();
-    for folder in ["extreme", "malformed", "valid"] {
+    for folder in ["extreme", "malformed", "valid", "reads"] {
         let dir = common::root().join("tests/hostile").join(folder);
         files.extend(std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()));
     }
@@ -514,4 +520,16 @@ fn fuzz_the_case_parser_first_half() {
 fn fuzz_the_case_parser_second_half() {
     let seed = env_number("FUZZ_SEED").unwrap_or(1).wrapping_add(0x5eed);
     fuzz(seed, env_number("FUZZ_ITERATIONS").unwrap_or(60_000) / 2);
+}
+
+/// The read fuzzer ([`fuzz_reads`]): the sections that name files and the texts a case shows.
+/// `FUZZ_READ_ITERATIONS` (default 10 000) inputs.
+#[test]
+fn fuzz_the_files_a_case_names() {
+    let seed = env_number("FUZZ_SEED").unwrap_or(1).wrapping_add(0x4ead);
+    fuzz_reads::fuzz(
+        seed,
+        env_number("FUZZ_READ_ITERATIONS").unwrap_or(10_000),
+        &corpus(),
+    );
 }

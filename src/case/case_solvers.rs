@@ -10,7 +10,8 @@
 //!
 //! [[stored_results]]
 //! name = "lab-rig"
-//! file = "data/lab-rig.csv"             # a History CSV, relative to the case file
+//! file = "data/lab-rig.csv"             # a History CSV, relative to the case file, inside
+//!                                       # its tree (`super::reads`), at most 256 MiB
 //! description = "…"                     # optional
 //! ```
 //! Both formats (the scene file a command reads, the History CSV it writes and a stored file
@@ -152,9 +153,12 @@ impl Validator<'_> {
         field: &str,
         path: &LoadingPath,
     ) -> Result<StoredResults, CaseError> {
-        let file = self.case_dir().join(raw.file.get_ref());
-        results_csv::read(&file, &path.steps())
-            .map_err(|e| self.error(&raw.file, format!("{field}.file"), e.to_string()))?;
+        let field = format!("{field}.file");
+        let file = self
+            .tree
+            .resolve(raw.file.get_ref())
+            .map_err(|e| self.error(&raw.file, &field, format!("stored results {e}")))?;
+        results_csv::read(&file, &path.steps()).map_err(|e| self.error(&raw.file, field, e.to_string()))?;
         Ok(StoredResults {
             name: raw.name.get_ref().clone(),
             file,

@@ -1,7 +1,6 @@
 //! Validation of a case's checks: solver, quantity, where along the path, reference (another
 //! solver, or a value stored in a reference file), error measure, tolerance and its reason.
 
-use std::path::Path;
 use toml::Spanned;
 
 use super::error::ShortValue;
@@ -209,7 +208,8 @@ impl Validator<'_> {
         }
     }
 
-    /// A value from a reference file, which is resolved against the case file's folder.
+    /// A value from a reference file, which is resolved against the case file's folder and
+    /// must lie in the case's tree ([`super::reads`]).
     fn stored_value(
         &self,
         raw: &Spanned<toml::Value>,
@@ -218,18 +218,13 @@ impl Validator<'_> {
         key: &str,
         quantity: Quantity,
     ) -> Result<Reference, CaseError> {
-        let path = self.file.parent().unwrap_or(Path::new(".")).join(file);
+        let path = self
+            .tree
+            .resolve(file)
+            .map_err(|e| self.error(raw, format!("{field}.file"), format!("reference file {e}")))?;
         let stored = reference::load(&path, key).map_err(|e| match e {
-            LoadError::Unreadable(e) => self.error(
-                raw,
-                format!("{field}.file"),
-                format!("cannot read reference file {}: {e}", path.display()),
-            ),
-            LoadError::NoKey => self.error(
-                raw,
-                format!("{field}.key"),
-                format!("no key `{key}` in {}", path.display()),
-            ),
+            LoadError::NoKey { .. } => self.error(raw, format!("{field}.key"), e.to_string()),
+            LoadError::Unreadable { .. } => self.error(raw, format!("{field}.file"), e.to_string()),
             // The fault is in the reference file; the message also names the check using it.
             LoadError::Invalid(e) => self.error(raw, field, format!("key `{key}` of reference file {e}")),
         })?;

@@ -4,6 +4,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use crate::number::Short;
+use crate::text::one_line;
 
 /// A case file that cannot be used: it names the file, the field, the line and column where
 /// the parser knows them, and what is allowed.
@@ -30,8 +31,8 @@ impl CaseError {
         Self {
             file: file.to_path_buf(),
             location: source.map(|(text, span)| line_and_column(text, span.start)),
-            field: shortened(field.into(), MAX_FIELD_CHARS),
-            message: shortened(message.into(), MAX_MESSAGE_CHARS),
+            field: shortened(one_line(&field.into()).into_owned(), MAX_FIELD_CHARS),
+            message: shortened(one_line(&message.into()).into_owned(), MAX_MESSAGE_CHARS),
         }
     }
 }
@@ -157,7 +158,7 @@ pub fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
 
 impl fmt::Display for CaseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file.display())?;
+        write!(f, "{}", one_line(&self.file.display().to_string()))?;
         if let Some((line, column)) = self.location {
             write!(f, ":{line}:{column}")?;
         }

@@ -2,7 +2,9 @@
 //!
 //! A FIFO, a device or a directory is refused without blocking on it (the file is opened
 //! non-blocking and judged by its own metadata), and a file larger than
-//! [`MAX_INPUT_BYTES`](crate::limits::MAX_INPUT_BYTES) is refused before it is read.
+//! [`MAX_INPUT_BYTES`](crate::limits::MAX_INPUT_BYTES) is refused before it is read. The same
+//! opening ([`open_regular`]) serves every file a case names (stored results, with their own
+//! limit).
 
 use std::fs::File;
 use std::io::{self, Read};
@@ -15,33 +17,9 @@ use crate::limits::MAX_INPUT_BYTES;
 /// Errors are `io::Error`s whose message says what is allowed: a file that is not regular is
 /// `InvalidInput`, one too large `FileTooLarge`, one not UTF-8 `InvalidData`.
 pub fn read_text(path: &Path) -> io::Result<String> {
-    let file = open_without_blocking(path)?;
-    let meta = file.metadata()?;
-    if !meta.is_file() {
-        return Err(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            format!(
-                "not a regular file ({}; allowed: a regular file of at most {})",
-                kind(&meta.file_type()),
-                mebibytes(MAX_INPUT_BYTES)
-            ),
-        ));
-    }
-    let too_large = |bytes: u64| {
-        io::Error::new(
-            io::ErrorKind::FileTooLarge,
-            format!("{bytes} bytes (allowed: at most {})", mebibytes(MAX_INPUT_BYTES)),
-        )
-    };
-    if meta.len() > MAX_INPUT_BYTES {
-        return Err(too_large(meta.len()));
-    }
-    // The file may grow between the metadata and the read: read one byte past the limit.
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > MAX_INPUT_BYTES {
-        return Err(too_large(bytes.len() as u64));
-    }
+    let file = open_regular(path, MAX_INPUT_BYTES)?;
+    let mut bytes = Vec::new();
+    file.read_to_end(&mut bytes)?;
     String::from_utf8(bytes).map_err(|e| {
         io::Error::new(
             io::ErrorKind::InvalidData,
@@ -51,6 +29,64 @@ pub fn read_text(path: &Path) -> io::Result<String> {
             ),
         )
     })
+}
+
+/// The regular file at `path`, opened without blocking and judged by the opened file's own
+/// metadata: refused if it is not a regular file (a FIFO, a device, a folder) or is longer than
+/// `limit` bytes; its reads fail (`FileTooLarge`) past `limit` if it grows while it is read.
+pub fn open_regular(path: &Path, limit: u64) -> io::Result<Bounded> {
+    let file = open_without_blocking(path)?;
+    let meta = file.metadata()?;
+    if !meta.is_file() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "not a regular file ({}; allowed: a regular file of at most {})",
+                kind(&meta.file_type()),
+                size(limit)
+            ),
+        ));
+    }
+    if meta.len() > limit {
+        return Err(too_large(meta.len(), limit));
+    }
+    Ok(Bounded { file, limit, read: 0 })
+}
+
+/// A file whose reads fail once more than its limit has been read.
+#[derive(Debug)]
+pub struct Bounded {
+    file: File,
+    limit: u64,
+    read: u64,
+}
+
+impl Bounded {
+    /// Reads the whole file into `bytes` (at most the limit).
+    pub fn read_to_end(mut self, bytes: &mut Vec<u8>) -> io::Result<usize> {
+        bytes.reserve(self.file.metadata().map_or(0, |m| m.len().min(self.limit)) as usize);
+        Read::read_to_end(&mut self, bytes)
+    }
+}
+
+impl Read for Bounded {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        // One byte past the limit is read, to tell a file at the limit from a longer one.
+        let room = (self.limit + 1 - self.read).min(buf.len() as u64) as usize;
+        let n = self.file.read(&mut buf[..room])?;
+        self.read += n as u64;
+        if self.read > self.limit {
+            return Err(too_large(self.read, self.limit));
+        }
+        Ok(n)
+    }
+}
+
+fn too_large(bytes: u64, limit: u64) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::FileTooLarge,
+        format!("{} (allowed: at most {})", size(bytes), size(limit)),
+    )
 }
 
 /// Opens `path` for reading; on Unix without blocking, so that opening a FIFO with no writer
@@ -88,9 +124,13 @@ fn kind(file_type: &std::fs::FileType) -> &'static str {
     }
 }
 
-/// `bytes` in MiB, as a limit is written.
-fn mebibytes(bytes: u64) -> String {
-    format!("{} MiB", bytes >> 20)
+/// A size in bytes as a limit is written: whole MiB when it is one, else bytes.
+fn size(bytes: u64) -> String {
+    if bytes >= 1 << 20 && bytes % (1 << 20) == 0 {
+        format!("{} MiB", bytes >> 20)
+    } else {
+        format!("{bytes} bytes")
+    }
 }
 
 #[cfg(test)]
@@ -117,6 +157,21 @@ mod tests {
         let file = dir.path().join("a.toml");
         std::fs::write(&file, b"x = \"\xff\"").unwrap();
         assert!(read_text(&file).unwrap_err().to_string().contains("offset 5"));
+    }
+
+    #[test]
+    fn a_file_that_grows_past_the_limit_while_read_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("a.csv");
+        std::fs::write(&file, "12345").unwrap();
+        let opened = open_regular(&file, 8).unwrap();
+        std::fs::write(&file, "123456789").unwrap();
+        let e = opened.read_to_end(&mut Vec::new()).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::FileTooLarge, "{e}");
+        let mut bytes = Vec::new();
+        std::fs::write(&file, "12345678").unwrap();
+        open_regular(&file, 8).unwrap().read_to_end(&mut bytes).unwrap();
+        assert_eq!(bytes.len(), 8, "a file at the limit is read whole");
     }
 
     #[cfg(unix)]

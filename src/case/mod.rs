@@ -71,6 +71,8 @@
 //! | what | limit |
 //! |---|---|
 //! | case or reference file | a regular file (no FIFO, device or folder), at most 4 MiB |
+//! | stored results | a regular file, at most 256 MiB |
+//! | any file a case names | inside the case's folder, the nearest `reference/` folder or an `--allow-read` folder ([`reads`]) |
 //! | increments of the path, in all | at most 1 000 000 (a history and its JSON: 0.43 GB a solver) |
 //! | positions with surface fields | at most 16 (see `fields`) |
 //! | BEM grid | at most 512² panels |
@@ -84,6 +86,7 @@ mod domain;
 mod error;
 pub mod input;
 mod raw;
+pub mod reads;
 pub mod reference;
 mod resolution;
 mod scene_rules;
@@ -91,6 +94,7 @@ mod scene_rules;
 pub use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
+pub use reads::{CaseTree, ReadRoots};
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -124,21 +128,35 @@ pub struct Case {
     pub own_solvers: Vec<CaseSolver>,
     /// MPI ranks of the solvers that run under MPI (`fenicsx-3d`); 1 by default.
     pub ranks: u32,
+    /// The folders whose files the case may read ([`reads`]).
+    pub tree: CaseTree,
     /// The resolution chosen per solver (`[resolution]`, then `--resolution`), each value
     /// accepted by its solver for this scene; solvers not named run at their default.
     pub resolution: BTreeMap<String, String>,
 }
 
 impl Case {
-    /// Reads and validates the case file at `file` (a regular file of at most 4 MiB).
+    /// Reads and validates the case file at `file` (a regular file of at most 4 MiB); the files
+    /// it names must lie in its own tree ([`reads`]).
     pub fn load(file: &Path) -> Result<Self, CaseError> {
-        let text = input::read_text(file)
-            .map_err(|e| CaseError::new(file, None, "", format!("cannot read the case file: {e}")))?;
-        Self::parse(file, &text)
+        Self::load_with(file, &ReadRoots::default())
     }
 
-    /// Validates the text of a case file; `file` names it in errors and anchors reference paths.
+    /// [`Case::load`], the files it names also read from the folders `roots` allows.
+    pub fn load_with(file: &Path, roots: &ReadRoots) -> Result<Self, CaseError> {
+        let text = input::read_text(file)
+            .map_err(|e| CaseError::new(file, None, "", format!("cannot read the case file: {e}")))?;
+        Self::parse_with(file, &text, roots)
+    }
+
+    /// Validates the text of a case file; `file` names it in errors and anchors the files it
+    /// names, which must lie in its own tree.
     pub fn parse(file: &Path, text: &str) -> Result<Self, CaseError> {
+        Self::parse_with(file, text, &ReadRoots::default())
+    }
+
+    /// [`Case::parse`], the files it names also read from the folders `roots` allows.
+    pub fn parse_with(file: &Path, text: &str, roots: &ReadRoots) -> Result<Self, CaseError> {
         let raw: RawCase = toml::from_str(text).map_err(|e| {
             // The parser locates its errors but does not name the field: read it at the span.
             let field = e.span().and_then(|s| error::field_at(text, s.start));
@@ -153,6 +171,7 @@ impl Case {
         Validator {
             file,
             text,
+            tree: roots.tree(file),
             own: Vec::new(),
         }
         .case(raw)
@@ -201,6 +220,8 @@ impl Case {
 struct Validator<'a> {
     file: &'a Path,
     text: &'a str,
+    /// What the case may read.
+    tree: CaseTree,
     /// The names of the solvers the case defines itself.
     own: Vec<String>,
 }
@@ -294,6 +315,7 @@ impl Validator<'_> {
             checks,
             own_solvers,
             ranks,
+            tree: self.tree.clone(),
             resolution: BTreeMap::new(),
         };
         if let Some(table) = &raw.resolution {

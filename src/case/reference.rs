@@ -8,7 +8,7 @@
 //! source = "where the number comes from"
 //! ```
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::error::CaseError;
 use super::raw::RawReferenceValue;
@@ -26,20 +26,36 @@ pub struct StoredValue {
 }
 
 /// Why a stored value could not be had: the file could not be read, or its entry is invalid.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum LoadError {
-    /// The file cannot be read (the caller names the field that pointed to it).
-    Unreadable(std::io::Error),
+    /// The file cannot be read (missing, not a regular file, too large, not UTF-8).
+    #[error("cannot read reference file {}: {source}", file.display())]
+    Unreadable {
+        /// The file.
+        file: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
     /// The file has no such key.
-    NoKey,
+    #[error("no key `{key}` in reference file {}", file.display())]
+    NoKey {
+        /// The file.
+        file: PathBuf,
+        /// The key asked for.
+        key: String,
+    },
     /// The file or its entry is invalid.
+    #[error("reference file {0}")]
     Invalid(CaseError),
 }
 
 /// Reads entry `key` of the reference file `path` (a regular file of bounded size), checking
 /// that its value is finite and its quantity and unit are known and agree.
 pub fn load(path: &Path, key: &str) -> Result<StoredValue, LoadError> {
-    let text = super::input::read_text(path).map_err(LoadError::Unreadable)?;
+    let text = super::input::read_text(path).map_err(|source| LoadError::Unreadable {
+        file: path.to_path_buf(),
+        source,
+    })?;
     let invalid = |message: String| LoadError::Invalid(CaseError::new(path, None, key, message));
     let mut table: toml::Table = toml::from_str(&text).map_err(|e| {
         LoadError::Invalid(CaseError::new(
@@ -49,7 +65,10 @@ pub fn load(path: &Path, key: &str) -> Result<StoredValue, LoadError> {
             super::error::parser_message(&e),
         ))
     })?;
-    let entry = table.remove(key).ok_or(LoadError::NoKey)?;
+    let entry = table.remove(key).ok_or_else(|| LoadError::NoKey {
+        file: path.to_path_buf(),
+        key: key.to_owned(),
+    })?;
     let entry: RawReferenceValue = entry
         .try_into()
         .map_err(|e: toml::de::Error| invalid(super::error::parser_message(&e)))?;

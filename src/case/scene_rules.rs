@@ -26,7 +26,7 @@ impl Validator<'_> {
             Some(name) => Err(self.error(
                 name,
                 "name",
-                format!("{:?} is not a plain name ({allowed})", name.get_ref()),
+                format!("`{}` is not a plain name ({allowed})", name.get_ref()),
             )),
             None => {
                 let stem = self

@@ -14,7 +14,9 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::case::input;
 use crate::history::{Quantity, StepResult};
+use crate::limits::MAX_STORED_RESULTS_BYTES;
 use crate::path::Step;
 
 /// The path columns, first in every History CSV.
@@ -38,7 +40,15 @@ pub fn columns() -> Vec<&'static str> {
 /// and what is allowed.
 #[derive(Debug, thiserror::Error)]
 pub enum ResultsError {
-    /// The file cannot be opened or read.
+    /// The file cannot be opened: missing, not a regular file, or too large.
+    #[error("{}: cannot read: {source}", file.display())]
+    Open {
+        /// The file.
+        file: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The file cannot be read as CSV.
     #[error("{}: cannot read: {source}", file.display())]
     Unreadable {
         /// The file.
@@ -46,15 +56,14 @@ pub enum ResultsError {
         /// Why.
         source: csv::Error,
     },
-    /// The header is not the documented one.
-    #[error("{}: header `{found}`: {why} (allowed: {} first, then any of {})",
+    /// The header is not the documented one. What it holds is not repeated (the file may be
+    /// anything): the message locates the fault and gives the expected header.
+    #[error("{}:1: header: {why} (allowed: {} first, then any of {})",
         file.display(), PATH_COLUMNS.join(","), quantity_names())]
     Header {
         /// The file.
         file: PathBuf,
-        /// The header found.
-        found: String,
-        /// What is wrong with it.
+        /// What is wrong with it, without the file's text.
         why: String,
     },
     /// A row with another number of cells than the header.
@@ -98,17 +107,21 @@ fn quantity_names() -> String {
     Quantity::ALL.map(Quantity::name).join(", ")
 }
 
-/// Reads the History CSV at `file` and validates it against `steps`: one row per step, the
-/// path's positions and displacements, finite values.
+/// Reads the History CSV at `file` (a regular file of at most [`MAX_STORED_RESULTS_BYTES`],
+/// opened without blocking) and validates it against `steps`: one row per step, the path's
+/// positions and displacements, finite values. Messages locate a fault (line, column) without
+/// repeating the file's text, except a number that differs from the path's.
 pub fn read(file: &Path, steps: &[Step]) -> Result<Vec<StepResult>, ResultsError> {
+    let source =
+        input::open_regular(file, MAX_STORED_RESULTS_BYTES).map_err(|source| ResultsError::Open {
+            file: file.to_path_buf(),
+            source,
+        })?;
     let unreadable = |source| ResultsError::Unreadable {
         file: file.to_path_buf(),
         source,
     };
-    let mut reader = csv::ReaderBuilder::new()
-        .flexible(true)
-        .from_path(file)
-        .map_err(unreadable)?;
+    let mut reader = csv::ReaderBuilder::new().flexible(true).from_reader(source);
     let header = reader.headers().map_err(unreadable)?.clone();
     let quantities = quantity_columns(file, &header)?;
     let scale = steps
@@ -155,7 +168,6 @@ pub fn read(file: &Path, steps: &[Step]) -> Result<Vec<StepResult>, ResultsError
 fn quantity_columns(file: &Path, header: &csv::StringRecord) -> Result<Vec<Quantity>, ResultsError> {
     let bad = |why: String| ResultsError::Header {
         file: file.to_path_buf(),
-        found: header.iter().collect::<Vec<_>>().join(","),
         why,
     };
     let names: Vec<&str> = header.iter().map(str::trim).collect();
@@ -163,10 +175,11 @@ fn quantity_columns(file: &Path, header: &csv::StringRecord) -> Result<Vec<Quant
         return Err(bad("the path columns are missing or out of order".into()));
     }
     let mut quantities: Vec<Quantity> = Vec::new();
-    for name in &names[PATH_COLUMNS.len()..] {
-        let quantity = Quantity::from_name(name).ok_or_else(|| bad(format!("unknown column `{name}`")))?;
+    for (k, name) in names.iter().enumerate().skip(PATH_COLUMNS.len()) {
+        let quantity = Quantity::from_name(name)
+            .ok_or_else(|| bad(format!("column {} is not a known column", k + 1)))?;
         if quantities.contains(&quantity) {
-            return Err(bad(format!("column `{name}` appears twice")));
+            return Err(bad(format!("column {} repeats `{quantity}`", k + 1)));
         }
         quantities.push(quantity);
     }
@@ -204,11 +217,11 @@ impl Cells<'_> {
             Ok(v) if v.is_finite() => Ok(Some(v)),
             Ok(_) => Err(self.error(
                 column,
-                format!("`{text}` is not finite (allowed: a finite number in SI units, or empty)"),
+                "not finite (allowed: a finite number in SI units, or empty)".into(),
             )),
             Err(_) => Err(self.error(
                 column,
-                format!("`{text}` is not a number (allowed: a finite number in SI units, or empty)"),
+                "not a number (allowed: a finite number in SI units, or empty)".into(),
             )),
         }
     }
@@ -219,7 +232,7 @@ impl Cells<'_> {
         if index.parse::<usize>().ok() != Some(step.index) {
             return Err(self.error(
                 "step",
-                format!("`{index}` where the path's step {} belongs", step.index),
+                format!("not the path's step {0} (allowed: {0})", step.index),
             ));
         }
         let position = self.text(1);
@@ -230,7 +243,10 @@ impl Cells<'_> {
                 .map_or_else(|| "empty (between positions)".to_owned(), |p| p.to_string());
             return Err(self.error(
                 "position",
-                format!("`{position}` at step {} (allowed: {expected})", step.index),
+                format!(
+                    "not the path's position at step {} (allowed: {expected})",
+                    step.index
+                ),
             ));
         }
         for (index, column, expected) in [(2, "delta_n", step.delta_n), (3, "delta_t", step.delta_t)] {
@@ -339,10 +355,13 @@ mod tests {
         let lines: Vec<&str> = good.lines().collect();
         let cases = [
             (lines[..5].join("\n"), "4 rows for a path of 9 steps"),
-            (good.replace("normal_force", "force"), "unknown column `force`"),
+            (
+                good.replace("normal_force", "force"),
+                "column 5 is not a known column",
+            ),
             (good.replacen(",1e1\n", ",1e1,3\n", 1), "6 cells in a row"),
-            (good.replacen(",1e1\n", ",NaN\n", 1), "`NaN` is not finite"),
-            (good.replacen(",1e1\n", ",inf\n", 1), "`inf` is not finite"),
+            (good.replacen(",1e1\n", ",NaN\n", 1), "normal_force`: not finite"),
+            (good.replacen(",1e1\n", ",x1\n", 1), "normal_force`: not a number"),
             (good.replacen("4,1,", "4,,", 1), "column `position`"),
             (format!("{good}9,,0,0,0\n"), "10 rows for a path of 9 steps"),
         ];

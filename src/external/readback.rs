@@ -249,12 +249,11 @@ pub fn read_profiles(
         timeout,
     };
     let run = process::run(&job, dir, "read_fields").map_err(|e| format!("meshio: {e}"))?;
-    if !run.succeeded() {
-        return Err(format!(
-            "reading the field files through meshio failed ({:?}): {}",
-            run.ending,
-            run.tail(4)
-        ));
+    if let Some(failure) = run
+        .ending
+        .failure("python (meshio)", timeout, |_| "reading the field files failed")
+    {
+        return Err(format!("{failure}; {}", run.tail(4)));
     }
     let text =
         std::fs::read_to_string(&out).map_err(|e| format!("{}: output missing ({e})", out.display()))?;

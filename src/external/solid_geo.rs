@@ -44,24 +44,35 @@ pub struct SolidGeometry {
     pub max_size: f64,
 }
 
+impl std::fmt::Display for SolidGeometry {
+    /// The parameters by name (lengths in m), as messages show them.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let named: Vec<String> = self.named().iter().map(|(n, v)| format!("{n} {v:e}")).collect();
+        write!(f, "{} (lengths in m)", named.join(", "))
+    }
+}
+
 impl SolidGeometry {
+    /// Every parameter with its name.
+    fn named(&self) -> [(&'static str, f64); 7] {
+        [
+            ("R", self.radius),
+            ("H", self.height),
+            ("pole size", self.pole_size),
+            ("fine radius", self.fine_radius),
+            ("fine depth", self.fine_depth),
+            ("growth", self.growth),
+            ("largest size", self.max_size),
+        ]
+    }
+
     /// Checks the parameters: a sphere, a far face between the fine zone and the equator, a
     /// pole size below the fine distance.
     pub fn check(&self) -> Result<(), String> {
-        let finite = [
-            self.radius,
-            self.height,
-            self.pole_size,
-            self.fine_radius,
-            self.fine_depth,
-            self.growth,
-            self.max_size,
-        ]
-        .iter()
-        .all(|v| v.is_finite() && *v > 0.0);
+        let finite = self.named().iter().all(|(_, v)| v.is_finite() && *v > 0.0);
         if !finite {
             return Err(format!(
-                "every mesh parameter must be positive and finite: {self:?}"
+                "every mesh parameter must be positive and finite: {self}"
             ));
         }
         let fine = self.fine_radius + self.fine_depth;
@@ -75,7 +86,7 @@ impl SolidGeometry {
         }
         if self.pole_size > 0.5 * self.fine_radius || self.max_size < self.pole_size {
             return Err(format!(
-                "need pole size ≤ half the fine radius and ≤ the largest size: {self:?}"
+                "need pole size ≤ half the fine radius and ≤ the largest size: {self}"
             ));
         }
         Ok(())

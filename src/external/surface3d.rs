@@ -210,7 +210,9 @@ pub fn parse_surface3(text: &str, steps: &[usize]) -> Result<Vec<Surface3>, Stri
             _ => {
                 let expected = steps.get(surfaces.len()).copied();
                 if expected != Some(step) {
-                    return Err(at(format!("step {step}, expected {expected:?}")));
+                    let expected =
+                        expected.map_or_else(|| "no further step".to_owned(), |s| format!("step {s}"));
+                    return Err(at(format!("step {step} where {expected} belongs")));
                 }
                 if let Some(previous) = surfaces.last() {
                     let size = surfaces[0].nodes.len();

@@ -258,8 +258,11 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         timeout: PROBE_TIMEOUT,
     };
     let run = process::run(&job, dir.path(), "version").map_err(|e| e.to_string())?;
-    if !run.succeeded() {
-        return Err(format!("{:?}: {}", run.ending, run.tail(3)));
+    if let Some(failure) = run
+        .ending
+        .failure(tool.name(), PROBE_TIMEOUT, |_| "its version probe failed")
+    {
+        return Err(format!("{failure}; {}", run.tail(3)));
     }
     let text = format!("{}\n{}", run.stdout, run.stderr);
     let version = match tool {

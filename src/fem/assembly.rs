@@ -142,7 +142,7 @@ pub fn assemble_with<M: Mode>(
     }
     let n = dofs.count();
     let stiffness = SparseColMat::try_new_from_triplets(n, n, &triplets)
-        .map_err(|e| MeshError::Parameters(format!("sparse assembly: {e:?}")))?;
+        .map_err(|e| MeshError::Parameters(format!("sparse assembly: {e}")))?;
     let reaction = reaction
         .into_iter()
         .enumerate()

@@ -68,12 +68,12 @@ impl Factor {
         ord: SymmetricOrdering<'_, usize>,
     ) -> Result<Self, String> {
         let symbolic = factorize_symbolic_cholesky(lower.symbolic(), Side::Lower, ord, Default::default())
-            .map_err(|e| format!("symbolic Cholesky: {e:?}"))?;
+            .map_err(|e| format!("symbolic Cholesky: {e}"))?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::Seq;
         let mut buffer =
             MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
-                .map_err(|e| format!("Cholesky workspace: {e:?}"))?;
+                .map_err(|e| format!("Cholesky workspace: {e}"))?;
         symbolic
             .factorize_numeric_llt(
                 &mut values,
@@ -84,7 +84,7 @@ impl Factor {
                 MemStack::new(&mut buffer),
                 Default::default(),
             )
-            .map_err(|e| format!("the stiffness is not positive definite: {e:?}"))?;
+            .map_err(|e| format!("the stiffness is not positive definite: {e}"))?;
         Ok(Self { symbolic, values })
     }
 

@@ -188,7 +188,7 @@ fn minimum_degree(graph: &[Vec<usize>], nodes: &[usize], local: &mut [usize]) ->
     let pattern = SymbolicSparseColMat::new_checked(k, k, col_ptr, None, row_idx);
     let (mut perm, mut inverse) = (vec![0usize; k], vec![0usize; k]);
     let mut buffer = MemBuffer::try_new(amd::order_scratch::<usize>(k, nnz))
-        .map_err(|e| format!("minimum degree workspace: {e:?}"))?;
+        .map_err(|e| format!("minimum degree workspace: {e}"))?;
     amd::order(
         &mut perm,
         &mut inverse,
@@ -196,7 +196,7 @@ fn minimum_degree(graph: &[Vec<usize>], nodes: &[usize], local: &mut [usize]) ->
         amd::Control::default(),
         MemStack::new(&mut buffer),
     )
-    .map_err(|e| format!("minimum degree ordering: {e:?}"))?;
+    .map_err(|e| format!("minimum degree ordering: {e}"))?;
     Ok(perm.into_iter().map(|i| nodes[i]).collect())
 }
 

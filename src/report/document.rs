@@ -6,6 +6,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 use crate::io::write_atomically;
+use crate::text::{lines, one_line};
 
 /// A table cell: text, and a CSS class that marks verdicts and timings.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,9 +48,9 @@ impl Table {
     /// The table as CSV text.
     pub fn to_csv(&self) -> anyhow::Result<String> {
         let mut writer = csv::Writer::from_writer(Vec::new());
-        writer.write_record(&self.header)?;
+        writer.write_record(self.header.iter().map(|h| one_line(h).into_owned()))?;
         for row in &self.rows {
-            writer.write_record(row.iter().map(|c| c.text.as_str()))?;
+            writer.write_record(row.iter().map(|c| one_line(&c.text).into_owned()))?;
         }
         Ok(String::from_utf8(writer.into_inner()?)?)
     }
@@ -90,17 +91,18 @@ pub struct Document {
     pub sections: Vec<Section>,
 }
 
-/// Escapes text for HTML.
+/// Escapes text for HTML, control characters included ([`crate::text`]).
 pub fn escape_html(text: &str) -> String {
-    text.replace('&', "&amp;")
+    lines(text)
+        .replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
 }
 
-/// Escapes the characters that break a Markdown table cell.
+/// Escapes the characters that break a Markdown table cell, control characters included.
 fn escape_markdown_cell(text: &str) -> String {
-    text.replace('|', "\\|").replace('\n', " ")
+    one_line(&text.replace('\n', " ")).replace('|', "\\|")
 }
 
 const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
@@ -162,11 +164,11 @@ impl Document {
 
     /// The Markdown summary (figures linked as files).
     pub fn to_markdown(&self) -> String {
-        let mut md = format!("# {}\n", self.title);
+        let mut md = format!("# {}\n", one_line(&self.title));
         for section in &self.sections {
-            let _ = write!(md, "\n## {}\n\n", section.title);
+            let _ = write!(md, "\n## {}\n\n", one_line(&section.title));
             for paragraph in &section.paragraphs {
-                let _ = write!(md, "{paragraph}\n\n");
+                let _ = write!(md, "{}\n\n", lines(paragraph));
             }
             for table in &section.tables {
                 let _ = writeln!(
@@ -191,7 +193,7 @@ impl Document {
                     md,
                     "![{caption}](figures/{id}.svg)\n\n*{caption}* (data: [data/{id}.csv](data/{id}.csv))\n\n",
                     id = figure.id,
-                    caption = figure.caption
+                    caption = one_line(&figure.caption)
                 );
             }
         }

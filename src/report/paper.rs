@@ -6,7 +6,7 @@
 //! δn (total approach or per sphere), E* and R* that the text admits and says which, if any,
 //! gives 581 MPa.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Result};
 
@@ -14,7 +14,7 @@ use super::claims::{self, Study};
 use super::compare::{case_section, checks_section, figure_section};
 use super::document::{Cell, Document, Section, Table};
 use super::figures;
-use crate::case::reference;
+use crate::case::{reference, Case};
 use crate::hertz::Hertz;
 use crate::verify::CaseRun;
 
@@ -79,12 +79,28 @@ pub struct Quoted {
     pub ansys_p0: f64,
 }
 
+/// Where the paper's quoted values are kept, beside the case's folder: read as the case's own
+/// files are ([`crate::case::reads`]).
+pub const QUOTED_FILE: &str = "../reference/paper.toml";
+
 impl Quoted {
+    /// The quoted values for `case`, from [`QUOTED_FILE`] in its tree, with the folder that holds
+    /// it (which [`document`] reads them from); an error names the file and why.
+    pub fn for_case(case: &Case) -> Result<(PathBuf, Self)> {
+        let file = case
+            .tree
+            .resolve(QUOTED_FILE)
+            .map_err(|e| anyhow!("the paper's reference file {e}"))?;
+        let folder = file.parent().unwrap_or(Path::new("/")).to_path_buf();
+        let quoted = Self::load(&folder)?;
+        Ok((folder, quoted))
+    }
+
     /// The quoted values from `reference/paper.toml`.
     pub fn load(reference_dir: &Path) -> Result<Self> {
         let quoted = |key: &str| {
             reference::load(&reference_dir.join("paper.toml"), key)
-                .map_err(|e| anyhow!("reference/paper.toml#{key}: {e:?}"))
+                .map_err(|e| anyhow!("the paper's quoted value `{key}`: {e}"))
                 .map(|v| v.value)
         };
         Ok(Self {

@@ -5,6 +5,7 @@ use std::fmt::Write;
 
 use super::format_value;
 use crate::check::Verdict;
+use crate::text::one_line;
 use crate::verify::CaseRun;
 
 /// The summary text.
@@ -26,12 +27,12 @@ pub fn screen(run: &CaseRun) -> String {
                     history.metadata.wall_time_s * 1e3
                 )
             }
-            Some(Err(e)) => writeln!(text, "  {name:<width$} missing: {e}"),
+            Some(Err(e)) => writeln!(text, "  {name:<width$} missing: {}", one_line(&e.to_string())),
             None => writeln!(text, "  {name:<width$} not run"),
         };
     }
     for warning in super::figures::warnings(run) {
-        let _ = writeln!(text, "  warning: {warning}");
+        let _ = writeln!(text, "  warning: {}", one_line(&warning.to_string()));
     }
     let count = |v: Verdict| run.outcomes.iter().filter(|o| o.verdict == v).count();
     let _ = writeln!(

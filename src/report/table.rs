@@ -5,6 +5,7 @@ use std::fmt::Write;
 
 use super::format_value;
 use crate::check::Outcome;
+use crate::text::one_line;
 use crate::verify::CaseRun;
 
 /// One printed row for a check outcome.
@@ -42,18 +43,20 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
     if !spec.reason.is_empty() {
         let _ = write!(row, " | {}", spec.reason);
     }
-    row
+    // One line, whatever the case's texts hold: a reason cannot start or redraw another row.
+    one_line(&row).into_owned()
 }
 
 /// The whole block printed for one case: warnings, then a row per check.
 pub fn case_block(run: &CaseRun) -> String {
-    let mut text = format!("== {} ({})\n", run.case.name(), run.case.file.display());
+    let file = run.case.file.display().to_string();
+    let mut text = format!("== {} ({})\n", run.case.name(), one_line(&file));
     for warning in &run.warnings {
-        let _ = writeln!(text, "WARN  {}: {warning}", run.case.name());
+        let _ = writeln!(text, "WARN  {}: {}", run.case.name(), one_line(warning));
     }
     for (name, result) in &run.histories {
         if let Err(error) = result {
-            let _ = writeln!(text, "SOLVER {name}: {error}");
+            let _ = writeln!(text, "SOLVER {name}: {}", one_line(&error.to_string()));
         }
     }
     for outcome in &run.outcomes {

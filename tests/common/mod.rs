@@ -3,6 +3,7 @@
 
 pub mod decks;
 pub mod friction;
+pub mod reads;
 
 use spherecontact::case::Case;
 use spherecontact::check::Reference;

@@ -129,7 +129,9 @@ impl Grading {
                 .all(|v| v.is_finite());
         ok.then_some(()).ok_or_else(|| {
             MeshError::Parameters(format!(
-                "need 0 < 2 h0 < D ≤ R (a cap only of a sphere, 2 h0 < H ≤ R), finite, growth > 0; got {self:?}"
+                "need 0 < 2 h0 < D ≤ R (a cap only of a sphere, 2 h0 < H ≤ R), finite, growth > 0; got \
+                 h0 = {:e} m, extent {extent:e} m, R = {:e} m, growth {}",
+                self.pole_size, self.radius, self.growth
             ))
         })
     }
