@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use spherecontact::case::{limits, Case};
+use spherecontact::external::permission::{self, CommandPermission};
 use spherecontact::external::{geo, toolchain::Toolchain};
 use spherecontact::report::{history_files, junit, summary, table};
 use spherecontact::{io, registry, resolution, solver, verify};
@@ -22,6 +23,30 @@ use spherecontact::{io, registry, resolution, solver, verify};
 struct Cli {
     #[command(subcommand)]
     command: Command,
+}
+
+/// Whether the programs cases name as solvers (`[[command_solvers]]`) may run.
+#[derive(clap::Args)]
+struct CommandOptions {
+    /// Run the programs that cases name as solvers ([[command_solvers]]; `spherecontact list`
+    /// shows them): without this (or SPHERECONTACT_ALLOW_COMMANDS=1) they are not run and the
+    /// checks that need them are N/A.
+    #[arg(long)]
+    allow_commands: bool,
+    /// Pass this environment variable to those programs too (repeatable); they get a minimal
+    /// environment otherwise (docs/security.md).
+    #[arg(long = "pass-env", value_name = "NAME")]
+    pass_env: Vec<String>,
+}
+
+impl CommandOptions {
+    /// The permission these options (and SPHERECONTACT_ALLOW_COMMANDS) give.
+    fn permission(&self) -> Result<CommandPermission, InputError> {
+        Ok(CommandPermission::from_options(
+            self.allow_commands,
+            &self.pass_env,
+        )?)
+    }
 }
 
 #[derive(Subcommand)]
@@ -46,6 +71,8 @@ enum Command {
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: the case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Run cases and judge their checks; exit 1 on any NOOK.
     Verify {
@@ -64,6 +91,8 @@ enum Command {
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -91,6 +120,8 @@ enum Command {
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Reproduce the paper: its case with every available solver, reported in its figures' order.
     ReproducePaper {
@@ -104,6 +135,8 @@ enum Command {
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
     /// (build with --release for representative numbers).
@@ -119,6 +152,8 @@ enum Command {
         /// Output folder; default: out/bench-<case name>.
         #[arg(long)]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
 }
 
@@ -146,14 +181,20 @@ fn main() -> ExitCode {
             vtu,
             resolution,
             ranks,
-        } => run(&case, &solvers, &out, vtu, &resolution, ranks),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| run(&case, &solvers, &out, vtu, &resolution, ranks, &p)),
         Command::Verify {
             cases,
             junit,
             require_external,
             resolution,
             ranks,
-        } => verify_cases(cases, junit.as_deref(), require_external, &resolution, ranks),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| verify_cases(cases, junit.as_deref(), require_external, &resolution, ranks, &p)),
         Command::Mesh {
             case,
             resolution,
@@ -165,18 +206,27 @@ fn main() -> ExitCode {
             case,
             out,
             resolution,
-        } => report(&case, out, &resolution, Report::Compare),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| report(&case, out, &resolution, Report::Compare, &p)),
         Command::ReproducePaper {
             out,
             case,
             resolution,
-        } => report(&case, Some(out), &resolution, Report::Paper),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| report(&case, Some(out), &resolution, Report::Paper, &p)),
         Command::Bench {
             case,
             solvers,
             repeat,
             out,
-        } => bench(&case, &solvers, repeat as usize, out),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| bench(&case, &solvers, repeat as usize, out, &p)),
     };
     match result {
         Ok(code) => code,
@@ -222,9 +272,16 @@ fn resolution_options(options: &[String]) -> Result<Vec<(String, String)>, Input
     Ok(pairs)
 }
 
-/// Loads the case at `file` with the command line's ranks and resolutions over its own.
-fn load_case(file: &Path, ranks: Option<u32>, resolutions: &[(String, String)]) -> Result<Case, InputError> {
+/// Loads the case at `file` with the command line's ranks and resolutions over its own, its
+/// command solvers under `permission`.
+fn load_case(
+    file: &Path,
+    ranks: Option<u32>,
+    resolutions: &[(String, String)],
+    permission: &CommandPermission,
+) -> Result<Case, InputError> {
     let mut case = Case::load(file)?;
+    case.permit_commands(permission);
     case.ranks = ranks.unwrap_or(case.ranks);
     for (name, value) in resolutions {
         case.set_resolution(name, value).map_err(|e| {
@@ -272,10 +329,15 @@ fn run(
     vtu: bool,
     resolution: &[String],
     ranks: Option<u32>,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
     // Plan: the case and every solver named must be valid before anything is written.
-    let case = load_case(case, ranks, &resolution_options(resolution)?)?;
+    let case = load_case(case, ranks, &resolution_options(resolution)?, permission)?;
     let mut plan = planned_solvers(&case, solvers)?;
+    let named: Vec<&str> = plan.iter().map(|s| s.name()).collect();
+    if case.commands().iter().any(|c| named.contains(&c.name.as_str())) {
+        case.command_lines().iter().for_each(|line| eprintln!("{line}"));
+    }
     output_folder("--out", out)?;
     if vtu {
         plan = plan
@@ -328,6 +390,7 @@ fn verify_cases(
     require_external: bool,
     resolution: &[String],
     ranks: Option<u32>,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
     let resolutions = resolution_options(resolution)?;
     let files = if files.is_empty() {
@@ -340,8 +403,10 @@ fn verify_cases(
     }
     let cases = files
         .iter()
-        .map(|f| load_case(f, ranks, &resolutions))
+        .map(|f| load_case(f, ranks, &resolutions, permission))
         .collect::<Result<Vec<_>, _>>()?;
+    let commands: Vec<String> = cases.iter().flat_map(Case::command_lines).collect();
+    commands.iter().for_each(|line| println!("{line}"));
     if let Some(file) = junit_file {
         io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
     }
@@ -356,6 +421,12 @@ fn verify_cases(
     if let Some(file) = junit_file {
         io::write_atomically(file, junit::document(&runs).as_bytes())
             .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+    }
+    if !commands.is_empty() && !permission.is_allowed() {
+        println!(
+            "verify: command solvers were not run: {}",
+            permission::how_to_allow()
+        );
     }
     if require_external && na > 0 {
         println!("verify: {na} not-available checks count as failures (--require-external)");
@@ -407,6 +478,18 @@ fn doctor() -> ExitCode {
     for probe in &probes {
         println!("{}", probe.line());
     }
+    // The programs the cases under cases/ would run, as SPHERECONTACT_ALLOW_COMMANDS leaves them.
+    let permission = CommandPermission::from_options(false, &[]);
+    println!(
+        "command solvers: {}",
+        permission.as_ref().map_or_else(|e| e.to_string(), |p| p.state())
+    );
+    for file in case_files(Path::new("cases")).unwrap_or_default() {
+        if let Ok(mut case) = Case::load(&file) {
+            case.permit_commands(permission.as_ref().unwrap_or(&CommandPermission::refused()));
+            case.command_lines().iter().for_each(|line| println!("  {line}"));
+        }
+    }
     if probes.iter().all(|p| p.available()) {
         ExitCode::SUCCESS
     } else {
@@ -420,8 +503,10 @@ fn bench(
     solvers: &[String],
     repeat: usize,
     out: Option<PathBuf>,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
-    let case = Case::load(case)?;
+    let case = load_case(case, None, &[], permission)?;
+    case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     let plan = planned_solvers(&case, solvers)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("bench-{}", case.name())));
     output_folder("--out", &out)?;
@@ -493,8 +578,10 @@ fn report(
     out: Option<PathBuf>,
     resolution: &[String],
     kind: Report,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
-    let case = load_case(case, None, &resolution_options(resolution)?)?;
+    let case = load_case(case, None, &resolution_options(resolution)?, permission)?;
+    case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
     output_folder("--out", &out)?;
     let reference_dir = case.file.parent().unwrap_or(Path::new(".")).join("../reference");
@@ -545,12 +632,17 @@ fn list() -> Result<ExitCode, InputError> {
     println!("cases:");
     for file in case_files(Path::new("cases")).unwrap_or_default() {
         match Case::load(&file) {
-            Ok(case) => println!(
-                "  {:<22} {}  {}",
-                case.name(),
-                file.display(),
-                case.description.lines().next().unwrap_or("")
-            ),
+            Ok(case) => {
+                println!(
+                    "  {:<22} {}  {}",
+                    case.name(),
+                    file.display(),
+                    case.description.lines().next().unwrap_or("")
+                );
+                case.command_lines()
+                    .iter()
+                    .for_each(|line| println!("    {line}"));
+            }
             Err(e) => println!("  (invalid) {e}"),
         }
     }

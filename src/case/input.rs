@@ -1,4 +1,5 @@
-//! Reading an input file (a case, a reference file): a regular file of bounded size, as text.
+//! Reading an input file (a case, a reference file, what a command solver wrote): a regular file
+//! of bounded size.
 //!
 //! A FIFO, a device or a directory is refused without blocking on it (the file is opened
 //! non-blocking and judged by its own metadata), and a file larger than
@@ -15,32 +16,12 @@ use crate::limits::MAX_INPUT_BYTES;
 /// Errors are `io::Error`s whose message says what is allowed: a file that is not regular is
 /// `InvalidInput`, one too large `FileTooLarge`, one not UTF-8 `InvalidData`.
 pub fn read_text(path: &Path) -> io::Result<String> {
-    let file = open_without_blocking(path)?;
-    let meta = file.metadata()?;
-    if !meta.is_file() {
-        return Err(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            format!(
-                "not a regular file ({}; allowed: a regular file of at most {})",
-                kind(&meta.file_type()),
-                mebibytes(MAX_INPUT_BYTES)
-            ),
-        ));
-    }
-    let too_large = |bytes: u64| {
-        io::Error::new(
-            io::ErrorKind::FileTooLarge,
-            format!("{bytes} bytes (allowed: at most {})", mebibytes(MAX_INPUT_BYTES)),
-        )
-    };
-    if meta.len() > MAX_INPUT_BYTES {
-        return Err(too_large(meta.len()));
-    }
+    let (file, length) = open_regular(path, MAX_INPUT_BYTES, Links::Follow)?;
     // The file may grow between the metadata and the read: read one byte past the limit.
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    let mut bytes = Vec::with_capacity(length as usize);
     file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > MAX_INPUT_BYTES {
-        return Err(too_large(bytes.len() as u64));
+        return Err(too_large(bytes.len() as u64, MAX_INPUT_BYTES));
     }
     String::from_utf8(bytes).map_err(|e| {
         io::Error::new(
@@ -53,15 +34,68 @@ pub fn read_text(path: &Path) -> io::Result<String> {
     })
 }
 
+/// Whether a symbolic link at the path itself is followed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Links {
+    /// Followed (a case file may be a link).
+    Follow,
+    /// Refused (a file a program was to write in its own folder).
+    Refuse,
+}
+
+/// Opens the regular file at `path`, at most `max_bytes` long, and returns it with its length.
+/// A FIFO, device, socket or folder is refused without blocking on it (the file is opened
+/// non-blocking and judged by its own metadata); with [`Links::Refuse`], so is a symbolic link.
+pub fn open_regular(path: &Path, max_bytes: u64, links: Links) -> io::Result<(File, u64)> {
+    let file = open_without_blocking(path, links).map_err(|e| {
+        if links == Links::Refuse && e.raw_os_error() == Some(libc::ELOOP) {
+            io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "a symbolic link (allowed: a regular file)",
+            )
+        } else {
+            e
+        }
+    })?;
+    let meta = file.metadata()?;
+    if !meta.is_file() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "not a regular file ({}; allowed: a regular file of at most {})",
+                kind(&meta.file_type()),
+                size(max_bytes)
+            ),
+        ));
+    }
+    if meta.len() > max_bytes {
+        return Err(too_large(meta.len(), max_bytes));
+    }
+    Ok((file, meta.len()))
+}
+
+/// The error of a file of `bytes` over `max_bytes`.
+fn too_large(bytes: u64, max_bytes: u64) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::FileTooLarge,
+        format!("{bytes} bytes (allowed: at most {})", size(max_bytes)),
+    )
+}
+
 /// Opens `path` for reading; on Unix without blocking, so that opening a FIFO with no writer
 /// returns at once (reads of a regular file never block anyway).
-fn open_without_blocking(path: &Path) -> io::Result<File> {
+fn open_without_blocking(path: &Path, links: Links) -> io::Result<File> {
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
     #[cfg(unix)]
     {
         use std::os::unix::fs::OpenOptionsExt;
-        options.custom_flags(libc::O_NONBLOCK);
+        let no_follow = if links == Links::Refuse {
+            libc::O_NOFOLLOW
+        } else {
+            0
+        };
+        options.custom_flags(libc::O_NONBLOCK | no_follow);
     }
     options.open(path)
 }
@@ -88,9 +122,13 @@ fn kind(file_type: &std::fs::FileType) -> &'static str {
     }
 }
 
-/// `bytes` in MiB, as a limit is written.
-fn mebibytes(bytes: u64) -> String {
-    format!("{} MiB", bytes >> 20)
+/// `bytes` in MiB (or bytes, below one), as a limit is written.
+fn size(bytes: u64) -> String {
+    if bytes >= 1 << 20 {
+        format!("{} MiB", bytes >> 20)
+    } else {
+        format!("{bytes} bytes")
+    }
 }
 
 #[cfg(test)]

@@ -101,14 +101,25 @@ fn quantity_names() -> String {
 /// Reads the History CSV at `file` and validates it against `steps`: one row per step, the
 /// path's positions and displacements, finite values.
 pub fn read(file: &Path, steps: &[Step]) -> Result<Vec<StepResult>, ResultsError> {
+    let opened = std::fs::File::open(file).map_err(|e| ResultsError::Unreadable {
+        file: file.to_path_buf(),
+        source: e.into(),
+    })?;
+    read_from(opened, file, steps)
+}
+
+/// [`read`] of a History CSV already opened (`file` names it in errors): a stream, read row by
+/// row, never whole.
+pub fn read_from(
+    input: impl std::io::Read,
+    file: &Path,
+    steps: &[Step],
+) -> Result<Vec<StepResult>, ResultsError> {
     let unreadable = |source| ResultsError::Unreadable {
         file: file.to_path_buf(),
         source,
     };
-    let mut reader = csv::ReaderBuilder::new()
-        .flexible(true)
-        .from_path(file)
-        .map_err(unreadable)?;
+    let mut reader = csv::ReaderBuilder::new().flexible(true).from_reader(input);
     let header = reader.headers().map_err(unreadable)?.clone();
     let quantities = quantity_columns(file, &header)?;
     let scale = steps
