@@ -424,7 +424,7 @@ fn verify_cases(
     }
     if !commands.is_empty() && !permission.is_allowed() {
         println!(
-            "verify: command solvers were not run: {}",
+            "verify: the programs cases name were not run: {}",
             permission::how_to_allow()
         );
     }

@@ -163,6 +163,14 @@ fn the_opt_in_runs_it_from_the_flag_or_the_environment() {
     );
     assert_eq!(out.status.code(), Some(2), "{text}");
     assert!(text.contains("SPHERECONTACT_ALLOW_COMMANDS") && !dir.path().join("ran").exists());
+    // So is a name to pass on that is not a variable's name.
+    let args = ["verify", "case.toml", "--allow-commands", "--pass-env", "A=B"];
+    let (out, text) = output(&mut spherecontact(&args, dir.path()));
+    assert_eq!(out.status.code(), Some(2), "{text}");
+    assert!(
+        text.contains("--pass-env \"A=B\"") && !dir.path().join("ran").exists(),
+        "{text}"
+    );
 }
 
 /// Runs `case` with the opt-in in a fresh folder; returns the folder, the output and the pid
@@ -203,8 +211,9 @@ fn what_a_program_leaves_behind_is_killed_when_it_ends() {
     assert!(gone(pid), "the sleeper {pid} outlived the program:\n{text}");
 }
 
-/// Runs `command`, waits for it with wait4 and returns its output and the peak resident memory
+/// Runs `command`, waits for it with wait4 and returns its exit code and the peak resident memory
 /// of it and the processes it waited for [bytes].
+#[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its peak memory
 fn run_measuring_peak(command: &mut Command) -> (i32, u64) {
     let child = command
         .stdout(std::process::Stdio::null())

@@ -103,9 +103,14 @@ impl Case {
             self.name(),
             first.permission.state()
         )];
+        let runs = if first.permission.is_allowed() {
+            "runs"
+        } else {
+            "would run"
+        };
         lines.extend(commands.iter().map(|c| {
             format!(
-                "  {} runs (timeout {} s): {}",
+                "  {} {runs} (timeout {} s): {}",
                 c.name,
                 c.timeout.as_secs_f64(),
                 c.shown()

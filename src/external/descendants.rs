@@ -67,7 +67,7 @@ pub struct Tracker {
 
 impl Tracker {
     /// A tracker for a run about to start (the harness made a subreaper first).
-    pub fn new() -> Self {
+    pub fn begin() -> Self {
         static SUBREAPER: Once = Once::new();
         // SAFETY: prctl with PR_SET_CHILD_SUBREAPER takes an integer and touches no memory. On
         // failure (not Linux) the marker and the group still find the run's processes.

@@ -3,10 +3,10 @@
 //! ([`ALLOW_ENV`]`=1`). Without it such a solver is not run and says why and how to allow it;
 //! the checks that need it are N/A, which `verify --require-external` counts as failures.
 //!
-//! An allowed program runs in a minimal environment ([`MINIMAL_ENV`]) plus the variables named
+//! An allowed program runs in a minimal environment ([`super::process::MINIMAL_ENV`]) plus the variables named
 //! with [`PASS_ENV_FLAG`]: the secrets of the harness's environment do not reach it.
 
-use super::process::{Environment, MINIMAL_ENV};
+use super::process::Environment;
 
 /// The command-line flag that allows a case's command solvers to run.
 pub const ALLOW_FLAG: &str = "--allow-commands";
@@ -94,30 +94,21 @@ impl CommandPermission {
 
     /// The state in words, for `verify`, `list` and `doctor`.
     pub fn state(&self) -> String {
-        let environment = match self.pass_env.as_slice() {
+        let passed = match self.pass_env.as_slice() {
             [] => String::new(),
             names => format!(" and {}", names.join(", ")),
         };
         match self.allowed_by {
-            Some(by) => format!(
-                "allowed by {} (environment: {}{environment} where set)",
-                match by {
-                    AllowedBy::Flag => ALLOW_FLAG.to_owned(),
-                    AllowedBy::Environment => format!("{ALLOW_ENV}=1"),
-                },
-                MINIMAL_ENV.join(" ")
-            ),
-            None => format!("not allowed: {}", how_to_allow()),
+            Some(AllowedBy::Flag) => format!("allowed by {ALLOW_FLAG} (minimal environment{passed})"),
+            Some(AllowedBy::Environment) => format!("allowed by {ALLOW_ENV}=1 (minimal environment{passed})"),
+            None => format!("not allowed ({})", how_to_allow()),
         }
     }
 }
 
 /// How to allow command solvers, in words.
 pub fn how_to_allow() -> String {
-    format!(
-        "a program a case names runs only when allowed: pass {ALLOW_FLAG} after reading the case's commands \
-         (`spherecontact list` shows them), or set {ALLOW_ENV}=1 (CI)"
-    )
+    format!("read the commands, then pass {ALLOW_FLAG} or set {ALLOW_ENV}=1")
 }
 
 /// True for a name an environment variable may have: letters, digits and `_`, not starting with

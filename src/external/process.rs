@@ -167,7 +167,7 @@ pub fn run(job: &Job, dir: &Path, stem: &str) -> std::io::Result<Run> {
 pub fn run_in(job: &Job, dir: &Path, stem: &str, environment: &Environment) -> std::io::Result<Run> {
     let log = |stream: &str| BoundedLog::create(&dir.join(format!("{stem}.{stream}")));
     let mut logs = [log("stdout")?, log("stderr")?];
-    let mut tracker = Tracker::new();
+    let mut tracker = Tracker::begin();
     let mut command = Command::new(&job.program);
     command
         .args(&job.args)
@@ -229,6 +229,8 @@ pub fn run_in(job: &Job, dir: &Path, stem: &str, environment: &Environment) -> s
 struct Pipes {
     /// stdout, stderr; `None` once closed.
     streams: [Option<Box<dyn ReadFd>>; 2],
+    /// Where each read lands on its way to a log.
+    buffer: Vec<u8>,
 }
 
 /// A pipe end that can be polled.
@@ -249,6 +251,7 @@ impl Pipes {
                 boxed(stdout.map(|s| Box::new(s) as Box<dyn ReadFd>))?,
                 boxed(stderr.map(|s| Box::new(s) as Box<dyn ReadFd>))?,
             ],
+            buffer: vec![0; 64 << 10],
         })
     }
 
@@ -281,11 +284,11 @@ impl Pipes {
                 wait.as_millis() as libc::c_int,
             )
         };
-        let mut buffer = vec![0u8; 64 << 10];
+        let buffer = &mut self.buffer;
         for (slot, log) in self.streams.iter_mut().zip(logs.iter_mut()) {
             let Some(stream) = slot else { continue };
             loop {
-                match stream.read(&mut buffer) {
+                match stream.read(buffer) {
                     Ok(0) => {
                         *slot = None;
                         break;
@@ -400,6 +403,51 @@ mod tests {
         assert_eq!(run.stdout.trim(), "out 42");
         assert_eq!(run.tail(5), "err");
         assert!(dir.path().join("t.stderr").exists());
+    }
+
+    #[test]
+    fn a_flood_of_output_leaves_a_bounded_log_with_its_head_its_tail_and_a_count() {
+        let dir = tempfile::tempdir().unwrap();
+        // 20 MiB of `x`, then `END`: 4 MiB + 4 bytes more than the log keeps.
+        let run = run(
+            &job("head -c 20971520 /dev/zero | tr '\\0' x; echo END", 60_000),
+            dir.path(),
+            "t",
+        )
+        .unwrap();
+        assert_eq!(run.ending, Ending::Exited(0));
+        let log = std::fs::read(dir.path().join("t.stdout")).unwrap();
+        let notice = format!("[spherecontact: {} bytes of output dropped here", (4 << 20) + 4);
+        let text = String::from_utf8_lossy(&log);
+        assert!(text.contains(&notice), "no count of what was dropped");
+        assert!(log.len() as u64 <= crate::limits::MAX_PROGRAM_LOG_BYTES + 200);
+        assert!(log.starts_with(b"xxxx") && log.ends_with(b"xxxxEND\n"));
+        // In memory: the log's first and last 64 KiB around a line that names it.
+        assert!(run.stdout.len() < 3 * (64 << 10) && run.stdout.ends_with("xxEND\n"));
+        assert!(run.stdout.contains("bytes not shown here; the whole log:"));
+    }
+
+    #[test]
+    fn a_minimal_environment_holds_only_the_listed_variables() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut j = job("", 10_000);
+        (j.program, j.args) = ("env".into(), Vec::new());
+        let environment = Environment::Minimal(vec!["CARGO_PKG_NAME".into()]);
+        let run = run_in(&j, dir.path(), "t", &environment).unwrap();
+        let names: Vec<&str> = run.stdout.lines().filter_map(|l| l.split('=').next()).collect();
+        assert!(names.contains(&"SPHERECONTACT_TEST") && names.contains(&super::super::descendants::MARKER));
+        for name in names {
+            let listed = MINIMAL_ENV.contains(&name)
+                || [
+                    "SPHERECONTACT_TEST",
+                    "CARGO_PKG_NAME",
+                    super::super::descendants::MARKER,
+                ]
+                .contains(&name);
+            assert!(listed, "{name} reached the program");
+        }
+        // The harness's own environment is fuller: the test shows the difference.
+        assert!(std::env::vars().any(|(k, _)| !MINIMAL_ENV.contains(&k.as_str())));
     }
 
     #[test]
