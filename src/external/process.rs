@@ -193,20 +193,22 @@ pub fn run_in(job: &Job, dir: &Path, stem: &str, environment: &Environment) -> s
     let start = Instant::now();
     let mut child = command.spawn()?;
     tracker.started(child.id());
-    let mut pipes = Pipes::of(child.stdout.take(), child.stderr.take())?;
-    let timed_out = loop {
+    // Waits for the end or the timeout; on an error of the harness's own (a log that cannot be
+    // written), the program is killed and reaped all the same before the error is returned.
+    let watched = Pipes::of(child.stdout.take(), child.stderr.take()).and_then(|mut pipes| loop {
         pipes.pump(&mut logs, POLL)?;
         if has_exited(child.id())? {
-            break false;
+            return Ok((pipes, false));
         }
         if start.elapsed() >= job.timeout {
-            break true;
+            return Ok((pipes, true));
         }
         tracker.observe();
-    };
+    });
     // The program is held unreaped while the sweep runs, so that its group stays its own.
     tracker.kill_all();
     let status = reap(child.id(), 0)?.unwrap_or_else(|| ExitStatus::from_raw(0));
+    let (mut pipes, timed_out) = watched?;
     let ending = if timed_out {
         Ending::TimedOut
     } else {
