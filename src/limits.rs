@@ -91,6 +91,27 @@ pub fn is_plain_name(name: &str) -> bool {
 /// docs/external-decks.md shows.
 pub const MAX_RANKS: u32 = 1024;
 
+/// The largest log of one output stream (stdout or stderr) of a program the harness runs
+/// [bytes] (16 MiB): the decks and DEM codes print a line or two per increment (about 100 bytes),
+/// so a run of 10⁵ increments fits whole; beyond, the head (start-up, version, configuration) and
+/// the tail (where a failure shows) are what a reader needs. The rest is counted and dropped
+/// (the log says how much), so a program that prints gigabytes fills neither the disk nor the
+/// harness's memory (`external::bounded_log`).
+pub const MAX_PROGRAM_LOG_BYTES: u64 = 16 << 20;
+
+/// The end of a stream a program log keeps after its head [bytes] (64 KiB, some 800 lines): the
+/// only part of the stream the harness holds in memory while the program runs.
+pub const PROGRAM_LOG_TAIL_BYTES: usize = 64 << 10;
+
+/// The largest History CSV a command solver may write [bytes] (256 MiB): one row per step, at
+/// most [`MAX_INCREMENTS`] + 1 rows of nine cells written with round-trip precision (at most
+/// 24 characters each, with separators under 256 bytes a row). Read as a stream, never whole.
+pub const MAX_HISTORY_BYTES: u64 = 256 << 20;
+
+/// The largest `metadata.json` a command solver may write [bytes] (1 MiB): a version, a model,
+/// a resolution and warnings in a few lines; read whole.
+pub const MAX_METADATA_BYTES: u64 = 1 << 20;
+
 #[cfg(test)]
 mod tests {
     use super::*;

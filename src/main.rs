@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use spherecontact::case::{limits, Case, ReadRoots};
+use spherecontact::external::permission::{self, CommandPermission};
 use spherecontact::external::{geo, toolchain::Toolchain};
 use spherecontact::report::{history_files, junit, summary, table};
 use spherecontact::{io, registry, resolution, solver, text, verify};
@@ -26,6 +27,30 @@ struct Cli {
     /// their own folder and the nearest `reference/` folder; repeatable (docs/security.md).
     #[arg(long = "allow-read", value_name = "DIR", global = true)]
     allow_read: Vec<PathBuf>,
+}
+
+/// Whether the programs cases name as solvers (`[[command_solvers]]`) may run.
+#[derive(clap::Args)]
+struct CommandOptions {
+    /// Run the programs that cases name as solvers ([[command_solvers]]; `spherecontact list`
+    /// shows them): without this (or SPHERECONTACT_ALLOW_COMMANDS=1) they are not run and the
+    /// checks that need them are N/A.
+    #[arg(long)]
+    allow_commands: bool,
+    /// Pass this environment variable to those programs too (repeatable); they get a minimal
+    /// environment otherwise (docs/security.md).
+    #[arg(long = "pass-env", value_name = "NAME")]
+    pass_env: Vec<String>,
+}
+
+impl CommandOptions {
+    /// The permission these options (and SPHERECONTACT_ALLOW_COMMANDS) give.
+    fn permission(&self) -> Result<CommandPermission, InputError> {
+        Ok(CommandPermission::from_options(
+            self.allow_commands,
+            &self.pass_env,
+        )?)
+    }
 }
 
 #[derive(Subcommand)]
@@ -50,6 +75,8 @@ enum Command {
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: the case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Run cases and judge their checks; exit 1 on any NOOK.
     Verify {
@@ -68,6 +95,8 @@ enum Command {
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -95,6 +124,8 @@ enum Command {
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Reproduce the paper: its case with every available solver, reported in its figures' order.
     ReproducePaper {
@@ -108,6 +139,8 @@ enum Command {
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
     /// (build with --release for representative numbers).
@@ -123,6 +156,8 @@ enum Command {
         /// Output folder; default: out/bench-<case name>.
         #[arg(long)]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
 }
 
@@ -155,21 +190,28 @@ fn main() -> ExitCode {
             vtu,
             resolution,
             ranks,
-        } => run(&case, &solvers, &out, vtu, &resolution, ranks, roots),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| run(&case, &solvers, &out, vtu, &resolution, ranks, roots, &p)),
         Command::Verify {
             cases,
             junit,
             require_external,
             resolution,
             ranks,
-        } => verify_cases(
-            cases,
-            junit.as_deref(),
-            require_external,
-            &resolution,
-            ranks,
-            roots,
-        ),
+            commands,
+        } => commands.permission().and_then(|p| {
+            verify_cases(
+                cases,
+                junit.as_deref(),
+                require_external,
+                &resolution,
+                ranks,
+                roots,
+                &p,
+            )
+        }),
         Command::Mesh {
             case,
             resolution,
@@ -181,18 +223,27 @@ fn main() -> ExitCode {
             case,
             out,
             resolution,
-        } => report(&case, out, &resolution, Report::Compare, roots),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| report(&case, out, &resolution, Report::Compare, roots, &p)),
         Command::ReproducePaper {
             out,
             case,
             resolution,
-        } => report(&case, Some(out), &resolution, Report::Paper, roots),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| report(&case, Some(out), &resolution, Report::Paper, roots, &p)),
         Command::Bench {
             case,
             solvers,
             repeat,
             out,
-        } => bench(&case, &solvers, repeat as usize, out, roots),
+            commands,
+        } => commands
+            .permission()
+            .and_then(|p| bench(&case, &solvers, repeat as usize, out, roots, &p)),
     };
     match result {
         Ok(code) => code,
@@ -241,14 +292,17 @@ fn resolution_options(options: &[String]) -> Result<Vec<(String, String)>, Input
     Ok(pairs)
 }
 
-/// Loads the case at `file` with the command line's ranks and resolutions over its own.
+/// Loads the case at `file` (reading only under `roots`) with the command line's ranks and
+/// resolutions over its own, its command solvers under `permission`.
 fn load_case(
     file: &Path,
     ranks: Option<u32>,
     resolutions: &[(String, String)],
     roots: &ReadRoots,
+    permission: &CommandPermission,
 ) -> Result<Case, InputError> {
     let mut case = Case::load_with(file, roots)?;
+    case.permit_commands(permission);
     case.ranks = ranks.unwrap_or(case.ranks);
     for (name, value) in resolutions {
         case.set_resolution(name, value).map_err(|e| {
@@ -297,10 +351,15 @@ fn run(
     resolution: &[String],
     ranks: Option<u32>,
     roots: &ReadRoots,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
     // Plan: the case and every solver named must be valid before anything is written.
-    let case = load_case(case, ranks, &resolution_options(resolution)?, roots)?;
+    let case = load_case(case, ranks, &resolution_options(resolution)?, roots, permission)?;
     let mut plan = planned_solvers(&case, solvers)?;
+    let named: Vec<&str> = plan.iter().map(|s| s.name()).collect();
+    if case.commands().iter().any(|c| named.contains(&c.name.as_str())) {
+        case.command_lines().iter().for_each(|line| eprintln!("{line}"));
+    }
     output_folder("--out", out)?;
     if vtu {
         plan = plan
@@ -354,6 +413,7 @@ fn verify_cases(
     resolution: &[String],
     ranks: Option<u32>,
     roots: &ReadRoots,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
     let resolutions = resolution_options(resolution)?;
     let files = if files.is_empty() {
@@ -366,8 +426,10 @@ fn verify_cases(
     }
     let cases = files
         .iter()
-        .map(|f| load_case(f, ranks, &resolutions, roots))
+        .map(|f| load_case(f, ranks, &resolutions, roots, permission))
         .collect::<Result<Vec<_>, _>>()?;
+    let commands: Vec<String> = cases.iter().flat_map(Case::command_lines).collect();
+    commands.iter().for_each(|line| println!("{line}"));
     if let Some(file) = junit_file {
         io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
     }
@@ -382,6 +444,12 @@ fn verify_cases(
     if let Some(file) = junit_file {
         io::write_atomically(file, junit::document(&runs).as_bytes())
             .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+    }
+    if !commands.is_empty() && !permission.is_allowed() {
+        println!(
+            "verify: the programs cases name were not run: {}",
+            permission::how_to_allow()
+        );
     }
     if require_external && na > 0 {
         println!("verify: {na} not-available checks count as failures (--require-external)");
@@ -438,6 +506,18 @@ fn doctor() -> ExitCode {
     for probe in &probes {
         println!("{}", probe.line());
     }
+    // The programs the cases under cases/ would run, as SPHERECONTACT_ALLOW_COMMANDS leaves them.
+    let permission = CommandPermission::from_options(false, &[]);
+    println!(
+        "command solvers: {}",
+        permission.as_ref().map_or_else(|e| e.to_string(), |p| p.state())
+    );
+    for file in case_files(Path::new("cases")).unwrap_or_default() {
+        if let Ok(mut case) = Case::load(&file) {
+            case.permit_commands(permission.as_ref().unwrap_or(&CommandPermission::refused()));
+            case.command_lines().iter().for_each(|line| println!("  {line}"));
+        }
+    }
     if probes.iter().all(|p| p.available()) {
         ExitCode::SUCCESS
     } else {
@@ -452,8 +532,10 @@ fn bench(
     repeat: usize,
     out: Option<PathBuf>,
     roots: &ReadRoots,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
-    let case = Case::load_with(case, roots)?;
+    let case = load_case(case, None, &[], roots, permission)?;
+    case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     let (plan, left_out) =
         spherecontact::bench::sweepable(&case, planned_solvers(&case, solvers)?, !solvers.is_empty())?;
     for name in left_out {
@@ -530,8 +612,10 @@ fn report(
     resolution: &[String],
     kind: Report,
     roots: &ReadRoots,
+    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
-    let case = load_case(case, None, &resolution_options(resolution)?, roots)?;
+    let case = load_case(case, None, &resolution_options(resolution)?, roots, permission)?;
+    case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
     output_folder("--out", &out)?;
     // The paper's quoted values are read before any solver runs: a missing file is bad input.
@@ -590,12 +674,17 @@ fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
     println!("cases:");
     for file in case_files(Path::new("cases")).unwrap_or_default() {
         match Case::load_with(&file, roots) {
-            Ok(case) => println!(
-                "  {:<22} {}  {}",
-                case.name(),
-                text::one_line(&file.display().to_string()),
-                text::one_line(case.description.lines().next().unwrap_or(""))
-            ),
+            Ok(case) => {
+                println!(
+                    "  {:<22} {}  {}",
+                    case.name(),
+                    text::one_line(&file.display().to_string()),
+                    text::one_line(case.description.lines().next().unwrap_or(""))
+                );
+                case.command_lines()
+                    .iter()
+                    .for_each(|line| println!("    {line}"));
+            }
             Err(e) => println!("  (invalid) {}", text::one_line(&e.to_string())),
         }
     }

@@ -6,6 +6,7 @@ mod common;
 
 use spherecontact::case::Case;
 use spherecontact::check::Verdict;
+use spherecontact::external::permission::CommandPermission;
 use spherecontact::solver::SolveError;
 use spherecontact::verify::{self, CaseRun};
 use std::path::Path;
@@ -54,7 +55,8 @@ fn run(text: &str) -> (tempfile::TempDir, CaseRun) {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("case.toml");
     std::fs::write(&file, text).unwrap();
-    let case = Case::load(&file).unwrap_or_else(|e| panic!("{e}"));
+    let mut case = Case::load(&file).unwrap_or_else(|e| panic!("{e}"));
+    case.permit_commands(&CommandPermission::allowed());
     (dir, verify::run_case(case))
 }
 
@@ -78,7 +80,9 @@ fn corrupted(edit: &str) -> String {
 
 #[test]
 fn the_example_command_solver_matches_hertz_at_round_off() {
-    let run = verify::run_case(common::case("cases/command-solver.toml"));
+    let mut case = common::case("cases/command-solver.toml");
+    case.permit_commands(&CommandPermission::allowed());
+    let run = verify::run_case(case);
     for outcome in &run.outcomes {
         assert_eq!(outcome.verdict, Verdict::Ok, "{outcome:?}");
     }

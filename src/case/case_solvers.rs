@@ -24,9 +24,10 @@ use std::time::Duration;
 use toml::Spanned;
 
 use super::raw::{RawCommandSolver, RawStoredResults};
-use super::{CaseError, Validator};
+use super::{Case, CaseError, Validator};
 use crate::exchange::results_csv;
 use crate::external::command::CommandSolver;
+use crate::external::permission::CommandPermission;
 use crate::external::stored::StoredResults;
 use crate::path::LoadingPath;
 use crate::registry;
@@ -65,6 +66,58 @@ impl CaseSolver {
             CaseSolver::Command(s) => &s.name,
             CaseSolver::Stored(s) => &s.name,
         }
+    }
+}
+
+impl Case {
+    /// Lets the case's command solvers run under `permission` (they are refused until then).
+    pub fn permit_commands(&mut self, permission: &CommandPermission) {
+        for solver in &mut self.own_solvers {
+            if let CaseSolver::Command(command) = solver {
+                command.permission = permission.clone();
+            }
+        }
+    }
+
+    /// The case's command solvers that a run of the case needs (its list and its checks'), each
+    /// with the command it would run ([`CommandSolver::shown`]).
+    pub fn commands(&self) -> Vec<&CommandSolver> {
+        let needed = self.required_solvers();
+        self.own_solvers
+            .iter()
+            .filter_map(|s| match s {
+                CaseSolver::Command(c) if needed.contains(&c.name) => Some(c),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Lines that say which commands a run of the case would run and whether they may: for
+    /// `verify`, `list` and `doctor`; none for a case without command solvers.
+    pub fn command_lines(&self) -> Vec<String> {
+        let commands = self.commands();
+        let Some(first) = commands.first() else {
+            return Vec::new();
+        };
+        let mut lines = vec![format!(
+            "{}: command solvers {}",
+            self.name(),
+            first.permission.state()
+        )];
+        let runs = if first.permission.is_allowed() {
+            "runs"
+        } else {
+            "would run"
+        };
+        lines.extend(commands.iter().map(|c| {
+            format!(
+                "  {} {runs} (timeout {} s): {}",
+                c.name,
+                c.timeout.as_secs_f64(),
+                c.shown()
+            )
+        }));
+        lines
     }
 }
 
@@ -144,6 +197,7 @@ impl Validator<'_> {
                 .description
                 .clone()
                 .unwrap_or_else(|| format!("command: {}", command.join(" "))),
+            permission: CommandPermission::refused(),
         })
     }
 

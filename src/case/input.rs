@@ -17,7 +17,7 @@ use crate::limits::MAX_INPUT_BYTES;
 /// Errors are `io::Error`s whose message says what is allowed: a file that is not regular is
 /// `InvalidInput`, one too large `FileTooLarge`, one not UTF-8 `InvalidData`.
 pub fn read_text(path: &Path) -> io::Result<String> {
-    let file = open_regular(path, MAX_INPUT_BYTES)?;
+    let file = open_regular(path, MAX_INPUT_BYTES, Links::Follow)?;
     let mut bytes = Vec::new();
     file.read_to_end(&mut bytes)?;
     String::from_utf8(bytes).map_err(|e| {
@@ -31,11 +31,30 @@ pub fn read_text(path: &Path) -> io::Result<String> {
     })
 }
 
+/// Whether a symbolic link at the path itself is followed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Links {
+    /// Followed (a case file may be a link; a name a case gives is resolved before it is opened).
+    Follow,
+    /// Refused (a file a program was to write in its own folder).
+    Refuse,
+}
+
 /// The regular file at `path`, opened without blocking and judged by the opened file's own
-/// metadata: refused if it is not a regular file (a FIFO, a device, a folder) or is longer than
-/// `limit` bytes; its reads fail (`FileTooLarge`) past `limit` if it grows while it is read.
-pub fn open_regular(path: &Path, limit: u64) -> io::Result<Bounded> {
-    let file = open_without_blocking(path)?;
+/// metadata: refused if it is not a regular file (a FIFO, a device, a folder; with
+/// [`Links::Refuse`] a symbolic link) or is longer than `limit` bytes; its reads fail
+/// (`FileTooLarge`) past `limit` if it grows while it is read.
+pub fn open_regular(path: &Path, limit: u64, links: Links) -> io::Result<Bounded> {
+    let file = open_without_blocking(path, links).map_err(|e| {
+        if links == Links::Refuse && e.raw_os_error() == Some(libc::ELOOP) {
+            io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "a symbolic link (allowed: a regular file)",
+            )
+        } else {
+            e
+        }
+    })?;
     let meta = file.metadata()?;
     if !meta.is_file() {
         return Err(io::Error::new(
@@ -91,13 +110,18 @@ fn too_large(bytes: u64, limit: u64) -> io::Error {
 
 /// Opens `path` for reading; on Unix without blocking, so that opening a FIFO with no writer
 /// returns at once (reads of a regular file never block anyway).
-fn open_without_blocking(path: &Path) -> io::Result<File> {
+fn open_without_blocking(path: &Path, links: Links) -> io::Result<File> {
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
     #[cfg(unix)]
     {
         use std::os::unix::fs::OpenOptionsExt;
-        options.custom_flags(libc::O_NONBLOCK);
+        let no_follow = if links == Links::Refuse {
+            libc::O_NOFOLLOW
+        } else {
+            0
+        };
+        options.custom_flags(libc::O_NONBLOCK | no_follow);
     }
     options.open(path)
 }
@@ -164,13 +188,16 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("a.csv");
         std::fs::write(&file, "12345").unwrap();
-        let opened = open_regular(&file, 8).unwrap();
+        let opened = open_regular(&file, 8, Links::Follow).unwrap();
         std::fs::write(&file, "123456789").unwrap();
         let e = opened.read_to_end(&mut Vec::new()).unwrap_err();
         assert_eq!(e.kind(), io::ErrorKind::FileTooLarge, "{e}");
         let mut bytes = Vec::new();
         std::fs::write(&file, "12345678").unwrap();
-        open_regular(&file, 8).unwrap().read_to_end(&mut bytes).unwrap();
+        open_regular(&file, 8, Links::Follow)
+            .unwrap()
+            .read_to_end(&mut bytes)
+            .unwrap();
         assert_eq!(bytes.len(), 8, "a file at the limit is read whole");
     }
 

@@ -19,7 +19,7 @@ use std::time::Duration;
 
 use serde_json::json;
 
-use crate::external::process::Job;
+use crate::external::process::{Environment, Job};
 use crate::external::program;
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, Metadata, StepResult};
@@ -153,9 +153,9 @@ impl Solver for Lammps {
                 env: Vec::new(),
                 timeout: program::time_limit(START_UP, PER_STEP, scene.steps().len()),
             };
-            let run = program::run_to_success(&job, dir, "lammps", "LAMMPS", |_| {
-                "LAMMPS error (see ERROR in its output)"
-            })?;
+            let meaning = |_| "LAMMPS error (see ERROR in its output)";
+            let run =
+                program::run_to_success(&job, dir, "lammps", "LAMMPS", meaning, &Environment::Inherited)?;
             let (steps, worst) = read_output(dir, scene)?;
             Ok(self.history(&version, steps, worst, run.wall_s))
         })

@@ -17,7 +17,7 @@ use serde_json::json;
 
 use crate::exchange::scene_file;
 use crate::external::command;
-use crate::external::process::Job;
+use crate::external::process::{Environment, Job};
 use crate::external::program;
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, Metadata};
@@ -123,7 +123,8 @@ impl Solver for Yade {
                 env: Vec::new(),
                 timeout: program::time_limit(START_UP, PER_STEP, scene.steps().len()),
             };
-            let (steps, told, wall_s) = command::run_exchange(scene, dir, &job, "YADE")?;
+            let (steps, told, wall_s) =
+                command::run_exchange(scene, dir, &job, "YADE", &Environment::Inherited)?;
             let mut metadata = Metadata {
                 version: told.version.unwrap_or_default(),
                 model: format!(

@@ -113,15 +113,27 @@ fn quantity_names() -> String {
 /// repeating the file's text, except a number that differs from the path's.
 pub fn read(file: &Path, steps: &[Step]) -> Result<Vec<StepResult>, ResultsError> {
     let source =
-        input::open_regular(file, MAX_STORED_RESULTS_BYTES).map_err(|source| ResultsError::Open {
-            file: file.to_path_buf(),
-            source,
+        input::open_regular(file, MAX_STORED_RESULTS_BYTES, input::Links::Follow).map_err(|source| {
+            ResultsError::Open {
+                file: file.to_path_buf(),
+                source,
+            }
         })?;
+    read_from(source, file, steps)
+}
+
+/// [`read`] of a History CSV already opened (`file` names it in errors): a stream, read row by
+/// row, never whole.
+pub fn read_from(
+    input: impl std::io::Read,
+    file: &Path,
+    steps: &[Step],
+) -> Result<Vec<StepResult>, ResultsError> {
     let unreadable = |source| ResultsError::Unreadable {
         file: file.to_path_buf(),
         source,
     };
-    let mut reader = csv::ReaderBuilder::new().flexible(true).from_reader(source);
+    let mut reader = csv::ReaderBuilder::new().flexible(true).from_reader(input);
     let header = reader.headers().map_err(unreadable)?.clone();
     let quantities = quantity_columns(file, &header)?;
     let scale = steps

@@ -1,17 +1,22 @@
 //! A command solver: any program named by a case, given the scene file and read back through the
-//! History CSV (README, "Check your own solver").
+//! History CSV (README, "Check your own solver"; docs/security.md, "Programs a case may run").
 //!
-//! The run: a fresh temporary folder; `scene.json` written there ([`crate::exchange::scene_file`]);
-//! the command run there with the decks' process handling ([`super::process`]: own process group,
-//! killed with its children at the timeout, stdout and stderr in `command.stdout` /
-//! `command.stderr`); `history.csv` read back and validated against the path
-//! ([`crate::exchange::results_csv`]); optionally `metadata.json` read for the version, model,
-//! resolution and warnings the program wants shown. On any failure the folder is kept and named
-//! in the message; on success it is removed.
+//! It runs only when allowed ([`super::permission`]): otherwise it is not available, with the
+//! reason and the command it would run. The run: a fresh temporary folder; `scene.json` written
+//! there ([`crate::exchange::scene_file`]); the command run there with the decks' process
+//! handling ([`super::process`]: own process group, every process it started killed at the
+//! timeout and when it ends, stdout and stderr streamed to bounded logs `command.stdout` /
+//! `command.stderr`) in a minimal environment; `history.csv` read back (a regular file, no
+//! link, at most [`MAX_HISTORY_BYTES`]) and validated against the path
+//! ([`crate::exchange::results_csv`]); optionally `metadata.json` (the same checks, at most
+//! [`MAX_METADATA_BYTES`]) read for the version, model, resolution and warnings the program
+//! wants shown. On any failure the folder is kept and named in the message; on success it is
+//! removed.
 //!
 //! Placeholders in the command: `{case_dir}` (the case file's folder), `{scene}` and `{history}`
-//! (the absolute paths of the two files). A program given as a relative path with a `/` is
-//! resolved against the case file's folder; a bare name is looked up on PATH.
+//! (the absolute paths of the two files), filled under the rule of [`super::placeholder`]. A
+//! program given as a relative path with a `/` is resolved against the case file's folder; a
+//! bare name is looked up on PATH.
 //!
 //! A program that is not there is a failure of that solver, not "not available": the case names
 //! it explicitly, and a typo must not pass as a missing optional tool.
@@ -21,11 +26,15 @@ use std::time::Duration;
 
 use serde::Deserialize;
 
-use super::process::Job;
+use super::permission::{how_to_allow, CommandPermission};
+use super::placeholder::{self, Values};
+use super::process::{Environment, Job};
 use super::program;
 use super::toolchain::which;
+use crate::case::input::{self, Links};
 use crate::exchange::{results_csv, scene_file};
 use crate::history::{History, Metadata, StepResult};
+use crate::limits::{MAX_HISTORY_BYTES, MAX_METADATA_BYTES};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -60,6 +69,8 @@ pub struct CommandSolver {
     pub case_dir: PathBuf,
     /// The description shown by `list` and in reports.
     pub description: String,
+    /// Whether it may run ([`CommandPermission::refused`] until the command line says so).
+    pub permission: CommandPermission,
 }
 
 impl Solver for CommandSolver {
@@ -72,10 +83,17 @@ impl Solver for CommandSolver {
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        if !self.permission.is_allowed() {
+            return Err(SolveError::Unavailable(format!(
+                "not run: a program the case names ({})",
+                how_to_allow()
+            )));
+        }
         program::in_run_folder(&self.name, |dir| {
             let job = self.job(dir)?;
             let label = job.program.display().to_string();
-            let (steps, told, wall_s) = run_exchange(scene, dir, &job, &label)?;
+            let environment = self.permission.environment();
+            let (steps, told, wall_s) = run_exchange(scene, dir, &job, &label, &environment)?;
             let mut metadata = Metadata {
                 version: told.version.unwrap_or_else(|| "command".into()),
                 model: told
@@ -101,23 +119,50 @@ impl Solver for CommandSolver {
 }
 
 impl CommandSolver {
-    /// The program and arguments with the placeholders filled, the program resolved.
-    pub fn job(&self, run_dir: &Path) -> Result<Job, SolveError> {
-        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
-        let case_dir = absolute(&self.case_dir);
-        let run_dir = absolute(run_dir);
-        let fill = |text: &str| {
-            text.replace("{case_dir}", &case_dir.to_string_lossy())
-                .replace("{scene}", &run_dir.join(scene_file::FILE_NAME).to_string_lossy())
-                .replace(
-                    "{history}",
-                    &run_dir.join(scene_file::HISTORY_FILE).to_string_lossy(),
-                )
+    /// The case file's folder, absolute.
+    fn case_dir(&self) -> PathBuf {
+        std::path::absolute(&self.case_dir).unwrap_or_else(|_| self.case_dir.clone())
+    }
+
+    /// The command as it would run, `{case_dir}` filled and `{scene}`, `{history}` left as they
+    /// are (their folder is made at the run), each argument quoted where it needs it; or why it
+    /// would be refused.
+    pub fn shown(&self) -> String {
+        let case_dir = self.case_dir();
+        let values = Values {
+            case_dir: &case_dir,
+            run_dir: None,
         };
-        let Some((program, args)) = self.command.split_first() else {
+        match self
+            .command
+            .iter()
+            .map(|a| values.fill(a).map(|a| placeholder::shown(&a)))
+            .collect::<Result<Vec<_>, _>>()
+        {
+            Ok(arguments) => arguments.join(" "),
+            Err(e) => format!("nothing: {e}"),
+        }
+    }
+
+    /// The program and arguments with the placeholders filled (their values also in the
+    /// environment), the program resolved.
+    pub fn job(&self, run_dir: &Path) -> Result<Job, SolveError> {
+        let case_dir = self.case_dir();
+        let run_dir = std::path::absolute(run_dir).unwrap_or_else(|_| run_dir.to_path_buf());
+        let values = Values {
+            case_dir: &case_dir,
+            run_dir: Some(&run_dir),
+        };
+        let filled = self
+            .command
+            .iter()
+            .map(|a| values.fill(a))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| SolveError::Failed(format!("not run: {e}")))?;
+        let Some((program, args)) = filled.split_first() else {
             return Err(SolveError::Failed("empty command".into()));
         };
-        let program = PathBuf::from(fill(program));
+        let program = PathBuf::from(program);
         let program = if program.is_relative() && program.components().count() > 1 {
             case_dir.join(program)
         } else {
@@ -132,20 +177,22 @@ impl CommandSolver {
         })?;
         Ok(Job {
             program: resolved,
-            args: args.iter().map(|a| fill(a)).collect(),
-            env: Vec::new(),
+            args: args.to_vec(),
+            env: values.environment(),
             timeout: self.timeout,
         })
     }
 }
 
-/// Writes the scene file into `dir`, runs `job` there and reads back the History CSV it wrote
-/// (validated against the path) and its optional [`METADATA_FILE`]; also its wall time [s].
+/// Writes the scene file into `dir`, runs `job` there in `environment` and reads back the History
+/// CSV it wrote (validated against the path) and its optional [`METADATA_FILE`]; also its wall
+/// time [s].
 pub fn run_exchange(
     scene: &Scene,
     dir: &Path,
     job: &Job,
     program: &str,
+    environment: &Environment,
 ) -> Result<(Vec<StepResult>, CommandMetadata, f64), SolveError> {
     let failed = |what: &str, e: &dyn std::fmt::Display| SolveError::Failed(format!("{what}: {e}"));
     std::fs::write(
@@ -153,22 +200,35 @@ pub fn run_exchange(
         scene_file::SceneFile::of(scene).to_json(),
     )
     .map_err(|e| failed("writing the scene file", &e))?;
-    let run = program::run_to_success(job, dir, "command", program, |_| "the program's own failure")?;
-    let steps = results_csv::read(&dir.join(scene_file::HISTORY_FILE), &scene.steps())
-        .map_err(|e| failed("its results", &e))?;
+    let run = program::run_to_success(
+        job,
+        dir,
+        "command",
+        program,
+        |_| "the program's own failure",
+        environment,
+    )?;
+    let history = dir.join(scene_file::HISTORY_FILE);
+    let file = input::open_regular(&history, MAX_HISTORY_BYTES, Links::Refuse)
+        .map_err(|e| failed(&format!("its results: {}: cannot read", history.display()), &e))?;
+    let steps =
+        results_csv::read_from(file, &history, &scene.steps()).map_err(|e| failed("its results", &e))?;
     Ok((steps, read_metadata(&dir.join(METADATA_FILE))?, run.wall_s))
 }
 
 /// The command's own description of itself, if it wrote one.
 fn read_metadata(file: &Path) -> Result<CommandMetadata, SolveError> {
-    match std::fs::read_to_string(file) {
-        Ok(text) => serde_json::from_str(&text).map_err(|e| {
-            SolveError::Failed(format!(
-                "{}: {e} (allowed keys: version, model, resolution, warnings)",
-                file.display()
-            ))
-        }),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(CommandMetadata::default()),
-        Err(e) => Err(SolveError::Failed(format!("{}: {e}", file.display()))),
-    }
+    let failed = |e: &dyn std::fmt::Display| SolveError::Failed(format!("{}: {e}", file.display()));
+    let mut opened = match input::open_regular(file, MAX_METADATA_BYTES, Links::Refuse) {
+        Ok(opened) => opened,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(CommandMetadata::default()),
+        Err(e) => return Err(failed(&e)),
+    };
+    let mut text = String::new();
+    std::io::Read::read_to_string(&mut opened, &mut text).map_err(|e| failed(&e))?;
+    serde_json::from_str(&text).map_err(|e| {
+        failed(&format!(
+            "{e} (allowed keys: version, model, resolution, warnings)"
+        ))
+    })
 }

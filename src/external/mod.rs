@@ -4,6 +4,9 @@
 //!
 //! - [`toolchain`]: finding the tools, their versions, how to install them (`doctor`);
 //! - [`process`]: one run in its own directory and process group, with a timeout;
+//!   [`descendants`]: every process it started, found and killed; [`bounded_log`]: its output;
+//! - [`command`]: a program a case names as a solver, run only with [`permission`], its
+//!   command filled under the rule of [`placeholder`];
 //! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
 //! - [`solid_geo`]: the 3D geometry (half of a hemisphere or cap) and its quadratic tetrahedra;
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
@@ -16,12 +19,16 @@
 //! [`Unavailable`](crate::solver::SolveError::Unavailable), never a pass.
 
 pub mod axisym;
+pub mod bounded_log;
 pub mod command;
 pub mod deck;
+pub mod descendants;
 pub mod fenicsx;
 pub mod fenicsx3d;
 pub mod freefem;
 pub mod geo;
+pub mod permission;
+pub mod placeholder;
 pub mod process;
 pub mod program;
 pub mod readback;

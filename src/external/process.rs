@@ -1,16 +1,26 @@
 //! Running an external program: in its own temporary directory, in its own process group, with a
-//! timeout that kills the whole group (the program and every child it started), its stdout and
-//! stderr kept in files, and its exit status put into words.
+//! timeout; at the timeout, and when the program ends, every process it started is killed,
+//! those that left its group or session included ([`super::descendants`]). Its stdout and
+//! stderr are streamed into logs of bounded size ([`super::bounded_log`]), never held whole in
+//! memory, and its exit status is put into words.
 
-use std::fs::File;
+use std::io::Read;
+use std::os::fd::AsRawFd;
 use std::os::unix::process::{CommandExt, ExitStatusExt};
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitStatus};
+use std::process::{ChildStderr, ChildStdout, Command, ExitStatus, Stdio};
 use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 use std::time::{Duration, Instant};
 
-/// How often a running program is polled for its exit.
+use super::bounded_log::BoundedLog;
+use super::descendants::Tracker;
+
+/// How often a running program is polled for its exit (the longest wait for its output).
 const POLL: Duration = Duration::from_millis(10);
+
+/// How long output is still read after every process of the run was killed: the pipes close
+/// as soon as the last writer is dead, so this bounds only a writer the sweep could not see.
+const DRAIN: Duration = Duration::from_secs(1);
 
 /// A program to run: executable, arguments, extra environment, time limit.
 #[derive(Clone, Debug)]
@@ -25,6 +35,57 @@ pub struct Job {
     pub timeout: Duration,
 }
 
+/// The variables a program run with [`Environment::Minimal`] gets from the harness's own
+/// environment (those that are set): where programs and the user's files are (PATH, HOME, USER,
+/// LOGNAME), the locale and time zone (LANG, LC_ALL, LC_CTYPE, LC_NUMERIC, TZ), the temporary
+/// folder (TMPDIR), and what a Python or an MPI build needs to find its packages and libraries
+/// (PYTHONPATH, PYTHONHOME, PYTHONUSERBASE, VIRTUAL_ENV, CONDA_PREFIX, LD_LIBRARY_PATH) and how
+/// many threads to use (OMP_NUM_THREADS). None of them usually holds a secret; tokens, keys and
+/// passwords a CI job or a shell sets are left out.
+pub const MINIMAL_ENV: [&str; 17] = [
+    "PATH",
+    "HOME",
+    "USER",
+    "LOGNAME",
+    "LANG",
+    "LC_ALL",
+    "LC_CTYPE",
+    "LC_NUMERIC",
+    "TZ",
+    "TMPDIR",
+    "PYTHONPATH",
+    "PYTHONHOME",
+    "PYTHONUSERBASE",
+    "VIRTUAL_ENV",
+    "CONDA_PREFIX",
+    "LD_LIBRARY_PATH",
+    "OMP_NUM_THREADS",
+];
+
+/// What a program's environment starts from (then [`Job::env`] and the run's marker).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Environment {
+    /// The harness's whole environment: for the programs the harness drives with input it wrote
+    /// itself (gmsh, the decks, the DEM codes), which may need the toolchain's own variables.
+    Inherited,
+    /// [`MINIMAL_ENV`] and the variables named here: for programs a case names.
+    Minimal(Vec<String>),
+}
+
+impl Environment {
+    /// Sets `command`'s environment to this one.
+    fn apply(&self, command: &mut Command) {
+        if let Environment::Minimal(pass) = self {
+            command.env_clear();
+            let names = MINIMAL_ENV.iter().copied().chain(pass.iter().map(String::as_str));
+            for name in names {
+                if let Some(value) = std::env::var_os(name) {
+                    command.env(name, value);
+                }
+            }
+        }
+    }
+}
 /// How a run ended.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Ending {
@@ -89,47 +150,184 @@ impl Run {
     }
 }
 
-/// Runs `job` with working directory `dir`, stdout and stderr going to `dir/<stem>.stdout` and
-/// `dir/<stem>.stderr` (kept there for inspection, and returned).
-///
-/// The child leads a new process group, so at the timeout `SIGKILL` to the group ends the
-/// program and any process it spawned (MPI ranks, shells, Python workers). An error here means
-/// the program could not be started (missing executable, unwritable directory).
+/// Runs `job` with working directory `dir` and the harness's environment, stdout and stderr
+/// going to `dir/<stem>.stdout` and `dir/<stem>.stderr` (see [`run_in`]).
 pub fn run(job: &Job, dir: &Path, stem: &str) -> std::io::Result<Run> {
-    let (out_path, err_path) = (
-        dir.join(format!("{stem}.stdout")),
-        dir.join(format!("{stem}.stderr")),
-    );
-    let start = Instant::now();
-    let child = Command::new(&job.program)
+    run_in(job, dir, stem, &Environment::Inherited)
+}
+
+/// Runs `job` with working directory `dir` in `environment`, stdout and stderr streamed to the
+/// bounded logs `dir/<stem>.stdout` and `dir/<stem>.stderr` (kept there for inspection; their
+/// first and last lines returned).
+///
+/// The child leads a new process group and carries the run's marker; at the timeout, and when it
+/// ends, every process of the run is killed ([`Tracker::kill_all`]): MPI ranks, shells, Python
+/// workers, daemons that started a new session. An error here means the program could not be
+/// started (missing executable, unwritable directory).
+pub fn run_in(job: &Job, dir: &Path, stem: &str, environment: &Environment) -> std::io::Result<Run> {
+    let log = |stream: &str| BoundedLog::create(&dir.join(format!("{stem}.{stream}")));
+    let mut logs = [log("stdout")?, log("stderr")?];
+    let mut tracker = Tracker::begin();
+    let mut command = Command::new(&job.program);
+    command
         .args(&job.args)
-        .envs(job.env.iter().map(|(k, v)| (k, v)))
         .current_dir(dir)
-        .stdin(std::process::Stdio::null())
-        .stdout(File::create(&out_path)?)
-        .stderr(File::create(&err_path)?)
-        .process_group(0)
-        .spawn()?;
-    let ending = loop {
-        if let Some(status) = reap(child.id(), libc::WNOHANG)? {
-            break ending_of(status);
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .process_group(0);
+    environment.apply(&mut command);
+    // SAFETY: prctl is async-signal-safe (one system call) and touches no memory. The program
+    // becomes a subreaper too (kept across exec): the orphans of its own children stay under it,
+    // in the tree the sweep walks, for as long as it runs.
+    unsafe {
+        command.pre_exec(|| {
+            libc::prctl(libc::PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0);
+            Ok(())
+        });
+    }
+    let (marker, value) = tracker.marker();
+    command
+        .envs(job.env.iter().map(|(k, v)| (k, v)))
+        .env(marker, value);
+    let start = Instant::now();
+    let mut child = command.spawn()?;
+    tracker.started(child.id());
+    // Waits for the end or the timeout; on an error of the harness's own (a log that cannot be
+    // written), the program is killed and reaped all the same before the error is returned.
+    let watched = Pipes::of(child.stdout.take(), child.stderr.take()).and_then(|mut pipes| loop {
+        pipes.pump(&mut logs, POLL)?;
+        if has_exited(child.id())? {
+            return Ok((pipes, false));
         }
         if start.elapsed() >= job.timeout {
-            kill_group(child.id());
-            reap(child.id(), 0)?;
-            break Ending::TimedOut;
+            return Ok((pipes, true));
         }
-        std::thread::sleep(POLL);
+        tracker.observe();
+    });
+    // The program is held unreaped while the sweep runs, so that its group stays its own.
+    tracker.kill_all();
+    let status = reap(child.id(), 0)?.unwrap_or_else(|| ExitStatus::from_raw(0));
+    let (mut pipes, timed_out) = watched?;
+    let ending = if timed_out {
+        Ending::TimedOut
+    } else {
+        ending_of(status)
     };
-    // The group may hold children that outlived a finished leader: end them too.
-    kill_group(child.id());
-    let read = |p: &Path| String::from_utf8_lossy(&std::fs::read(p).unwrap_or_default()).into_owned();
+    let drained = Instant::now();
+    while pipes.open() && drained.elapsed() < DRAIN {
+        pipes.pump(&mut logs, POLL)?;
+    }
+    let [stdout, stderr] = logs;
     Ok(Run {
         ending,
-        stdout: read(&out_path),
-        stderr: read(&err_path),
+        stdout: stdout.finish()?,
+        stderr: stderr.finish()?,
         wall_s: start.elapsed().as_secs_f64(),
     })
+}
+
+/// A running program's stdout and stderr, read without blocking.
+struct Pipes {
+    /// stdout, stderr; `None` once closed.
+    streams: [Option<Box<dyn ReadFd>>; 2],
+    /// Where each read lands on its way to a log.
+    buffer: Vec<u8>,
+}
+
+/// A pipe end that can be polled.
+trait ReadFd: Read + AsRawFd {}
+impl ReadFd for ChildStdout {}
+impl ReadFd for ChildStderr {}
+
+impl Pipes {
+    fn of(stdout: Option<ChildStdout>, stderr: Option<ChildStderr>) -> std::io::Result<Self> {
+        let boxed = |s: Option<Box<dyn ReadFd>>| -> std::io::Result<_> {
+            if let Some(s) = &s {
+                set_nonblocking(s.as_raw_fd())?;
+            }
+            Ok(s)
+        };
+        Ok(Pipes {
+            streams: [
+                boxed(stdout.map(|s| Box::new(s) as Box<dyn ReadFd>))?,
+                boxed(stderr.map(|s| Box::new(s) as Box<dyn ReadFd>))?,
+            ],
+            buffer: vec![0; 64 << 10],
+        })
+    }
+
+    /// Whether a stream is still open.
+    fn open(&self) -> bool {
+        self.streams.iter().any(Option::is_some)
+    }
+
+    /// Waits up to `wait` for output, then moves all there is into `logs` (stdout, stderr).
+    fn pump(&mut self, logs: &mut [BoundedLog; 2], wait: Duration) -> std::io::Result<()> {
+        let mut fds: Vec<libc::pollfd> = self
+            .streams
+            .iter()
+            .flatten()
+            .map(|s| libc::pollfd {
+                fd: s.as_raw_fd(),
+                events: libc::POLLIN,
+                revents: 0,
+            })
+            .collect();
+        if fds.is_empty() {
+            std::thread::sleep(wait);
+            return Ok(());
+        }
+        // SAFETY: `fds` is a valid array of `fds.len()` pollfd structures for the call.
+        unsafe {
+            libc::poll(
+                fds.as_mut_ptr(),
+                fds.len() as libc::nfds_t,
+                wait.as_millis() as libc::c_int,
+            )
+        };
+        let buffer = &mut self.buffer;
+        for (slot, log) in self.streams.iter_mut().zip(logs.iter_mut()) {
+            let Some(stream) = slot else { continue };
+            loop {
+                match stream.read(buffer) {
+                    Ok(0) => {
+                        *slot = None;
+                        break;
+                    }
+                    Ok(n) => log.write(&buffer[..n])?,
+                    Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => break,
+                    Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                    Err(e) => return Err(e),
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Puts descriptor `fd` into non-blocking mode.
+fn set_nonblocking(fd: libc::c_int) -> std::io::Result<()> {
+    // SAFETY: fcntl on a descriptor this process owns; F_GETFL/F_SETFL touch no memory.
+    let flags = unsafe { libc::fcntl(fd, libc::F_GETFL) };
+    // SAFETY: as above.
+    if flags < 0 || unsafe { libc::fcntl(fd, libc::F_SETFL, flags | libc::O_NONBLOCK) } < 0 {
+        return Err(std::io::Error::last_os_error());
+    }
+    Ok(())
+}
+
+/// Whether child `pid` has ended, leaving it unreaped (its pid, and its group's id, stay taken).
+fn has_exited(pid: u32) -> std::io::Result<bool> {
+    // SAFETY: an all-zero siginfo_t is a valid value; waitid only writes into it.
+    let mut info: libc::siginfo_t = unsafe { std::mem::zeroed() };
+    let options = libc::WEXITED | libc::WNOHANG | libc::WNOWAIT;
+    // SAFETY: a valid pointer to a siginfo_t that outlives the call.
+    if unsafe { libc::waitid(libc::P_PID, pid as libc::id_t, &mut info, options) } < 0 {
+        return Err(std::io::Error::last_os_error());
+    }
+    // SAFETY: waitid filled `info` (or left it zero: no child has changed state).
+    Ok(unsafe { info.si_pid() } != 0)
 }
 
 /// CPU time [ns] of every child that [`run`] has reaped, with the children they waited for.
@@ -143,7 +341,7 @@ pub fn child_cpu_seconds() -> f64 {
 
 /// Waits for `pid` with `wait4` (blocking, or not with `WNOHANG`), adding its CPU time to
 /// [`child_cpu_seconds`]; `None` while it still runs.
-fn reap(pid: u32, options: libc::c_int) -> std::io::Result<Option<ExitStatus>> {
+pub(super) fn reap(pid: u32, options: libc::c_int) -> std::io::Result<Option<ExitStatus>> {
     let mut status: libc::c_int = 0;
     // SAFETY: an all-zero rusage is a valid value; wait4 only writes into it.
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
@@ -165,16 +363,6 @@ fn ending_of(status: ExitStatus) -> Ending {
         (Some(code), _) => Ending::Exited(code),
         (None, Some(signal)) => Ending::Signalled(signal),
         (None, None) => Ending::Exited(-1),
-    }
-}
-
-/// Sends SIGKILL to the process group led by `pid` (ESRCH, an already empty group, is fine).
-fn kill_group(pid: u32) {
-    if let Ok(pid) = libc::pid_t::try_from(pid) {
-        // SAFETY: kill(2) with a negative pid signals the process group; it touches no memory.
-        unsafe {
-            libc::kill(-pid, libc::SIGKILL);
-        }
     }
 }
 
@@ -217,6 +405,51 @@ mod tests {
         assert_eq!(run.stdout.trim(), "out 42");
         assert_eq!(run.tail(5), "err");
         assert!(dir.path().join("t.stderr").exists());
+    }
+
+    #[test]
+    fn a_flood_of_output_leaves_a_bounded_log_with_its_head_its_tail_and_a_count() {
+        let dir = tempfile::tempdir().unwrap();
+        // 20 MiB of `x`, then `END`: 4 MiB + 4 bytes more than the log keeps.
+        let run = run(
+            &job("head -c 20971520 /dev/zero | tr '\\0' x; echo END", 60_000),
+            dir.path(),
+            "t",
+        )
+        .unwrap();
+        assert_eq!(run.ending, Ending::Exited(0));
+        let log = std::fs::read(dir.path().join("t.stdout")).unwrap();
+        let notice = format!("[spherecontact: {} bytes of output dropped here", (4 << 20) + 4);
+        let text = String::from_utf8_lossy(&log);
+        assert!(text.contains(&notice), "no count of what was dropped");
+        assert!(log.len() as u64 <= crate::limits::MAX_PROGRAM_LOG_BYTES + 200);
+        assert!(log.starts_with(b"xxxx") && log.ends_with(b"xxxxEND\n"));
+        // In memory: the log's first and last 64 KiB around a line that names it.
+        assert!(run.stdout.len() < 3 * (64 << 10) && run.stdout.ends_with("xxEND\n"));
+        assert!(run.stdout.contains("bytes not shown here; the whole log:"));
+    }
+
+    #[test]
+    fn a_minimal_environment_holds_only_the_listed_variables() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut j = job("", 10_000);
+        (j.program, j.args) = ("env".into(), Vec::new());
+        let environment = Environment::Minimal(vec!["CARGO_PKG_NAME".into()]);
+        let run = run_in(&j, dir.path(), "t", &environment).unwrap();
+        let names: Vec<&str> = run.stdout.lines().filter_map(|l| l.split('=').next()).collect();
+        assert!(names.contains(&"SPHERECONTACT_TEST") && names.contains(&super::super::descendants::MARKER));
+        for name in names {
+            let listed = MINIMAL_ENV.contains(&name)
+                || [
+                    "SPHERECONTACT_TEST",
+                    "CARGO_PKG_NAME",
+                    super::super::descendants::MARKER,
+                ]
+                .contains(&name);
+            assert!(listed, "{name} reached the program");
+        }
+        // The harness's own environment is fuller: the test shows the difference.
+        assert!(std::env::vars().any(|(k, _)| !MINIMAL_ENV.contains(&k.as_str())));
     }
 
     #[test]

@@ -8,7 +8,7 @@ use std::path::Path;
 use std::time::Duration;
 
 use super::deck::RunDir;
-use super::process::{self, Job, Run};
+use super::process::{self, Environment, Job, Run};
 use crate::solver::SolveError;
 
 /// Runs `work` in a fresh folder named after `solver`; a failure keeps the folder and says where.
@@ -27,17 +27,18 @@ pub fn in_run_folder<T>(
     }
 }
 
-/// Runs `job` in `dir` (stdout and stderr in `<stem>.stdout`, `<stem>.stderr`) and turns any
-/// ending but exit code 0 into a failure with the last lines of its output; `meaning` puts the
-/// program's own exit codes into words.
+/// Runs `job` in `dir` in `environment` (stdout and stderr in `<stem>.stdout`, `<stem>.stderr`)
+/// and turns any ending but exit code 0 into a failure with the last lines of its output;
+/// `meaning` puts the program's own exit codes into words.
 pub fn run_to_success(
     job: &Job,
     dir: &Path,
     stem: &str,
     program: &str,
     meaning: impl Fn(i32) -> &'static str,
+    environment: &Environment,
 ) -> Result<Run, SolveError> {
-    let run = process::run(job, dir, stem)
+    let run = process::run_in(job, dir, stem, environment)
         .map_err(|e| SolveError::Failed(format!("{program} could not start: {e}")))?;
     match run.ending.failure(program, job.timeout, meaning) {
         Some(why) => Err(SolveError::Failed(format!(
