@@ -46,6 +46,8 @@ enum Command {
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: the case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
+        #[command(flatten)]
+        force: Force,
     },
     /// Run cases and judge their checks; exit 1 on any NOOK.
     Verify {
@@ -64,6 +66,9 @@ enum Command {
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
+        /// Replace a --junit file that spherecontact did not write.
+        #[arg(long)]
+        force: bool,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -75,6 +80,8 @@ enum Command {
         /// Output folder (created if missing).
         #[arg(long, default_value = "out/mesh")]
         out: PathBuf,
+        #[command(flatten)]
+        force: Force,
     },
     /// Report each external tool: found or not, path, version, and how to install it.
     Doctor,
@@ -91,6 +98,8 @@ enum Command {
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
+        #[command(flatten)]
+        force: Force,
     },
     /// Reproduce the paper: its case with every available solver, reported in its figures' order.
     ReproducePaper {
@@ -104,6 +113,8 @@ enum Command {
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
+        #[command(flatten)]
+        force: Force,
     },
     /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
     /// (build with --release for representative numbers).
@@ -119,15 +130,28 @@ enum Command {
         /// Output folder; default: out/bench-<case name>.
         #[arg(long)]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        force: Force,
     },
+}
+
+/// The `--force` of the commands that write an output folder.
+#[derive(clap::Args)]
+struct Force {
+    /// Write into an existing folder that holds files spherecontact did not write (files with
+    /// output names are replaced; the folder is marked as spherecontact's).
+    #[arg(long)]
+    force: bool,
 }
 
 /// A bad-input error: printed, exit code 2, nothing written.
 struct InputError(String);
 
-/// Checks the output folder of a command before any work (nothing is written).
-fn output_folder(option: &str, dir: &Path) -> Result<(), InputError> {
-    io::check_output_folder(dir).map_err(|e| InputError(format!("{option} {}: {e}", dir.display())))
+/// Claims the output folder of a command before any work: refused (nothing written) when it is
+/// a system folder, holds files spherecontact did not write (without `--force`) or links, or is
+/// in use by another run; held until the process ends.
+fn claim(dir: &Path, force: bool) -> Result<io::OutputFolder, InputError> {
+    io::OutputFolder::claim(dir, force).map_err(|e| InputError(format!("--out {}: {e}", dir.display())))
 }
 
 impl<E: std::fmt::Display> From<E> for InputError {
@@ -146,37 +170,50 @@ fn main() -> ExitCode {
             vtu,
             resolution,
             ranks,
-        } => run(&case, &solvers, &out, vtu, &resolution, ranks),
+            force,
+        } => run(&case, &solvers, &out, force.force, vtu, &resolution, ranks),
         Command::Verify {
             cases,
             junit,
             require_external,
             resolution,
             ranks,
-        } => verify_cases(cases, junit.as_deref(), require_external, &resolution, ranks),
+            force,
+        } => verify_cases(
+            cases,
+            junit.as_deref(),
+            force,
+            require_external,
+            &resolution,
+            ranks,
+        ),
         Command::Mesh {
             case,
             resolution,
             out,
-        } => mesh(&case, resolution.as_deref(), &out),
+            force,
+        } => mesh(&case, resolution.as_deref(), &out, force.force),
         Command::Doctor => Ok(doctor()),
         Command::List => list(),
         Command::Compare {
             case,
             out,
             resolution,
-        } => report(&case, out, &resolution, Report::Compare),
+            force,
+        } => report(&case, out, force.force, &resolution, Report::Compare),
         Command::ReproducePaper {
             out,
             case,
             resolution,
-        } => report(&case, Some(out), &resolution, Report::Paper),
+            force,
+        } => report(&case, Some(out), force.force, &resolution, Report::Paper),
         Command::Bench {
             case,
             solvers,
             repeat,
             out,
-        } => bench(&case, &solvers, repeat as usize, out),
+            force,
+        } => bench(&case, &solvers, repeat as usize, out, force.force),
     };
     match result {
         Ok(code) => code,
@@ -269,6 +306,7 @@ fn run(
     case: &Path,
     solvers: &[String],
     out: &Path,
+    force: bool,
     vtu: bool,
     resolution: &[String],
     ranks: Option<u32>,
@@ -276,17 +314,16 @@ fn run(
     // Plan: the case and every solver named must be valid before anything is written.
     let case = load_case(case, ranks, &resolution_options(resolution)?)?;
     let mut plan = planned_solvers(&case, solvers)?;
-    output_folder("--out", out)?;
+    let folder = claim(out, force)?;
     if vtu {
         plan = plan
             .into_iter()
             .map(|s| {
-                let dir = out.join(format!("{}-vtu", s.name()));
+                let dir = folder.path().join(format!("{}-vtu", s.name()));
                 s.writing_fields_to(&dir).unwrap_or(s)
             })
             .collect();
     }
-    std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     let mut code = ExitCode::SUCCESS;
     for warning in case.scene.warnings() {
         eprintln!("warning: {}: {warning}", case.name());
@@ -294,7 +331,7 @@ fn run(
     for solver in plan {
         match solver::run(solver.as_ref(), &case.scene) {
             Ok(history) => {
-                if let Err(e) = history_files::write(out, &history) {
+                if let Err(e) = history_files::write(folder.path(), &history) {
                     eprintln!(
                         "error: {}: writing results to {}: {e}",
                         solver.name(),
@@ -325,6 +362,7 @@ fn run(
 fn verify_cases(
     files: Vec<PathBuf>,
     junit_file: Option<&Path>,
+    force: bool,
     require_external: bool,
     resolution: &[String],
     ranks: Option<u32>,
@@ -342,9 +380,13 @@ fn verify_cases(
         .iter()
         .map(|f| load_case(f, ranks, &resolutions))
         .collect::<Result<Vec<_>, _>>()?;
-    if let Some(file) = junit_file {
-        io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
-    }
+    let junit_file = junit_file
+        .map(|file| {
+            io::claim_file(file, force, junit::is_ours)
+                .map(|canonical| (file, canonical))
+                .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))
+        })
+        .transpose()?;
     let runs: Vec<_> = cases.into_iter().map(verify::run_case).collect();
     for run in &runs {
         print!("{}", table::case_block(run));
@@ -353,8 +395,8 @@ fn verify_cases(
     let count = |label: &str| outcomes.clone().filter(|o| o.verdict.label() == label).count();
     let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
     println!("verify: {ok} passed, {nook} failed, {info} informational, {na} not available");
-    if let Some(file) = junit_file {
-        io::write_atomically(file, junit::document(&runs).as_bytes())
+    if let Some((file, canonical)) = &junit_file {
+        io::write_atomically(canonical, junit::document(&runs).as_bytes())
             .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
     }
     if require_external && na > 0 {
@@ -369,7 +411,7 @@ fn verify_cases(
     )
 }
 
-fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, InputError> {
+fn mesh(case: &Path, resolution: Option<&str>, out: &Path, force: bool) -> Result<ExitCode, InputError> {
     // Plan: the case and the resolution must be valid before anything is written.
     let case = Case::load(case)?;
     // The pole sizes of fem-axisym's and the decks' `[resolution]` (c/N or a length).
@@ -379,9 +421,8 @@ fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, I
         None => geo::default_resolution(&case.scene),
     };
     geo::geo_for_scene(&case.scene, resolution)?;
-    output_folder("--out", out)?;
-    std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
-    match geo::mesh(&case.scene, resolution, out, &Toolchain::default()) {
+    let folder = claim(out, force)?;
+    match geo::mesh_into(&case.scene, resolution, folder.path(), &Toolchain::default()) {
         Ok(files) => {
             println!(
                 "{}: pole element {:.3} µm, {} triangles, gmsh {:.2} s",
@@ -420,11 +461,12 @@ fn bench(
     solvers: &[String],
     repeat: usize,
     out: Option<PathBuf>,
+    force: bool,
 ) -> Result<ExitCode, InputError> {
     let case = Case::load(case)?;
     let plan = planned_solvers(&case, solvers)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("bench-{}", case.name())));
-    output_folder("--out", &out)?;
+    let folder = claim(&out, force)?;
     if cfg!(debug_assertions) {
         eprintln!("warning: built without optimisation; run `cargo run --release -- bench …` for representative timings");
     }
@@ -434,7 +476,7 @@ fn bench(
     let document = spherecontact::report::bench::document(case.name(), increments, repeat, &rungs)
         .map_err(|e| InputError(format!("building the bench report: {e}")))?;
     document
-        .write(&out)
+        .write(folder.path())
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     for line in spherecontact::report::bench::machine() {
         println!("{line}");
@@ -491,12 +533,13 @@ enum Report {
 fn report(
     case: &Path,
     out: Option<PathBuf>,
+    force: bool,
     resolution: &[String],
     kind: Report,
 ) -> Result<ExitCode, InputError> {
     let case = load_case(case, None, &resolution_options(resolution)?)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
-    output_folder("--out", &out)?;
+    let folder = claim(&out, force)?;
     let reference_dir = case.file.parent().unwrap_or(Path::new(".")).join("../reference");
     let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
     bar.set_style(
@@ -519,8 +562,8 @@ fn report(
         }
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;
-    history_files::write_all(&out.join("solvers"), &run)
-        .and_then(|()| document.write(&out))
+    history_files::write_all(&folder.path().join("solvers"), &run)
+        .and_then(|()| document.write(folder.path()))
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     print!("{}", summary::screen(&run));
     println!("report: {}", out.join("report.html").display());
