@@ -182,6 +182,9 @@ fn the_root_and_system_folders_are_refused_also_through_a_link_or_dot_dot() {
             "--out {out} wrote into /etc"
         );
     }
+    let junit = spherecontact(&["verify", "case.toml", "--junit", "/etc/verify.xml"], dir.path());
+    assert_refused(&junit, &["--junit", "/etc holds"]);
+    assert!(!Path::new("/etc/verify.xml").exists());
     assert!(!Path::new("/etc/spherecontact-out").exists());
     assert!(!Path::new("/usr/local/out").exists());
 }

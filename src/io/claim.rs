@@ -104,13 +104,16 @@ impl OutputFolder {
 }
 
 /// Checks, writing nothing, that `file` may be written (atomically) by the harness: its folder
-/// exists and is no system folder, the name is no folder nor link, and an existing file is
-/// one that `is_ours` recognises from its first bytes, unless `force`. The canonical path.
+/// exists and is neither `/` nor in a system tree (a shared folder such as `/tmp` is fine), the
+/// name is no folder nor link, and an existing file is one that `is_ours` recognises from its
+/// first bytes, unless `force`. The canonical path.
 pub fn claim_file(file: &Path, force: bool, is_ours: impl Fn(&[u8]) -> bool) -> Result<PathBuf, ClaimError> {
     super::check_output_file(file)?;
     let name = file.file_name().ok_or(ClaimError::Kind("not a file name"))?;
     let folder = std::fs::canonicalize(super::folder_or_here(file.parent().unwrap_or(Path::new(""))))?;
-    refuse_system_folder(&folder)?;
+    if let Some(why) = system_folders::file_refusal(&folder) {
+        return Err(ClaimError::System(why));
+    }
     let path = folder.join(name);
     match std::fs::symlink_metadata(&path) {
         Ok(meta) if meta.file_type().is_symlink() => Err(ClaimError::Link(path)),

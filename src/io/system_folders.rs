@@ -47,15 +47,29 @@ const TOPS: &[(&str, &str)] = &[
 /// Why the canonical folder `dir` may not be an output folder, or `None` when it may. `home` is
 /// the user's canonical home folder, refused itself.
 pub(super) fn refusal(dir: &Path, home: Option<&Path>) -> Option<String> {
-    if let Some((tree, why)) = TREES.iter().find(|(tree, _)| dir.starts_with(tree)) {
-        return Some(format!(
-            "{tree} holds {why}: neither it nor a folder in it is an output folder"
-        ));
+    if let Some(why) = tree_refusal(dir) {
+        return Some(why);
     }
     if let Some((_, why)) = TOPS.iter().find(|(top, _)| dir == Path::new(top)) {
         return Some(format!("{} is {why}: choose a folder inside it", dir.display()));
     }
     (home == Some(dir)).then(|| format!("{} is your home folder: choose a folder inside it", dir.display()))
+}
+
+/// Why no file may be written into the canonical folder `dir` (a system tree, or `/`), or
+/// `None`: a single output file (`verify --junit`) may go into a shared folder such as `/tmp`.
+pub(super) fn file_refusal(dir: &Path) -> Option<String> {
+    tree_refusal(dir).or_else(|| {
+        (dir == Path::new("/")).then(|| "/ is the root of the file system: choose a folder inside it".into())
+    })
+}
+
+/// Why `dir` lies in a system tree, or `None`.
+fn tree_refusal(dir: &Path) -> Option<String> {
+    let (tree, why) = TREES.iter().find(|(tree, _)| dir.starts_with(tree))?;
+    Some(format!(
+        "{tree} holds {why}: neither it nor a folder in it is an output folder"
+    ))
 }
 
 #[cfg(test)]
@@ -79,6 +93,11 @@ mod tests {
             assert!(refused(dir), "{dir} accepted");
         }
         assert!(refused("/home/someone"), "the home folder accepted");
+        assert!(file_refusal(Path::new("/etc/ssl")).is_some() && file_refusal(Path::new("/")).is_some());
+        assert!(
+            file_refusal(Path::new("/tmp")).is_none(),
+            "a JUnit file in /tmp refused"
+        );
         for dir in [
             "/tmp/out",
             "/var/tmp/x",
