@@ -20,6 +20,7 @@ use std::process::ExitCode;
 
 use spherecontact::case::Case;
 use spherecontact::external::fenicsx3d::{Solid3dDeck, NAME};
+use spherecontact::io::OutputFolder;
 use spherecontact::limits::SOLID_POLE;
 use spherecontact::report::history_files;
 use spherecontact::resolution;
@@ -53,9 +54,9 @@ fn main() -> ExitCode {
         [command, case, dir, out, rest @ ..] if command == "read" && rest.len() <= 1 => {
             deck_for(case, rest.first()).and_then(|(deck, scene)| {
                 let history = deck.read_run(&scene, Path::new(dir)).map_err(|e| e.to_string())?;
-                std::fs::create_dir_all(out)
+                OutputFolder::claim(Path::new(out), false)
                     .map_err(anyhow::Error::from)
-                    .and_then(|()| history_files::write(Path::new(out), &history))
+                    .and_then(|folder| history_files::write(folder.path(), &history))
                     .map_err(|e| format!("{out}: {e}"))?;
                 Ok(format!(
                     "{} steps read back from {dir} into {out}/{NAME}.csv",

@@ -1,50 +1,29 @@
-//! Writing outputs so that a reader never sees half a file: write a temporary file beside the
-//! target, then rename it over the target. And checking, before any work, that an output
-//! destination can be written at all.
+//! Writing outputs so that a reader never sees half a file, and never through a symbolic link:
+//! write a temporary file beside the target, then rename it over the target, every folder on
+//! the way opened without following links ([`nofollow`]). Claiming an output folder before any
+//! work ([`claim`]): not a system folder, not a folder of someone else's files, not one another
+//! run is writing. And checking, before any work, that an output file can be written at all.
 
-use std::io::{ErrorKind, Write};
+mod claim;
+mod nofollow;
+mod system_folders;
+
+pub use claim::{claim_file, ClaimError, OutputFolder, MARKER};
+
 use std::path::Path;
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed, then
-/// renamed. On any error the target is left as it was.
+/// renamed. On any error the target is left as it was. No component of `path` may be a
+/// symbolic link, nor the name itself (an error): pass paths below a claimed [`OutputFolder`],
+/// which are canonical.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut file = tempfile::NamedTempFile::new_in(folder)?;
-    // A temporary file is private (0600); an output is an ordinary file (0644).
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        file.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
-    }
-    file.write_all(bytes)?;
-    file.as_file().sync_all()?;
-    file.persist(path).map_err(|e| e.error)?;
-    Ok(())
+    nofollow::write(path, bytes)
 }
 
-/// Checks, writing nothing, that `dir` is a folder that outputs can be written into, or can be
-/// created: it is a folder, or its nearest existing ancestor is; and that one is writable.
-///
-/// Commands check their output destinations this way before any solver runs, so that a bad
-/// `--out` is bad input (exit 2) and not a failure after minutes of work.
-pub fn check_output_folder(dir: &Path) -> std::io::Result<()> {
-    let mut existing = dir;
-    loop {
-        match std::fs::metadata(folder_or_here(existing)) {
-            Ok(meta) if meta.is_dir() => return check_writable(folder_or_here(existing)),
-            Ok(_) => return Err(invalid(format!("{} is not a folder", existing.display()))),
-            Err(e) if matches!(e.kind(), ErrorKind::NotFound | ErrorKind::NotADirectory) => {
-                existing = existing
-                    .parent()
-                    .ok_or_else(|| invalid(format!("no existing folder above {}", dir.display())))?;
-            }
-            Err(e) => return Err(e),
-        }
-    }
+/// Creates the folder `dir` and its missing parents, as `std::fs::create_dir_all` does, but
+/// never through a symbolic link (an error).
+pub fn create_folder(dir: &Path) -> std::io::Result<()> {
+    nofollow::open_folder(dir, true).map(drop)
 }
 
 /// Checks, writing nothing, that `file` can be written atomically: it is not a folder, and its
@@ -101,14 +80,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn output_folders_are_judged_without_writing() {
+    fn output_files_are_judged_without_writing() {
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("f");
         std::fs::write(&file, "").unwrap();
-        assert!(check_output_folder(dir.path()).is_ok());
-        assert!(check_output_folder(&dir.path().join("new/deeper")).is_ok());
-        assert!(check_output_folder(&file).is_err());
-        assert!(check_output_folder(&file.join("below")).is_err());
         assert!(check_output_file(&dir.path().join("v.xml")).is_ok());
         assert!(check_output_file(dir.path()).is_err());
         assert!(check_output_file(&dir.path().join("no/v.xml")).is_err());
@@ -127,6 +102,43 @@ mod tests {
         write_atomically(&target, b"two").unwrap();
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "two");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn links_on_the_way_or_at_the_name_are_refused_and_their_targets_untouched() {
+        let dir = tempfile::tempdir().unwrap();
+        let root = std::fs::canonicalize(dir.path()).unwrap();
+        let (inside, outside) = (root.join("out"), root.join("elsewhere"));
+        std::fs::create_dir_all(&inside).unwrap();
+        std::fs::create_dir_all(&outside).unwrap();
+        std::fs::write(outside.join("target"), "theirs").unwrap();
+        std::os::unix::fs::symlink(&outside, inside.join("figures")).unwrap();
+        std::os::unix::fs::symlink(outside.join("target"), inside.join("mesh.geo")).unwrap();
+        assert!(write_atomically(&inside.join("figures/a.svg"), b"x").is_err());
+        assert!(create_folder(&inside.join("figures/deeper")).is_err());
+        let error = write_atomically(&inside.join("mesh.geo"), b"x").unwrap_err();
+        assert!(error.to_string().contains("symbolic link"), "{error}");
+        assert_eq!(std::fs::read_to_string(outside.join("target")).unwrap(), "theirs");
+        assert_eq!(
+            std::fs::read_dir(&outside).unwrap().count(),
+            1,
+            "nothing written outside"
+        );
+        assert_eq!(
+            std::fs::read_dir(&inside).unwrap().count(),
+            2,
+            "no temporary file left"
+        );
+    }
+
+    #[test]
+    fn folders_are_created_below_a_real_folder() {
+        let dir = tempfile::tempdir().unwrap();
+        let deep = std::fs::canonicalize(dir.path()).unwrap().join("a/b/c");
+        create_folder(&deep).unwrap();
+        create_folder(&deep).unwrap();
+        write_atomically(&deep.join("f.csv"), b"1").unwrap();
+        assert_eq!(std::fs::read_to_string(deep.join("f.csv")).unwrap(), "1");
     }
 
     #[test]

@@ -77,6 +77,8 @@ enum Command {
         ranks: Option<u32>,
         #[command(flatten)]
         commands: CommandOptions,
+        #[command(flatten)]
+        force: Force,
     },
     /// Run cases and judge their checks; exit 1 on any NOOK.
     Verify {
@@ -97,6 +99,9 @@ enum Command {
         ranks: Option<u32>,
         #[command(flatten)]
         commands: CommandOptions,
+        /// Replace a --junit file that spherecontact did not write.
+        #[arg(long)]
+        force: bool,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -108,6 +113,8 @@ enum Command {
         /// Output folder (created if missing).
         #[arg(long, default_value = "out/mesh")]
         out: PathBuf,
+        #[command(flatten)]
+        force: Force,
     },
     /// Report each external tool: found or not, path, version, and how to install it.
     Doctor,
@@ -126,6 +133,8 @@ enum Command {
         resolution: Vec<String>,
         #[command(flatten)]
         commands: CommandOptions,
+        #[command(flatten)]
+        force: Force,
     },
     /// Reproduce the paper: its case with every available solver, reported in its figures' order.
     ReproducePaper {
@@ -141,6 +150,8 @@ enum Command {
         resolution: Vec<String>,
         #[command(flatten)]
         commands: CommandOptions,
+        #[command(flatten)]
+        force: Force,
     },
     /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
     /// (build with --release for representative numbers).
@@ -158,15 +169,28 @@ enum Command {
         out: Option<PathBuf>,
         #[command(flatten)]
         commands: CommandOptions,
+        #[command(flatten)]
+        force: Force,
     },
+}
+
+/// The `--force` of the commands that write an output folder.
+#[derive(clap::Args)]
+struct Force {
+    /// Write into an existing folder that holds files spherecontact did not write (files with
+    /// output names are replaced; the folder is marked as spherecontact's).
+    #[arg(long)]
+    force: bool,
 }
 
 /// A bad-input error: printed, exit code 2, nothing written.
 struct InputError(String);
 
-/// Checks the output folder of a command before any work (nothing is written).
-fn output_folder(option: &str, dir: &Path) -> Result<(), InputError> {
-    io::check_output_folder(dir).map_err(|e| InputError(format!("{option} {}: {e}", dir.display())))
+/// Claims the output folder of a command before any work: refused (nothing written) when it is
+/// a system folder, holds files spherecontact did not write (without `--force`) or links, or is
+/// in use by another run; held until the process ends.
+fn claim(dir: &Path, force: bool) -> Result<io::OutputFolder, InputError> {
+    io::OutputFolder::claim(dir, force).map_err(|e| InputError(format!("--out {}: {e}", dir.display())))
 }
 
 impl<E: std::fmt::Display> From<E> for InputError {
@@ -191,9 +215,20 @@ fn main() -> ExitCode {
             resolution,
             ranks,
             commands,
-        } => commands
-            .permission()
-            .and_then(|p| run(&case, &solvers, &out, vtu, &resolution, ranks, roots, &p)),
+            force,
+        } => commands.permission().and_then(|p| {
+            run(
+                &case,
+                &solvers,
+                &out,
+                force.force,
+                vtu,
+                &resolution,
+                ranks,
+                roots,
+                &p,
+            )
+        }),
         Command::Verify {
             cases,
             junit,
@@ -201,10 +236,12 @@ fn main() -> ExitCode {
             resolution,
             ranks,
             commands,
+            force,
         } => commands.permission().and_then(|p| {
             verify_cases(
                 cases,
                 junit.as_deref(),
+                force,
                 require_external,
                 &resolution,
                 ranks,
@@ -216,7 +253,8 @@ fn main() -> ExitCode {
             case,
             resolution,
             out,
-        } => mesh(&case, resolution.as_deref(), &out, roots),
+            force,
+        } => mesh(&case, resolution.as_deref(), &out, force.force, roots),
         Command::Doctor => Ok(doctor()),
         Command::List => list(roots),
         Command::Compare {
@@ -224,26 +262,37 @@ fn main() -> ExitCode {
             out,
             resolution,
             commands,
+            force,
         } => commands
             .permission()
-            .and_then(|p| report(&case, out, &resolution, Report::Compare, roots, &p)),
+            .and_then(|p| report(&case, out, force.force, &resolution, Report::Compare, roots, &p)),
         Command::ReproducePaper {
             out,
             case,
             resolution,
             commands,
-        } => commands
-            .permission()
-            .and_then(|p| report(&case, Some(out), &resolution, Report::Paper, roots, &p)),
+            force,
+        } => commands.permission().and_then(|p| {
+            report(
+                &case,
+                Some(out),
+                force.force,
+                &resolution,
+                Report::Paper,
+                roots,
+                &p,
+            )
+        }),
         Command::Bench {
             case,
             solvers,
             repeat,
             out,
             commands,
+            force,
         } => commands
             .permission()
-            .and_then(|p| bench(&case, &solvers, repeat as usize, out, roots, &p)),
+            .and_then(|p| bench(&case, &solvers, repeat as usize, out, force.force, roots, &p)),
     };
     match result {
         Ok(code) => code,
@@ -347,6 +396,7 @@ fn run(
     case: &Path,
     solvers: &[String],
     out: &Path,
+    force: bool,
     vtu: bool,
     resolution: &[String],
     ranks: Option<u32>,
@@ -360,17 +410,16 @@ fn run(
     if case.commands().iter().any(|c| named.contains(&c.name.as_str())) {
         case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     }
-    output_folder("--out", out)?;
+    let folder = claim(out, force)?;
     if vtu {
         plan = plan
             .into_iter()
             .map(|s| {
-                let dir = out.join(format!("{}-vtu", s.name()));
+                let dir = folder.path().join(format!("{}-vtu", s.name()));
                 s.writing_fields_to(&dir).unwrap_or(s)
             })
             .collect();
     }
-    std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     let mut code = ExitCode::SUCCESS;
     for warning in case.scene.warnings() {
         eprintln!("warning: {}: {warning}", case.name());
@@ -378,7 +427,7 @@ fn run(
     for solver in plan {
         match solver::run(solver.as_ref(), &case.scene) {
             Ok(history) => {
-                if let Err(e) = history_files::write(out, &history) {
+                if let Err(e) = history_files::write(folder.path(), &history) {
                     eprintln!(
                         "error: {}: writing results to {}: {e}",
                         solver.name(),
@@ -409,6 +458,7 @@ fn run(
 fn verify_cases(
     files: Vec<PathBuf>,
     junit_file: Option<&Path>,
+    force: bool,
     require_external: bool,
     resolution: &[String],
     ranks: Option<u32>,
@@ -430,9 +480,13 @@ fn verify_cases(
         .collect::<Result<Vec<_>, _>>()?;
     let commands: Vec<String> = cases.iter().flat_map(Case::command_lines).collect();
     commands.iter().for_each(|line| println!("{line}"));
-    if let Some(file) = junit_file {
-        io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
-    }
+    let junit_file = junit_file
+        .map(|file| {
+            io::claim_file(file, force, junit::is_ours)
+                .map(|canonical| (file, canonical))
+                .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))
+        })
+        .transpose()?;
     let runs: Vec<_> = cases.into_iter().map(verify::run_case).collect();
     for run in &runs {
         print!("{}", table::case_block(run));
@@ -441,8 +495,8 @@ fn verify_cases(
     let count = |label: &str| outcomes.clone().filter(|o| o.verdict.label() == label).count();
     let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
     println!("verify: {ok} passed, {nook} failed, {info} informational, {na} not available");
-    if let Some(file) = junit_file {
-        io::write_atomically(file, junit::document(&runs).as_bytes())
+    if let Some((file, canonical)) = &junit_file {
+        io::write_atomically(canonical, junit::document(&runs).as_bytes())
             .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
     }
     if !commands.is_empty() && !permission.is_allowed() {
@@ -467,6 +521,7 @@ fn mesh(
     case: &Path,
     resolution: Option<&str>,
     out: &Path,
+    force: bool,
     roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
     // Plan: the case and the resolution must be valid before anything is written.
@@ -478,9 +533,8 @@ fn mesh(
         None => geo::default_resolution(&case.scene),
     };
     geo::geo_for_scene(&case.scene, resolution)?;
-    output_folder("--out", out)?;
-    std::fs::create_dir_all(out).map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
-    match geo::mesh(&case.scene, resolution, out, &Toolchain::default()) {
+    let folder = claim(out, force)?;
+    match geo::mesh_into(&case.scene, resolution, folder.path(), &Toolchain::default()) {
         Ok(files) => {
             println!(
                 "{}: pole element {:.3} µm, {} triangles, gmsh {:.2} s",
@@ -531,6 +585,7 @@ fn bench(
     solvers: &[String],
     repeat: usize,
     out: Option<PathBuf>,
+    force: bool,
     roots: &ReadRoots,
     permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
@@ -542,7 +597,7 @@ fn bench(
         eprintln!("note: {name} is defined by the case (stored results or a command): not swept");
     }
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("bench-{}", case.name())));
-    output_folder("--out", &out)?;
+    let folder = claim(&out, force)?;
     if cfg!(debug_assertions) {
         eprintln!("warning: built without optimisation; run `cargo run --release -- bench …` for representative timings");
     }
@@ -552,7 +607,7 @@ fn bench(
     let document = spherecontact::report::bench::document(case.name(), increments, repeat, &rungs)
         .map_err(|e| InputError(format!("building the bench report: {e}")))?;
     document
-        .write(&out)
+        .write(folder.path())
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     for line in spherecontact::report::bench::machine() {
         println!("{line}");
@@ -609,6 +664,7 @@ enum Report {
 fn report(
     case: &Path,
     out: Option<PathBuf>,
+    force: bool,
     resolution: &[String],
     kind: Report,
     roots: &ReadRoots,
@@ -617,7 +673,7 @@ fn report(
     let case = load_case(case, None, &resolution_options(resolution)?, roots, permission)?;
     case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
-    output_folder("--out", &out)?;
+    let folder = claim(&out, force)?;
     // The paper's quoted values are read before any solver runs: a missing file is bad input.
     let paper_references = match kind {
         Report::Paper => Some(
@@ -648,8 +704,8 @@ fn report(
         }
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;
-    history_files::write_all(&out.join("solvers"), &run)
-        .and_then(|()| document.write(&out))
+    history_files::write_all(&folder.path().join("solvers"), &run)
+        .and_then(|()| document.write(folder.path()))
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     print!("{}", summary::screen(&run));
     println!("report: {}", out.join("report.html").display());

@@ -212,7 +212,7 @@ impl Solver for SurfaceVtu {
             let path = self
                 .dir
                 .join(format!("{}-{}-{}.vtu", scene.name, self.name(), field.position));
-            std::fs::create_dir_all(&self.dir)
+            crate::io::create_folder(&self.dir)
                 .and_then(|()| grid.write(&path).map_err(std::io::Error::other))
                 .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
         }

@@ -239,6 +239,48 @@ pub fn mesh(
     })
 }
 
+/// The stem of gmsh's logs (`gmsh.stdout`, `gmsh.stderr`) in its working folder.
+const LOG_STEM: &str = "gmsh";
+
+/// Meshes the scene as [`mesh`] does, gmsh working in a private temporary folder, then writes
+/// the geometry, both meshes and gmsh's logs (these also when gmsh fails) into `out`, each
+/// atomically and never through a link ([`crate::io::write_atomically`]): gmsh itself never
+/// writes into `out`. The answer names the files in `out`.
+pub fn mesh_into(
+    scene: &Scene,
+    resolution: f64,
+    out: &Path,
+    toolchain: &Toolchain,
+) -> Result<MeshFiles, SolveError> {
+    let work = tempfile::Builder::new()
+        .prefix("spherecontact-mesh-")
+        .tempdir()
+        .map_err(|e| SolveError::Failed(format!("creating gmsh's working folder: {e}")))?;
+    let meshed = mesh(scene, resolution, work.path(), toolchain);
+    for log in [format!("{LOG_STEM}.stdout"), format!("{LOG_STEM}.stderr")] {
+        let log = work.path().join(log);
+        if log.is_file() {
+            publish(&log, out)?;
+        }
+    }
+    let files = meshed?;
+    Ok(MeshFiles {
+        geo: publish(&files.geo, out)?,
+        msh41: publish(&files.msh41, out)?,
+        msh22_mm: publish(&files.msh22_mm, out)?,
+        ..files
+    })
+}
+
+/// Writes a copy of `file` into the folder `out` atomically: the copy's path.
+fn publish(file: &Path, out: &Path) -> Result<PathBuf, SolveError> {
+    let target = out.join(file.file_name().unwrap_or_default());
+    std::fs::read(file)
+        .and_then(|bytes| crate::io::write_atomically(&target, &bytes))
+        .map_err(|e| SolveError::Failed(format!("writing {}: {e}", target.display())))?;
+    Ok(target)
+}
+
 /// gmsh's 2D mesh of `<dir>/mesh.geo` with `options`, written to `<dir>/<out_name>`: the file's
 /// path and gmsh's wall time [s].
 fn mesh_2d(
@@ -271,7 +313,7 @@ pub(super) fn run_gmsh(
         env: vec![],
         timeout,
     };
-    let run = process::run(&job, dir, "gmsh")
+    let run = process::run(&job, dir, LOG_STEM)
         .map_err(|e| SolveError::Failed(format!("gmsh could not start: {e}")))?;
     if run.succeeded() && out.is_file() {
         return Ok(run.wall_s);

@@ -203,8 +203,8 @@ impl Document {
     /// Writes `report.html`, `report.md`, `figures/*.svg` and `data/*.csv` into `dir`, each file
     /// atomically (the HTML last, so that a page never links files not yet written).
     pub fn write(&self, dir: &Path) -> anyhow::Result<()> {
-        std::fs::create_dir_all(dir.join("figures"))?;
-        std::fs::create_dir_all(dir.join("data"))?;
+        crate::io::create_folder(&dir.join("figures"))?;
+        crate::io::create_folder(&dir.join("data"))?;
         for figure in self.sections.iter().flat_map(|s| &s.figures) {
             write_atomically(
                 &dir.join("figures").join(format!("{}.svg", figure.id)),

@@ -92,7 +92,7 @@ pub fn write(dir: &Path, history: &History) -> anyhow::Result<()> {
 
 /// Writes every history of a case run into `dir` (created if missing), as [`write`] does.
 pub fn write_all(dir: &Path, run: &crate::verify::CaseRun) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir)?;
+    crate::io::create_folder(dir)?;
     for history in run.histories.values().flatten() {
         write(dir, history)?;
     }

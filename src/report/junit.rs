@@ -24,6 +24,15 @@ fn escape(text: &str) -> String {
     out
 }
 
+/// How every document opens: what tells a file `verify --junit` wrote from any other.
+const OPENING: &str = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"spherecontact verify\"";
+
+/// Whether `head`, the first bytes of a file, opens a document of [`document`]'s: `verify
+/// --junit` replaces such a file, and no other without `--force`.
+pub fn is_ours(head: &[u8]) -> bool {
+    head.starts_with(OPENING.as_bytes())
+}
+
 /// The JUnit XML document of a verification run.
 pub fn document(runs: &[CaseRun]) -> String {
     let count = |v: Verdict| {
@@ -33,10 +42,10 @@ pub fn document(runs: &[CaseRun]) -> String {
             .count()
     };
     let total: usize = runs.iter().map(|r| r.outcomes.len()).sum();
-    let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let mut xml = String::from(OPENING);
     let _ = writeln!(
         xml,
-        "<testsuites name=\"spherecontact verify\" tests=\"{total}\" failures=\"{}\" skipped=\"{}\">",
+        " tests=\"{total}\" failures=\"{}\" skipped=\"{}\">",
         count(Verdict::Nook),
         count(Verdict::Unavailable)
     );

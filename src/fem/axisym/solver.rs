@@ -266,7 +266,7 @@ impl Run {
             };
             if let Some(dir) = vtu_dir {
                 let stem = format!("{}-fem-axisym-{position}", scene.name);
-                std::fs::create_dir_all(dir)
+                crate::io::create_folder(dir)
                     .map_err(|e| SolveError::Failed(format!("creating {}: {e}", dir.display())))?;
                 let path = dir.join(format!("{stem}.vtu"));
                 output::write_fields(model, &forces, approach, &path)

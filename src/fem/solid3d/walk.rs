@@ -302,7 +302,7 @@ fn write_vtu(
     let failed = |path: &Path, e: &dyn std::fmt::Display| {
         SolveError::Failed(format!("writing {}: {e}", path.display()))
     };
-    std::fs::create_dir_all(dir).map_err(|e| failed(dir, &e))?;
+    crate::io::create_folder(dir).map_err(|e| failed(dir, &e))?;
     let w = &model.surface.weights;
     // The multipliers are pressures and tractions; the condensation's loads are λ = w p along +z
     // and −w q in the plane: the slip increment w − C Δq says the surface moves by −C q against
