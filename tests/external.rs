@@ -40,6 +40,7 @@ fn failure_of(solver: &dyn Solver, scene: &Scene) -> String {
         measure: ErrorMeasure::Relative,
         tolerance: Some(1.0),
         reason: "any value".into(),
+        known_failure: None,
     };
     assert_eq!(check.evaluate(&histories).verdict, Verdict::Nook);
     // The run directory is kept on failure for inspection; the tests remove theirs.

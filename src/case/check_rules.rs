@@ -90,6 +90,7 @@ impl Validator<'_> {
                 "missing: every tolerance needs its reason (discretisation, domain, model …)",
             ));
         }
+        let known_failure = self.known_failure(raw, field, tolerance)?;
         Ok(CheckSpec {
             solver,
             quantity,
@@ -98,7 +99,36 @@ impl Validator<'_> {
             measure,
             tolerance,
             reason,
+            known_failure,
         })
+    }
+
+    /// A known-failure mark: the evidence in words, on a check that is judged (a tolerance).
+    fn known_failure(
+        &self,
+        raw: &RawCheck,
+        field: &str,
+        tolerance: Option<f64>,
+    ) -> Result<Option<String>, CaseError> {
+        let Some(evidence) = &raw.known_failure else {
+            return Ok(None);
+        };
+        let field = format!("{field}.known_failure");
+        if tolerance.is_none() {
+            return Err(self.error(
+                evidence,
+                field,
+                "an informational check is never judged, so it cannot fail (allowed: a known-failure mark on a check with a tolerance)",
+            ));
+        }
+        if evidence.get_ref().trim().is_empty() {
+            return Err(self.error(
+                evidence,
+                field,
+                "empty (allowed: the evidence that the failure is the code's defect: what was run, what it showed, where it is written up)",
+            ));
+        }
+        Ok(Some(evidence.get_ref().clone()))
     }
 
     /// A profile is compared at one position with another solver's, relative to its peak.
