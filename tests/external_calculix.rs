@@ -117,13 +117,14 @@ fn a_hanging_ccx_is_killed_and_garbage_or_refused_decks_fail_with_their_reason()
         nan.contains("job.dat line") && nan.contains("three finite forces"),
         "{nan}"
     );
-    // A deck CalculiX refuses (the real ccx): exit code 201 and its *ERROR lines.
+    // A deck CalculiX refuses (the real ccx): it prints *ERROR and, for this one, exits with code
+    // 0 (ccx 2.20): the log's *ERROR lines make it a failure.
     let mut refused = CcxAxisym::default();
     refused.options.deck_text = Some("*HEADING\nbad\n*NODE\n1, 0., 0.\n*BOUNDARY\nNOSUCHSET, 1, 1\n".into());
     refused.options.resolution = Some(scene_17um().max_contact_radius() / 10.0);
     let message = failure(&refused);
     assert!(
-        message.contains("CalculiX") && message.contains("ERROR"),
+        message.contains("ccx reported an error") && message.contains("NOSUCHSET"),
         "{message}"
     );
 }
@@ -160,4 +161,33 @@ fn ccx_axisym_on_a_coarse_mesh_agrees_with_hertz_in_series_with_the_domain() {
     let plane = extra["normal_force_plane_by_position"][1][1].as_f64().unwrap();
     assert!((plane / p - 1.0).abs() < 1e-5, "{plane} against {p}");
     assert!(history.field_at(1).is_some());
+}
+
+#[test]
+fn a_bad_calculix_setting_exits_2_naming_the_field_and_the_allowed_set() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (file, field, allowed) in [
+        (
+            "bad-contact.toml",
+            "calculix.contact",
+            "face-to-face, node-to-face",
+        ),
+        ("bad-penalty.toml", "calculix.penalty", "1 ≤ penalty ≤ 1000000"),
+    ] {
+        let out = tempfile::tempdir().unwrap();
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+            .arg("run")
+            .arg(root.join("tests/hostile/calculix").join(file))
+            .arg("--out")
+            .arg(out.path().join("o"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{file}: {stderr}");
+        assert!(
+            stderr.contains(field) && stderr.contains(allowed),
+            "{file}: {stderr}"
+        );
+        assert!(!out.path().join("o").exists(), "{file}: output written");
+    }
 }
