@@ -338,13 +338,13 @@ fn doctor_lists_every_tool_with_path_and_version() {
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&run.stdout);
-    for tool in ["gmsh", "FreeFem++", "dolfinx", "meshio", "LAMMPS", "YADE"] {
+    for tool in ["gmsh", "FreeFem++", "dolfinx", "meshio", "LAMMPS", "YADE", "CalculiX"] {
         assert!(
             text.lines().any(|l| l.starts_with(tool)),
             "{tool} missing in:\n{text}"
         );
     }
-    let all_found = text.lines().filter(|l| l.contains(" found ")).count() == 6;
+    let all_found = text.lines().filter(|l| l.contains(" found ")).count() == 7;
     assert_eq!(run.status.success(), all_found, "{text}");
 }
 
