@@ -9,14 +9,13 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use spherecontact::check::{CheckSpec, ErrorMeasure, Histories, Reference, Verdict, Where};
+use spherecontact::check::{Histories, Verdict};
 use spherecontact::external::calculix::CcxAxisym;
 use spherecontact::external::toolchain::{Tool, Toolchain};
-use spherecontact::history::Quantity;
 use spherecontact::solver::{self, SolveError};
 
 mod common;
-use common::decks::scene_17um;
+use common::decks::{any_force_check, scene_17um};
 
 /// True when gmsh and ccx run; otherwise prints why the calling test skips.
 fn ccx_present(test: &str) -> bool {
@@ -79,20 +78,7 @@ fn a_missing_ccx_gives_not_available() {
     let result = solver::run(&solver, &scene);
     assert!(matches!(result, Err(SolveError::Unavailable(_))), "{result:?}");
     let histories: Histories = [("ccx-axisym".to_owned(), result)].into_iter().collect();
-    let check = CheckSpec {
-        solver: "ccx-axisym".into(),
-        quantity: Quantity::NormalForce,
-        at: Where::EveryPosition,
-        reference: Reference::Value {
-            value: 803.76,
-            key: "x".into(),
-            source: "test".into(),
-        },
-        measure: ErrorMeasure::Relative,
-        tolerance: Some(1.0),
-        reason: "any value".into(),
-        known_failure: None,
-    };
+    let check = any_force_check("ccx-axisym");
     assert_eq!(check.evaluate(&histories).verdict, Verdict::Unavailable);
 }
 
