@@ -341,4 +341,22 @@ mod tests {
         let unknown = check("quantity = \"shape\"\nat = { position = 1 }").unwrap_err();
         assert!(unknown.to_string().contains("stick_semi_axis_y"), "{unknown}");
     }
+    #[test]
+    fn a_known_failure_mark_needs_evidence_and_a_tolerance() {
+        let base = "quantity = \"normal_force\"\nat = \"every-position\"\n";
+        let marked = check(&format!("{base}known_failure = \"ccx shows it: docs\"")).unwrap();
+        assert_eq!(
+            marked.checks[0].known_failure.as_deref(),
+            Some("ccx shows it: docs")
+        );
+        assert_eq!(check(base).unwrap().checks[0].known_failure, None);
+        let e = check(&format!("{base}known_failure = \"  \"")).unwrap_err();
+        assert_eq!(e.field, "checks[0].known_failure", "{e}");
+        assert!(e.to_string().contains("the evidence"), "{e}");
+        let e = check(&format!("{base}informational = true\nknown_failure = \"x\"")).unwrap_err();
+        assert!(
+            e.to_string().contains("an informational check is never judged"),
+            "{e}"
+        );
+    }
 }
