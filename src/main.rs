@@ -494,7 +494,10 @@ fn verify_cases(
     let outcomes = runs.iter().flat_map(|r| &r.outcomes);
     let count = |label: &str| outcomes.clone().filter(|o| o.verdict.label() == label).count();
     let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
-    println!("verify: {ok} passed, {nook} failed, {info} informational, {na} not available");
+    let (known, fixed) = (count("KNOWN"), count("FIXED?"));
+    println!(
+        "verify: {ok} passed, {nook} failed, {info} informational, {na} not available, {known} known failures, {fixed} known failures that pass (FIXED?: remove their marks)"
+    );
     if let Some((file, canonical)) = &junit_file {
         io::write_atomically(canonical, junit::document(&runs).as_bytes())
             .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;

@@ -61,6 +61,12 @@ pub trait Solver: Send + Sync {
         None
     }
 
+    /// The same solver with the case's CalculiX settings (`[calculix]`: contact formulation,
+    /// penalty, element), for the CalculiX solvers; `None` for the others.
+    fn with_calculix(&self, _settings: &crate::external::calculix::Settings) -> Option<Box<dyn Solver>> {
+        None
+    }
+
     /// The same solver writing its volume or surface fields as VTU files (for ParaView) into
     /// `dir`; `None` for solvers without such fields.
     fn writing_fields_to(&self, _dir: &std::path::Path) -> Option<Box<dyn Solver>> {

@@ -1,7 +1,7 @@
 //! Running cases: every solver a case needs, once each, then every check on their histories.
 
 use crate::case::Case;
-use crate::check::{Histories, Outcome, Verdict};
+use crate::check::{Histories, Outcome};
 use crate::solver::{self, SolveError};
 
 /// A case after its solvers ran and its checks were judged.
@@ -18,13 +18,14 @@ pub struct CaseRun {
 }
 
 impl CaseRun {
-    /// True when no check is NOOK and every solver the case needs either ran or is not installed.
+    /// True when no check is NOOK or FIXED? (a known failure that passes) and every solver the
+    /// case needs either ran or is not installed.
     pub fn passed(&self) -> bool {
         let solvers_ran = self
             .histories
             .values()
             .all(|r| matches!(r, Ok(_) | Err(SolveError::Unavailable(_))));
-        solvers_ran && self.outcomes.iter().all(|o| o.verdict != Verdict::Nook)
+        solvers_ran && !self.outcomes.iter().any(|o| o.verdict.fails_run())
     }
 }
 

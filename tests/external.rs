@@ -8,15 +8,14 @@
 use std::process::Command;
 use std::time::Duration;
 
-use spherecontact::check::{CheckSpec, ErrorMeasure, Histories, Reference, Verdict, Where};
+use spherecontact::check::{Histories, Verdict};
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
-use spherecontact::history::Quantity;
 use spherecontact::profile;
 
 mod common;
-use common::decks::{at_resolution, scene_17um, tools_present, with_deck_text};
+use common::decks::{any_force_check, at_resolution, scene_17um, tools_present, with_deck_text};
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
 
@@ -28,19 +27,7 @@ fn failure_of(solver: &dyn Solver, scene: &Scene) -> String {
         other => panic!("expected a failure, got {other:?}"),
     };
     let histories: Histories = [(solver.name().to_owned(), result)].into_iter().collect();
-    let check = CheckSpec {
-        solver: solver.name().into(),
-        quantity: Quantity::NormalForce,
-        at: Where::EveryPosition,
-        reference: Reference::Value {
-            value: 803.76,
-            key: "x".into(),
-            source: "test".into(),
-        },
-        measure: ErrorMeasure::Relative,
-        tolerance: Some(1.0),
-        reason: "any value".into(),
-    };
+    let check = any_force_check(solver.name());
     assert_eq!(check.evaluate(&histories).verdict, Verdict::Nook);
     // The run directory is kept on failure for inspection; the tests remove theirs.
     if let Some(kept) = message
@@ -337,13 +324,21 @@ fn doctor_lists_every_tool_with_path_and_version() {
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&run.stdout);
-    for tool in ["gmsh", "FreeFem++", "dolfinx", "meshio", "LAMMPS", "YADE"] {
+    for tool in [
+        "gmsh",
+        "FreeFem++",
+        "dolfinx",
+        "meshio",
+        "LAMMPS",
+        "YADE",
+        "CalculiX",
+    ] {
         assert!(
             text.lines().any(|l| l.starts_with(tool)),
             "{tool} missing in:\n{text}"
         );
     }
-    let all_found = text.lines().filter(|l| l.contains(" found ")).count() == 6;
+    let all_found = text.lines().filter(|l| l.contains(" found ")).count() == 7;
     assert_eq!(run.status.success(), all_found, "{text}");
 }
 

@@ -89,6 +89,7 @@ impl Validator<'_> {
                 "missing: every tolerance needs its reason (discretisation, domain, model …)",
             ));
         }
+        let known_failure = self.known_failure(raw, field, tolerance)?;
         Ok(CheckSpec {
             solver,
             quantity,
@@ -97,7 +98,36 @@ impl Validator<'_> {
             measure,
             tolerance,
             reason,
+            known_failure,
         })
+    }
+
+    /// A known-failure mark: the evidence in words, on a check that is judged (a tolerance).
+    fn known_failure(
+        &self,
+        raw: &RawCheck,
+        field: &str,
+        tolerance: Option<f64>,
+    ) -> Result<Option<String>, CaseError> {
+        let Some(evidence) = &raw.known_failure else {
+            return Ok(None);
+        };
+        let field = format!("{field}.known_failure");
+        if tolerance.is_none() {
+            return Err(self.error(
+                evidence,
+                field,
+                "an informational check is never judged, so it cannot fail (allowed: a known-failure mark on a check with a tolerance)",
+            ));
+        }
+        if evidence.get_ref().trim().is_empty() {
+            return Err(self.error(
+                evidence,
+                field,
+                "empty (allowed: the evidence that the failure is the code's defect: what was run, what it showed, where it is written up)",
+            ));
+        }
+        Ok(Some(evidence.get_ref().clone()))
     }
 
     /// A profile is compared at one position with another solver's, relative to its peak.
@@ -305,5 +335,23 @@ mod tests {
         }
         let unknown = check("quantity = \"shape\"\nat = { position = 1 }").unwrap_err();
         assert!(unknown.to_string().contains("stick_semi_axis_y"), "{unknown}");
+    }
+    #[test]
+    fn a_known_failure_mark_needs_evidence_and_a_tolerance() {
+        let base = "quantity = \"normal_force\"\nat = \"every-position\"\n";
+        let marked = check(&format!("{base}known_failure = \"ccx shows it: docs\"")).unwrap();
+        assert_eq!(
+            marked.checks[0].known_failure.as_deref(),
+            Some("ccx shows it: docs")
+        );
+        assert_eq!(check(base).unwrap().checks[0].known_failure, None);
+        let e = check(&format!("{base}known_failure = \"  \"")).unwrap_err();
+        assert_eq!(e.field, "checks[0].known_failure", "{e}");
+        assert!(e.to_string().contains("the evidence"), "{e}");
+        let e = check(&format!("{base}informational = true\nknown_failure = \"x\"")).unwrap_err();
+        assert!(
+            e.to_string().contains("an informational check is never judged"),
+            "{e}"
+        );
     }
 }

@@ -33,6 +33,11 @@
 //!                                       # 10 c_max ≤ height ≤ the smallest finite radius
 //! grip = "rigid"                        # "rigid" (default) or "axial" (frictionless scenes only)
 //!
+//! [calculix]                            # optional: the CalculiX solvers' settings
+//! contact = "face-to-face"              # or "node-to-face"
+//! penalty = 1e3                         # K = penalty · E / h, 1 ≤ penalty ≤ 1e6
+//! element = "cax6"                      # the only element so far
+//!
 //! [resolution]                          # optional: per solver, over its default (see
 //! bem = 128                             # `resolution`); `--resolution SOLVER=VALUE` overrides
 //! fem-axisym = "c/80"                   # c/N or a length ("10um")
@@ -80,6 +85,7 @@
 //! | mesh (`mesh --resolution`), fem-axisym, mdr-domain, axisymmetric decks | pole element c_max/320 to c_max/2 (R1/32 000 to R1/200 without contact): under a million triangles |
 //! | fem-3d, fenicsx-3d | pole element c_max/14 to c_max/2 |
 
+mod calculix;
 pub mod case_solvers;
 mod check_rules;
 mod domain;
@@ -130,6 +136,8 @@ pub struct Case {
     pub ranks: u32,
     /// The folders whose files the case may read ([`reads`]).
     pub tree: CaseTree,
+    /// The CalculiX solvers' settings (`[calculix]`; the defaults when absent).
+    pub calculix: crate::external::calculix::Settings,
     /// The resolution chosen per solver (`[resolution]`, then `--resolution`), each value
     /// accepted by its solver for this scene; solvers not named run at their default.
     pub resolution: BTreeMap<String, String>,
@@ -196,7 +204,8 @@ impl Case {
             .find(|s| s.name() == name)
             .map(CaseSolver::solver)
             .or_else(|| registry::by_name(name))?;
-        Some(solver.with_ranks(self.ranks).unwrap_or(solver))
+        let solver = solver.with_ranks(self.ranks).unwrap_or(solver);
+        Some(solver.with_calculix(&self.calculix).unwrap_or(solver))
     }
 
     /// Every solver the case needs: its own list, then those its checks refer to.
@@ -316,6 +325,10 @@ impl Validator<'_> {
             own_solvers,
             ranks,
             tree: self.tree.clone(),
+            calculix: match &raw.calculix {
+                Some(table) => self.calculix(table)?,
+                None => Default::default(),
+            },
             resolution: BTreeMap::new(),
         };
         if let Some(table) = &raw.resolution {

@@ -23,6 +23,7 @@ pub struct RawCase {
     pub path: RawPath,
     pub domain: Option<RawDomain>,
     pub resolution: Option<std::collections::BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
+    pub calculix: Option<RawCalculix>,
     #[serde(default)]
     pub checks: Vec<RawCheck>,
     #[serde(default)]
@@ -58,6 +59,15 @@ pub struct RawDomain {
     pub height: Option<Spanned<f64>>,
     pub grip: Option<Spanned<String>>,
     pub mesher: Option<Spanned<String>>,
+}
+
+/// The `[calculix]` table as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCalculix {
+    pub contact: Option<Spanned<String>>,
+    pub penalty: Option<Spanned<f64>>,
+    pub element: Option<Spanned<String>>,
 }
 
 /// A body as written.
@@ -101,6 +111,7 @@ pub struct RawCheck {
     pub reason: Option<String>,
     #[serde(default)]
     pub informational: bool,
+    pub known_failure: Option<Spanned<String>>,
 }
 
 /// One stored reference value in a `reference/*.toml` file.

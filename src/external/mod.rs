@@ -13,13 +13,15 @@
 //! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
 //! - [`readback`]: the decks' per-step CSV and the field files through meshio;
 //! - [`surface`]: the contact line's nodal state at every step, and what is measured from it;
-//! - [`fenicsx3d`]: the 3D deck under MPI (heavy), [`surface3d`]: its contact surface read back.
+//! - [`fenicsx3d`]: the 3D deck under MPI (heavy), [`surface3d`]: its contact surface read back;
+//! - [`calculix`]: the CalculiX deck `ccx-axisym` (its `.inp` writer, `.dat`/`.frd` reader, settings).
 //!
 //! Install the tools with `scripts/setup.sh`. A missing tool makes the solver
 //! [`Unavailable`](crate::solver::SolveError::Unavailable), never a pass.
 
 pub mod axisym;
 pub mod bounded_log;
+pub mod calculix;
 pub mod command;
 pub mod deck;
 pub mod descendants;
@@ -48,6 +50,7 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
         Box::new(AxisymSolver::new(freefem::FreeFem)),
         Box::new(AxisymSolver::new(fenicsx::Fenicsx)),
         Box::new(fenicsx3d::Solid3dDeck::new(1)),
+        Box::new(calculix::CcxAxisym::default()),
     ]
 }
 

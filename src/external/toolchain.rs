@@ -33,17 +33,20 @@ pub enum Tool {
     Lammps,
     /// YADE (`yade`): the `yade-mindlin` DEM solver.
     Yade,
+    /// CalculiX (`ccx`): the `ccx-axisym` deck.
+    Ccx,
 }
 
 impl Tool {
     /// Every tool, in the order `doctor` lists them.
-    pub const ALL: [Tool; 6] = [
+    pub const ALL: [Tool; 7] = [
         Tool::Gmsh,
         Tool::FreeFem,
         Tool::Dolfinx,
         Tool::Meshio,
         Tool::Lammps,
         Tool::Yade,
+        Tool::Ccx,
     ];
 
     /// The tool's name in messages.
@@ -55,6 +58,7 @@ impl Tool {
             Tool::Meshio => "meshio",
             Tool::Lammps => "LAMMPS",
             Tool::Yade => "YADE",
+            Tool::Ccx => "CalculiX",
         }
     }
 
@@ -67,6 +71,7 @@ impl Tool {
             Tool::Meshio => "apt-get install python3-meshio python3-h5py",
             Tool::Lammps => "apt-get install lammps",
             Tool::Yade => "apt-get install yade",
+            Tool::Ccx => "apt-get install --no-install-recommends calculix-ccx",
         }
     }
 }
@@ -84,10 +89,12 @@ pub struct Toolchain {
     pub lammps: PathBuf,
     /// The YADE executable.
     pub yade: PathBuf,
+    /// The CalculiX executable.
+    pub ccx: PathBuf,
 }
 
 impl Default for Toolchain {
-    /// Debian's: `gmsh`, `FreeFem++`, `lmp` and `yade` from PATH, `/usr/bin/python3`.
+    /// Debian's: `gmsh`, `FreeFem++`, `lmp`, `yade` and `ccx` from PATH, `/usr/bin/python3`.
     fn default() -> Self {
         Self {
             gmsh: "gmsh".into(),
@@ -95,6 +102,7 @@ impl Default for Toolchain {
             python: "/usr/bin/python3".into(),
             lammps: "lmp".into(),
             yade: "yade".into(),
+            ccx: "ccx".into(),
         }
     }
 }
@@ -142,6 +150,7 @@ impl Toolchain {
             Tool::Dolfinx | Tool::Meshio => &self.python,
             Tool::Lammps => &self.lammps,
             Tool::Yade => &self.yade,
+            Tool::Ccx => &self.ccx,
         }
     }
 
@@ -250,6 +259,7 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         ),
         Tool::Lammps => (vec!["-h".into()], vec![]),
         Tool::Yade => (vec!["--version".into()], vec![]),
+        Tool::Ccx => (vec!["-v".into()], vec![]),
     };
     let job = Job {
         program: path.to_path_buf(),
@@ -258,9 +268,12 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         timeout: PROBE_TIMEOUT,
     };
     let run = process::run(&job, dir.path(), "version").map_err(|e| e.to_string())?;
+    // ccx 2.20 prints its version and exits with code 201.
+    let answered = tool == Tool::Ccx && matches!(run.ending, process::Ending::Exited(_));
     if let Some(failure) = run
         .ending
         .failure(tool.name(), PROBE_TIMEOUT, |_| "its version probe failed")
+        .filter(|_| !answered)
     {
         return Err(format!("{failure}; {}", run.tail(3)));
     }
@@ -274,6 +287,10 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         Tool::Yade => text
             .lines()
             .find_map(|l| l.trim().strip_prefix("Yade version:"))
+            .map(|v| v.trim().to_owned()),
+        Tool::Ccx => text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("This is Version"))
             .map(|v| v.trim().to_owned()),
         _ => text
             .lines()

@@ -53,11 +53,13 @@ pub fn checks_section(run: &CaseRun) -> Section {
     Section {
         title: "Checks".into(),
         paragraphs: vec![format!(
-            "{} OK, {} NOOK, {} informational, {} not available. Informational checks measure approximate laws and are never judged.",
+            "{} OK, {} NOOK, {} informational, {} not available, {} known failures, {} FIXED?. Informational checks measure approximate laws and are never judged; a known failure is a defect of an external code shown with its evidence (it does not fail the run), FIXED? a known failure that passes (it fails the run until its mark is removed).",
             count(Verdict::Ok),
             count(Verdict::Nook),
             count(Verdict::Info),
-            count(Verdict::Unavailable)
+            count(Verdict::Unavailable),
+            count(Verdict::Known),
+            count(Verdict::Fixed)
         )],
         tables: vec![figures::check_table(run)],
         figures: vec![],

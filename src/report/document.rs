@@ -108,7 +108,7 @@ fn escape_markdown_cell(text: &str) -> String {
 const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
 h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}\
 table{border-collapse:collapse;margin:1em 0;font-size:.85em;display:block;overflow-x:auto}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top;max-width:30em;overflow-wrap:break-word}th{white-space:nowrap}\
-th{background:#f3f3f3}td.ok{color:#176b1e;font-weight:bold}td.nook{color:#b00;font-weight:bold}td.info{color:#555}td.na{color:#a60}\
+th{background:#f3f3f3}td.ok{color:#176b1e;font-weight:bold}td.nook{color:#b00;font-weight:bold}td.info{color:#555}td.na{color:#a60}td.known{color:#7a4b00;font-weight:bold}\
 nav p{margin:.2em 0}nav ul{margin:.2em 0 1em;columns:2}figure{margin:1.5em 0}figcaption{font-size:.85em;color:#444;max-width:820px}svg{max-width:100%;height:auto}";
 
 impl Document {

@@ -37,11 +37,13 @@ pub fn screen(run: &CaseRun) -> String {
     let count = |v: Verdict| run.outcomes.iter().filter(|o| o.verdict == v).count();
     let _ = writeln!(
         text,
-        "checks: {} OK, {} NOOK, {} informational, {} not available",
+        "checks: {} OK, {} NOOK, {} informational, {} not available, {} known failures, {} known failures that pass (FIXED?)",
         count(Verdict::Ok),
         count(Verdict::Nook),
         count(Verdict::Info),
-        count(Verdict::Unavailable)
+        count(Verdict::Unavailable),
+        count(Verdict::Known),
+        count(Verdict::Fixed)
     );
     text
 }

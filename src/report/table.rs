@@ -1,4 +1,5 @@
-//! The check table printed by `verify`: one row per check, OK / NOOK / INFO / N/A with value,
+//! The check table printed by `verify`: one row per check, OK / NOOK / INFO / N/A / KNOWN /
+//! FIXED? with value,
 //! reference, error, tolerance and the tolerance's reason.
 
 use std::fmt::Write;
@@ -42,6 +43,12 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
     }
     if !spec.reason.is_empty() {
         let _ = write!(row, " | {}", spec.reason);
+    }
+    if let Some(evidence) = &spec.known_failure {
+        let _ = write!(row, " | known failure: {evidence}");
+    }
+    if outcome.verdict == crate::check::Verdict::Fixed {
+        row.push_str(" | A KNOWN FAILURE PASSES: the defect may be fixed; remove its known_failure mark");
     }
     // One line, whatever the case's texts hold: a reason cannot start or redraw another row.
     one_line(&row).into_owned()

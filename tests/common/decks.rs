@@ -14,6 +14,26 @@ use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver::Solver;
 
+/// A check that any P at every position passes (tolerance 1: 100 %): what is left to judge is
+/// whether the solver gave a history at all (NOOK for a failure, N/A when not installed).
+pub fn any_force_check(solver: &str) -> spherecontact::check::CheckSpec {
+    use spherecontact::check::{CheckSpec, ErrorMeasure, Reference, Where};
+    CheckSpec {
+        solver: solver.into(),
+        quantity: spherecontact::history::Quantity::NormalForce,
+        at: Where::EveryPosition,
+        reference: Reference::Value {
+            value: 803.76,
+            key: "x".into(),
+            source: "test".into(),
+        },
+        measure: ErrorMeasure::Relative,
+        tolerance: Some(1.0),
+        reason: "any value".into(),
+        known_failure: None,
+    }
+}
+
 /// True when every external tool works; otherwise prints why the calling test skips.
 pub fn tools_present(test: &str) -> bool {
     let missing: Vec<String> = Toolchain::default()

@@ -78,12 +78,17 @@ pub fn check_table(run: &CaseRun) -> Table {
                     Verdict::Nook => "nook",
                     Verdict::Info => "info",
                     Verdict::Unavailable => "na",
+                    Verdict::Known => "known",
+                    Verdict::Fixed => "nook",
                 };
                 let unit = o.spec.quantity.unit();
                 let worst = o
                     .worst_step
                     .map_or_else(String::new, |step| format!(" (worst: step {step})"));
                 let mut reason = o.spec.reason.clone();
+                if let Some(evidence) = &o.spec.known_failure {
+                    reason = format!("{reason} Known failure: {evidence}");
+                }
                 if let Some(message) = &o.message {
                     reason = format!("{message}. {reason}");
                 }
