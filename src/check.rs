@@ -150,6 +150,25 @@ impl Verdict {
             Verdict::Unavailable => "N/A",
         }
     }
+
+    /// How much a reader must look at it, highest first: reports list checks and count
+    /// verdicts in this order (a failure, then what could not be judged, then the rest). The one
+    /// place where verdicts are ranked.
+    pub fn severity(self) -> u8 {
+        match self {
+            Verdict::Nook => 3,
+            Verdict::Unavailable => 2,
+            Verdict::Info => 1,
+            Verdict::Ok => 0,
+        }
+    }
+
+    /// Every verdict, the most severe first.
+    pub fn by_severity() -> [Verdict; 4] {
+        let mut all = [Verdict::Ok, Verdict::Nook, Verdict::Info, Verdict::Unavailable];
+        all.sort_by_key(|v| std::cmp::Reverse(v.severity()));
+        all
+    }
 }
 
 /// The result of one check: the verdict and, at the worst step, the value, reference and error.

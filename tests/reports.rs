@@ -23,14 +23,16 @@ fn paper_run() -> CaseRun {
 }
 
 /// Text with the timing cells masked: HTML cells of class "timing", and the last Markdown cell of
-/// a row that holds a wall time ("N ms", or "N ms (assembly … s, …)").
+/// a row that holds a wall time ("N ms", "N s", or "N ms (assembly … s, …)").
 fn without_timings(text: &str) -> String {
     text.lines()
         .map(|line| {
             if let Some(start) = line.find("<td class=\"timing\">") {
                 let end = line[start..].find("</td>").map_or(line.len(), |e| start + e);
                 format!("{}TIMING{}", &line[..start], &line[end..])
-            } else if line.starts_with("| ") && (line.ends_with(" ms |") || line.contains(" ms (")) {
+            } else if line.starts_with("| ")
+                && (line.ends_with(" ms |") || line.ends_with(" s |") || line.contains(" ms ("))
+            {
                 let cut = line[..line.len() - 2].rfind("| ").unwrap_or(0);
                 format!("{}| TIMING |", &line[..cut])
             } else {
