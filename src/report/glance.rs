@@ -19,33 +19,30 @@ pub fn verdict_class(verdict: Verdict) -> &'static str {
     }
 }
 
-/// "2 NOOK, 0 N/A, 5 INFO, 40 OK": every verdict, the most severe first.
-pub fn verdict_counts(outcomes: &[Outcome]) -> String {
-    Verdict::by_severity()
+/// "2 NOOK, 0 N/A, 5 INFO, 40 OK": how many of `verdicts` are each of `order`, in that order.
+fn counts<V: Copy + PartialEq>(order: &[V], verdicts: &[V], label: fn(V) -> &'static str) -> String {
+    order
         .iter()
-        .map(|&v| {
-            let n = outcomes.iter().filter(|o| o.verdict == v).count();
-            format!("{n} {}", v.label())
-        })
+        .map(|&v| format!("{} {}", verdicts.iter().filter(|&&w| w == v).count(), label(v)))
         .collect::<Vec<_>>()
         .join(", ")
 }
 
-/// "3 confirmed, 1 partly, 4 not confirmed, 1 not measured".
+/// "2 NOOK, 0 N/A, 5 INFO, 40 OK": every verdict, the most severe first.
+pub fn verdict_counts(outcomes: &[Outcome]) -> String {
+    let verdicts: Vec<Verdict> = outcomes.iter().map(|o| o.verdict).collect();
+    counts(&Verdict::by_severity(), &verdicts, Verdict::label)
+}
+
+/// "3 not confirmed, 1 partly, 4 confirmed, 1 not measured".
 fn claim_counts(claims: &[Claim]) -> String {
-    [
-        claims::Verdict::NotConfirmed,
-        claims::Verdict::Partly,
-        claims::Verdict::Confirmed,
-        claims::Verdict::NotMeasured,
-    ]
-    .iter()
-    .map(|&v| {
-        let n = claims.iter().filter(|c| c.verdict == v).count();
-        format!("{n} {}", v.label())
-    })
-    .collect::<Vec<_>>()
-    .join(", ")
+    use claims::Verdict::*;
+    let verdicts: Vec<claims::Verdict> = claims.iter().map(|c| c.verdict).collect();
+    counts(
+        &[NotConfirmed, Partly, Confirmed, NotMeasured],
+        &verdicts,
+        claims::Verdict::label,
+    )
 }
 
 /// The first section: counts, the claims (when the report has them) and the solvers.
@@ -225,6 +222,18 @@ mod tests {
         assert_eq!(
             model_in_brief("one two three four five six seven eight"),
             "one two three four five six seven …"
+        );
+    }
+
+    #[test]
+    fn verdicts_are_counted_the_most_severe_first() {
+        assert_eq!(
+            Verdict::by_severity(),
+            [Verdict::Nook, Verdict::Unavailable, Verdict::Info, Verdict::Ok]
+        );
+        assert_eq!(
+            counts(&[1, 2], &[2, 2, 1], |v| if v == 1 { "one" } else { "two" }),
+            "1 one, 2 two"
         );
     }
 

@@ -248,6 +248,65 @@ mod tests {
     use super::*;
 
     #[test]
+    fn checks_list_the_most_severe_first_grouped_by_solver() {
+        use crate::case::Case;
+        use crate::check::{CheckSpec, ErrorMeasure, Reference, Verdict, Where};
+        use crate::history::Quantity;
+        let text = "friction = 0.2\nsolvers = [\"hertz\", \"mdr\"]\n[body1]\nradius = 0.1\nyoung = 70e9\n\
+                    poisson = 0.3\n[path]\nunit = \"um\"\ndelta_n = [0, 10]\ndelta_t = [0, 0]\nsubsteps = 1\n";
+        let case = Case::parse(std::path::Path::new("order.toml"), text).unwrap();
+        let outcome = |solver: &str, verdict: Verdict| Outcome {
+            spec: CheckSpec {
+                solver: solver.into(),
+                quantity: Quantity::NormalForce,
+                at: Where::EveryStep,
+                reference: Reference::Solver("hertz".into()),
+                measure: ErrorMeasure::Relative,
+                tolerance: Some(0.01),
+                reason: format!("{solver} {}", verdict.label()),
+            },
+            verdict,
+            value: None,
+            reference: None,
+            error: Some(0.001),
+            worst_step: None,
+            message: None,
+        };
+        let run = CaseRun {
+            case,
+            warnings: Vec::new(),
+            histories: crate::check::Histories::new(),
+            outcomes: vec![
+                outcome("mdr", Verdict::Ok),
+                outcome("hertz", Verdict::Info),
+                outcome("mdr", Verdict::Nook),
+                outcome("hertz", Verdict::Ok),
+                outcome("hertz", Verdict::Nook),
+                outcome("mdr", Verdict::Unavailable),
+            ],
+        };
+        let table = check_table(&run);
+        let order: Vec<(&str, &str)> = table
+            .rows
+            .iter()
+            .map(|r| (r[0].text.as_str(), r[1].text.as_str()))
+            .collect();
+        assert_eq!(
+            order,
+            [
+                ("NOOK", "hertz"),
+                ("NOOK", "mdr"),
+                ("N/A", "mdr"),
+                ("INFO", "hertz"),
+                ("OK", "hertz"),
+                ("OK", "mdr")
+            ]
+        );
+        // The reason stays in the row, in its own column.
+        assert_eq!(table.rows[0][5].text, "hertz NOOK");
+    }
+
+    #[test]
     fn details_keep_four_significant_digits() {
         assert_eq!(significant(3.4917e-5), "3.492e-5");
         assert_eq!(significant(0.16218), "0.1622");

@@ -286,13 +286,10 @@ impl LinePlot {
                             GUIDE.stroke_width(DATA_STROKE),
                         ))
                         .map(|_| ()),
-                    Style::Line if joined => draw_line(&mut chart, run, d),
-                    Style::Markers if joined => {
-                        draw_line(&mut chart, run, d).map_err(|e| fail(&e))?;
-                        draw_markers(&mut chart, run, d)
-                    }
+                    Style::Line if joined => draw_run(&mut chart, run, d, (true, false)),
+                    Style::Markers if joined => draw_run(&mut chart, run, d, (true, true)),
                     // A point with no neighbour in its run is a marker whatever the style.
-                    _ => draw_markers(&mut chart, run, d),
+                    _ => draw_run(&mut chart, run, d, (false, true)),
                 }
                 .map_err(|e| fail(&e))?;
             }
@@ -301,48 +298,38 @@ impl LinePlot {
     }
 }
 
-/// A coloured series' line through `run`, solid or dashed by its variant.
-fn draw_line<'a, X, Y>(
+/// A coloured series' run: its line (solid or dashed by its variant) where `line`, its markers
+/// (shaped by its variant, as [`super::marker`] shapes them in the legend) where `markers`.
+fn draw_run<'a, X, Y>(
     chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
     run: &[(f64, f64)],
     d: &Drawn,
+    (line, markers): (bool, bool),
 ) -> Result<(), DrawingAreaErrorKind<std::io::Error>>
 where
     X: Ranged<ValueType = f64>,
     Y: Ranged<ValueType = f64>,
 {
-    let style = d.colour.stroke_width(DATA_STROKE);
     let points = run.iter().copied();
-    match dashes(d.variant) {
-        None => chart.draw_series(LineSeries::new(points, style)).map(|_| ()),
-        Some((on, off)) => chart
-            .draw_series(DashedLineSeries::new(points, on, off, style))
-            .map(|_| ()),
+    if line {
+        let style = d.colour.stroke_width(DATA_STROKE);
+        match dashes(d.variant) {
+            None => chart.draw_series(LineSeries::new(points.clone(), style))?,
+            Some((on, off)) => chart.draw_series(DashedLineSeries::new(points.clone(), on, off, style))?,
+        };
     }
-}
-
-/// A coloured series' markers at the points of `run`, shaped by its variant as
-/// [`super::marker`] shapes them in the legend.
-fn draw_markers<'a, X, Y>(
-    chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
-    run: &[(f64, f64)],
-    d: &Drawn,
-) -> Result<(), DrawingAreaErrorKind<std::io::Error>>
-where
-    X: Ranged<ValueType = f64>,
-    Y: Ranged<ValueType = f64>,
-{
-    let style = d.colour.filled();
-    let points = run.iter().copied();
-    let (r, t) = (MARKER_SIZE as i32, TRIANGLE_SIZE as i32);
-    match d.variant {
-        0 => chart.draw_series(points.map(|p| Circle::new(p, MARKER_SIZE, style))),
-        1 => {
-            chart.draw_series(points.map(|p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)))
-        }
-        _ => chart.draw_series(points.map(|p| TriangleMarker::new(p, t, style))),
+    if markers {
+        let style = d.colour.filled();
+        let (r, t) = (MARKER_SIZE as i32, TRIANGLE_SIZE as i32);
+        match d.variant {
+            0 => chart.draw_series(points.map(|p| Circle::new(p, MARKER_SIZE, style)))?,
+            1 => chart.draw_series(
+                points.map(|p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)),
+            )?,
+            _ => chart.draw_series(points.map(|p| TriangleMarker::new(p, t, style)))?,
+        };
     }
-    .map(|_| ())
+    Ok(())
 }
 
 #[cfg(test)]
