@@ -155,6 +155,16 @@ pub enum Verdict {
 }
 
 impl Verdict {
+    /// Every verdict (a new one joins the counts and orders by being listed here).
+    pub const ALL: [Verdict; 6] = [
+        Verdict::Ok,
+        Verdict::Nook,
+        Verdict::Info,
+        Verdict::Unavailable,
+        Verdict::Known,
+        Verdict::Fixed,
+    ];
+
     /// The label printed in the result table.
     pub fn label(self) -> &'static str {
         match self {
@@ -180,6 +190,26 @@ impl Verdict {
             (Verdict::Ok, Some(_)) => Verdict::Fixed,
             (v, _) => v,
         }
+    }
+
+    /// How much a reader must look at it, highest first: reports list checks and count
+    /// verdicts in this order (a failure, then what could not be judged, then the rest). The one
+    /// place where verdicts are ranked.
+    pub fn severity(self) -> u8 {
+        match self {
+            Verdict::Nook | Verdict::Fixed => 4,
+            Verdict::Known => 3,
+            Verdict::Unavailable => 2,
+            Verdict::Info => 1,
+            Verdict::Ok => 0,
+        }
+    }
+
+    /// Every verdict, the most severe first.
+    pub fn by_severity() -> [Verdict; 6] {
+        let mut all = Verdict::ALL;
+        all.sort_by_key(|v| std::cmp::Reverse(v.severity()));
+        all
     }
 }
 

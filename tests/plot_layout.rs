@@ -13,7 +13,6 @@ mod common;
 
 use ab_glyph::{Font, FontRef};
 use roxmltree::{Document, Node};
-use spherecontact::path::LoadingPath;
 use spherecontact::report::claims::Study;
 use spherecontact::report::document::Figure;
 use spherecontact::report::paper;
@@ -348,10 +347,7 @@ fn defects(name: &str, svg: &str) -> Vec<String> {
 /// The report's figures from the paper's case, in-crate solvers, 10 increments a segment
 /// (the layout does not depend on the increments; the run takes seconds).
 fn report_figures() -> Vec<Figure> {
-    let mut case = common::paper_case_in_crate();
-    let positions = case.scene.path.positions().to_vec();
-    let segments = positions.len() - 1;
-    case.scene.path = LoadingPath::try_new(positions, vec![10; segments]).expect("path");
+    let case = common::paper_case_coarse(10);
     let run = verify::run_case(case);
     paper::document(&run, &Study::none(), &common::root().join("reference"))
         .expect("report")

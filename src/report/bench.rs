@@ -56,9 +56,13 @@ fn reference_of(rung: &Rung, k: usize) -> &'static str {
     }
 }
 
+/// An error to four figures, "—" without one.
+fn format_error(e: Option<f64>) -> String {
+    e.map_or_else(|| "—".to_owned(), |e| format!("{e:.3e}"))
+}
+
 /// The bench report of a sweep.
 pub fn document(case: &str, increments: usize, repeat: usize, rungs: &[RungResult]) -> Result<Document> {
-    let format_error = |e: Option<f64>| e.map_or_else(|| "—".to_owned(), |e| format!("{e:.3e}"));
     let raw = |r: &Rung, k: usize| r.raw.map(|raw| if k == 0 { raw.0 } else { raw.1 });
     let table = Table {
         header: [
@@ -176,13 +180,92 @@ pub fn document(case: &str, increments: usize, repeat: usize, rungs: &[RungResul
     ));
     Ok(Document {
         title: format!("spherecontact bench: {case}"),
-        sections: vec![Section {
-            title: "Speed against error".into(),
-            paragraphs,
-            tables: vec![table],
-            figures,
-        }],
+        sections: vec![
+            glance(rungs),
+            Section {
+                title: "Speed against error".into(),
+                figures,
+                ..Section::default()
+            },
+            Section {
+                title: "Every rung".into(),
+                paragraphs,
+                tables: vec![table],
+                folded: true,
+                ..Section::default()
+            },
+        ],
     })
+}
+
+/// The first screen: one line per solver, its finest rung (the last of its ladder) with its
+/// time and errors, and the rungs that did not run.
+fn glance(rungs: &[RungResult]) -> Section {
+    let mut solvers: Vec<&str> = Vec::new();
+    for rung in rungs {
+        let name = match rung {
+            Ok(r) => r.timing.solver.as_str(),
+            Err((name, _)) => name.as_str(),
+        };
+        if !solvers.contains(&name) {
+            solvers.push(name);
+        }
+    }
+    let rows = solvers
+        .iter()
+        .map(|&name| {
+            let ok = rungs.iter().flatten().filter(|r| r.timing.solver == name);
+            let failed = rungs
+                .iter()
+                .filter(|r| matches!(r, Err((n, _)) if n == name))
+                .count();
+            let status = match failed {
+                0 => Cell::with_class("ran", "ok"),
+                n => Cell::with_class(format!("{n} rung(s) missing"), "na"),
+            };
+            match ok.last() {
+                Some(r) => vec![
+                    Cell::plain(name),
+                    status,
+                    Cell::plain(&r.timing.history.metadata.resolution),
+                    Cell::with_class(format!("{:.3}", median(&r.timing.cpu_seconds) * 1e3), "timing"),
+                    Cell::plain(format_error(r.normal_error)),
+                    Cell::plain(format_error(r.tangential_error)),
+                    Cell::plain(r.reference),
+                ],
+                None => std::iter::once(Cell::plain(name))
+                    .chain(std::iter::once(status))
+                    .chain((0..5).map(|_| Cell::plain("—")))
+                    .collect(),
+            }
+        })
+        .collect();
+    Section {
+        title: "At a glance".into(),
+        paragraphs: vec![format!(
+            "{} solvers, {} rungs measured, {} missing. Each solver at the finest rung of its ladder; every rung in \
+             the figures and in the folded table at the end.",
+            solvers.len(),
+            rungs.iter().flatten().count(),
+            rungs.iter().filter(|r| r.is_err()).count()
+        )],
+        tables: vec![Table {
+            header: [
+                "solver",
+                "status",
+                "finest resolution",
+                "median CPU [ms]",
+                "P error",
+                "Q error",
+                "reference",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+            rows,
+        }],
+        ..Section::default()
+    }
 }
 
 #[cfg(test)]
@@ -217,9 +300,9 @@ mod tests {
             rung("mdr", (1e-6, 1e-7), None),
         ];
         let document = document("case", 10, 1, &rungs).unwrap();
-        let section = &document.sections[0];
+        let section = |title: &str| document.sections.iter().find(|s| s.title == title).unwrap();
         let row = |k: usize| -> Vec<&str> {
-            section.tables[0].rows[k]
+            section("Every rung").tables[0].rows[k]
                 .iter()
                 .map(|c| c.text.as_str())
                 .collect()
@@ -236,7 +319,11 @@ mod tests {
         );
         assert_eq!(row(1)[6..], ["hertz, mdr", "—", "—"]);
         let series = |id: &str| -> Vec<String> {
-            let figure = section.figures.iter().find(|f| f.id == id).unwrap();
+            let figure = section("Speed against error")
+                .figures
+                .iter()
+                .find(|f| f.id == id)
+                .unwrap();
             figure.data.rows.iter().map(|r| r[0].text.clone()).collect()
         };
         assert_eq!(
@@ -251,5 +338,12 @@ mod tests {
             series("tangential-front"),
             ["fem-axisym vs mdr-domain", "fem-axisym raw vs mdr", "mdr vs mdr"]
         );
+        // The first screen: one line per solver, at its finest rung.
+        let glance = &document.sections[0];
+        assert_eq!(glance.title, "At a glance");
+        let first: Vec<&str> = glance.tables[0].rows[0].iter().map(|c| c.text.as_str()).collect();
+        assert_eq!(first[0], "fem-axisym");
+        assert_eq!(first[4..], ["2.000e-4", "1.000e-3", CORRECTED_REFERENCE]);
+        assert!(document.sections[2].folded, "every rung: folded at the end");
     }
 }

@@ -6,10 +6,12 @@ use anyhow::Result;
 
 use super::document::{Document, Section};
 use super::figures;
+use super::glance;
 use crate::check::Verdict;
 use crate::verify::CaseRun;
 
-/// The "Case" section: description, bodies, warnings and the solver table.
+/// The "Case" section: description, bodies, warnings and the solver table in full (folded: the
+/// first screen has a line per solver).
 pub fn case_section(run: &CaseRun) -> Section {
     let scene = &run.case.scene;
     let body = |b: &crate::pair::Body| {
@@ -44,25 +46,27 @@ pub fn case_section(run: &CaseRun) -> Section {
         paragraphs,
         tables: vec![figures::solver_table(run)],
         figures: vec![],
+        folded: true,
     }
 }
 
-/// The "Checks" section: counts and the check table.
+/// The "Checks" section: counts and the check table, folded when every check passed or is
+/// informational (open when a reader has something to look at).
 pub fn checks_section(run: &CaseRun) -> Section {
-    let count = |v: Verdict| run.outcomes.iter().filter(|o| o.verdict == v).count();
     Section {
         title: "Checks".into(),
         paragraphs: vec![format!(
-            "{} OK, {} NOOK, {} informational, {} not available, {} known failures, {} FIXED?. Informational checks measure approximate laws and are never judged; a known failure is a defect of an external code shown with its evidence (it does not fail the run), FIXED? a known failure that passes (it fails the run until its mark is removed).",
-            count(Verdict::Ok),
-            count(Verdict::Nook),
-            count(Verdict::Info),
-            count(Verdict::Unavailable),
-            count(Verdict::Known),
-            count(Verdict::Fixed)
+            "{}. INFO checks measure approximate laws and are never judged; N/A names a solver that is not \
+             available; KNOWN is a defect of an external code shown with its evidence (it does not fail the run), \
+             FIXED? a known failure that passes (it fails the run until its mark is removed). The most severe first, by solver.",
+            glance::verdict_counts(&run.outcomes)
         )],
         tables: vec![figures::check_table(run)],
         figures: vec![],
+        folded: run
+            .outcomes
+            .iter()
+            .all(|o| matches!(o.verdict, Verdict::Ok | Verdict::Info)),
     }
 }
 
@@ -81,8 +85,7 @@ pub fn document(run: &CaseRun) -> Result<Document> {
     let mut fields = figures::profiles(run, focus)?;
     fields.extend(figures::maps(run, focus)?);
     let sections = vec![
-        case_section(run),
-        checks_section(run),
+        glance::section(run, None),
         figure_section("Loading path", vec![figures::loading_path(run)?]),
         figure_section("Normal force", figures::normal_force(run)?.into_iter().collect()),
         figure_section(
@@ -92,6 +95,8 @@ pub fn document(run: &CaseRun) -> Result<Document> {
         figure_section(&format!("Surface fields at position {focus}"), fields),
         figure_section("Errors against the references", figures::errors(run)?),
         super::dem_scoreboard::section(run),
+        checks_section(run),
+        case_section(run),
     ];
     Ok(Document {
         title: format!("spherecontact: {}", run.case.name()),

@@ -144,6 +144,7 @@ pub fn section(run: &CaseRun) -> Section {
             vec![table]
         },
         figures: vec![],
+        folded: false,
     }
 }
 

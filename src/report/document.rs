@@ -80,6 +80,9 @@ pub struct Section {
     pub tables: Vec<Table>,
     /// Figures, after the tables.
     pub figures: Vec<Figure>,
+    /// Folded in the HTML page (a `<details>` opened by its heading): detail a reader opens when
+    /// the first screen sends them there. The Markdown report shows it in the same place.
+    pub folded: bool,
 }
 
 /// A whole report.
@@ -105,11 +108,18 @@ fn escape_markdown_cell(text: &str) -> String {
     one_line(&text.replace('\n', " ")).replace('|', "\\|")
 }
 
-const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
-h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}\
-table{border-collapse:collapse;margin:1em 0;font-size:.85em;display:block;overflow-x:auto}td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top;max-width:30em;overflow-wrap:break-word}th{white-space:nowrap}\
+/// The page's style. Tables take the page's width and no more: cells wrap anywhere a long word
+/// would otherwise widen the table (a path, a list of metadata), so no table scrolls sideways;
+/// headings and verdicts (short) never break, timings only between words.
+const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:1em auto;padding:0 1em;color:#222}\
+h1{font-size:1.4em;margin:.3em 0}h2{font-size:1.2em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin:1.5em 0 .5em}\
+summary{cursor:pointer}summary h2{display:inline-block;border:0;margin:1em 0 .3em}\
+table{border-collapse:collapse;margin:.5em 0;font-size:.82em;width:100%;table-layout:auto}\
+td,th{border:1px solid #ccc;padding:.15em .4em;line-height:1.25;text-align:left;vertical-align:top;overflow-wrap:anywhere}\
+th,td.ok,td.nook,td.info,td.na,td.known{white-space:nowrap}td.timing{overflow-wrap:normal}\
 th{background:#f3f3f3}td.ok{color:#176b1e;font-weight:bold}td.nook{color:#b00;font-weight:bold}td.info{color:#555}td.na{color:#a60}td.known{color:#7a4b00;font-weight:bold}\
-nav p{margin:.2em 0}nav ul{margin:.2em 0 1em;columns:2}figure{margin:1.5em 0}figcaption{font-size:.85em;color:#444;max-width:820px}svg{max-width:100%;height:auto}";
+p{margin:.4em 0}nav{font-size:.85em;margin:.2em 0 .6em}figure{margin:1.5em 0}figcaption{font-size:.85em;color:#444;max-width:820px}\
+svg{max-width:100%;height:auto}";
 
 impl Document {
     /// The self-contained HTML page.
@@ -121,26 +131,32 @@ impl Document {
             "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n\
              <style>{STYLE}</style>\n</head>\n<body>\n<h1>{title}</h1>\n"
         );
-        // Contents: a reader jumps to the claims or a figure without scrolling through tables.
+        // Contents, on a line or two after the first section (the answer comes first): a reader
+        // jumps to a figure or a folded section.
+        let mut contents = String::new();
         if self.sections.len() > 1 {
-            html.push_str("<nav><p>Contents:</p><ul>\n");
-            for (k, section) in self.sections.iter().enumerate() {
-                let _ = writeln!(
-                    html,
-                    "<li><a href=\"#section-{}\">{}</a></li>",
-                    k + 1,
-                    escape_html(&section.title)
-                );
-            }
-            html.push_str("</ul></nav>\n");
+            let links: Vec<String> = self
+                .sections
+                .iter()
+                .enumerate()
+                .map(|(k, section)| {
+                    format!(
+                        "<a href=\"#section-{}\">{}</a>",
+                        k + 1,
+                        escape_html(&section.title)
+                    )
+                })
+                .collect();
+            contents = format!("<nav>Contents: {}</nav>\n", links.join(" · "));
         }
         for (k, section) in self.sections.iter().enumerate() {
-            let _ = writeln!(
-                html,
-                "<section id=\"section-{}\">\n<h2>{}</h2>",
-                k + 1,
-                escape_html(&section.title)
-            );
+            let heading = format!("<h2>{}</h2>", escape_html(&section.title));
+            let heading = if section.folded {
+                format!("<details><summary>{heading}</summary>")
+            } else {
+                heading
+            };
+            let _ = writeln!(html, "<section id=\"section-{}\">\n{heading}", k + 1);
             for paragraph in &section.paragraphs {
                 let _ = writeln!(html, "<p>{}</p>", escape_html(paragraph));
             }
@@ -156,7 +172,13 @@ impl Document {
                     caption = escape_html(&figure.caption)
                 );
             }
+            if section.folded {
+                html.push_str("</details>\n");
+            }
             html.push_str("</section>\n");
+            if k == 0 {
+                html.push_str(&contents);
+            }
         }
         html.push_str("</body>\n</html>\n");
         html
@@ -269,6 +291,7 @@ mod tests {
                         rows: vec![vec![Cell::plain("1")]],
                     },
                 }],
+                folded: false,
             }],
         }
     }
@@ -295,8 +318,22 @@ mod tests {
             ..Section::default()
         });
         let html = doc.to_html();
-        assert!(html.contains("<li><a href=\"#section-2\">Claims &amp; more</a></li>"));
+        assert!(html.contains("<a href=\"#section-2\">Claims &amp; more</a></nav>"));
         assert!(html.contains("<section id=\"section-2\">"));
+    }
+
+    #[test]
+    fn folded_sections_open_by_their_heading() {
+        let mut doc = document();
+        doc.sections[0].folded = true;
+        let html = doc.to_html();
+        assert!(html.contains("<details><summary><h2>S</h2></summary>"), "{html}");
+        assert_eq!(
+            html.matches("<details>").count(),
+            html.matches("</details>").count()
+        );
+        // The Markdown report keeps the section where it is.
+        assert!(doc.to_markdown().contains("## S\n\na & b"));
     }
 
     #[test]

@@ -7,6 +7,7 @@ pub mod compare;
 pub mod dem_scoreboard;
 pub mod document;
 pub mod figures;
+pub mod glance;
 pub mod history_files;
 pub mod junit;
 pub mod paper;

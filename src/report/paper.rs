@@ -14,6 +14,7 @@ use super::claims::{self, Study};
 use super::compare::{case_section, checks_section, figure_section};
 use super::document::{Cell, Document, Section, Table};
 use super::figures;
+use super::glance;
 use crate::case::{reference, Case};
 use crate::hertz::Hertz;
 use crate::verify::CaseRun;
@@ -23,7 +24,7 @@ pub const QUOTED_APPROACH: f64 = 17e-6;
 
 /// Relative distance within which a reading "reproduces" a quoted value: the quote has three
 /// significant figures, so 581 stands for [580.5, 581.5), ±0.09 %.
-const THREE_FIGURES: f64 = 0.5 / 581.0;
+pub const THREE_FIGURES: f64 = 0.5 / 581.0;
 
 /// A reading of the paper's formulas.
 struct Reading {
@@ -229,6 +230,7 @@ pub fn paper_numbers(run: &CaseRun, quoted: &Quoted) -> Result<Section> {
         ],
         tables: vec![table],
         figures: vec![],
+        folded: true,
     })
 }
 
@@ -239,9 +241,9 @@ pub fn document(run: &CaseRun, study: &Study, reference_dir: &Path) -> Result<Do
     let quoted = Quoted::load(reference_dir)?;
     let mut fields = figures::profiles(run, focus)?;
     fields.extend(figures::maps(run, focus)?);
+    let claims = claims::claims(run, study, &quoted);
     let sections = vec![
-        case_section(run),
-        claims::section(run, study, &quoted),
+        glance::section(run, Some(&claims)),
         figure_section(
             "Figure 7: normal and tangential loading",
             vec![figures::loading_path(run)?],
@@ -258,10 +260,12 @@ pub fn document(run: &CaseRun, study: &Study, reference_dir: &Path) -> Result<Do
             &format!("Figures 10–12: pressure, frictional stress and contact status at position {focus}"),
             fields,
         ),
-        paper_numbers(run, &quoted)?,
         figure_section("Errors against the references", figures::errors(run)?),
         super::dem_scoreboard::section(run),
+        claims::section(run, study, &claims),
         checks_section(run),
+        paper_numbers(run, &quoted)?,
+        case_section(run),
     ];
     Ok(Document {
         title: "spherecontact: reproducing Khawaja & Parvez (two spheres, Hertz and Mindlin–Deresiewicz)"

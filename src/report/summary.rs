@@ -1,50 +1,73 @@
-//! The one-screen summary printed after a report: which solvers ran, the check counts, and P
-//! and Q of every solver at the case's focus position.
+//! The one-screen summary printed after a report: the verdict counts, the checks a reader must
+//! look at first (the most severe, the largest errors), the slowest solvers, and what did not run.
 
 use std::fmt::Write;
 
-use super::format_value;
-use crate::check::Verdict;
+use super::glance::{seconds, verdict_counts, weight, worst_text};
+use crate::check::Outcome;
 use crate::text::one_line;
 use crate::verify::CaseRun;
 
+/// How many checks and solvers each list of the screen shows: the screen stays one screen
+/// (about 25 lines) whatever the case's size.
+const SHOWN: usize = 5;
+
 /// The summary text.
 pub fn screen(run: &CaseRun) -> String {
-    let focus = run.case.focus;
-    let mut text = format!("{}: P and Q at position {focus}\n", run.case.name());
     let names = run.case.required_solvers();
-    // The solver column as wide as the longest name (lammps-mindlin-rescale-force: 28).
+    let ran: Vec<(&String, f64)> = names
+        .iter()
+        .filter_map(|n| Some((n, run.histories.get(n)?.as_ref().ok()?.metadata.wall_time_s)))
+        .collect();
+    let mut text = format!(
+        "{}: checks {}; solvers {} of {} ran\n",
+        run.case.name(),
+        verdict_counts(&run.outcomes),
+        ran.len(),
+        names.len()
+    );
+    let mut outcomes: Vec<&Outcome> = run.outcomes.iter().collect();
+    outcomes.sort_by(|a, b| {
+        weight(b)
+            .0
+            .cmp(&weight(a).0)
+            .then(weight(b).1.total_cmp(&weight(a).1))
+    });
+    if !outcomes.is_empty() {
+        let _ = writeln!(
+            text,
+            "worst checks (the most severe, then the largest against its tolerance):"
+        );
+    }
     let width = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
-    for name in names {
-        let _ = match run.histories.get(&name) {
-            Some(Ok(history)) => {
-                let row = history.at_position(focus);
-                writeln!(
-                    text,
-                    "  {name:<width$} P = {:>11} N   Q = {:>11} N   {:>9.3} ms",
-                    format_value(row.and_then(|r| r.normal_force)),
-                    format_value(row.and_then(|r| r.tangential_force)),
-                    history.metadata.wall_time_s * 1e3
-                )
-            }
+    for o in outcomes.iter().take(SHOWN) {
+        let _ = writeln!(text, "  {:<width$} {}", o.spec.solver, worst_text(o));
+    }
+    let mut slowest = ran.clone();
+    slowest.sort_by(|a, b| b.1.total_cmp(&a.1));
+    if !slowest.is_empty() {
+        let list: Vec<String> = slowest
+            .iter()
+            .take(SHOWN)
+            .map(|(n, s)| format!("{n} {}", seconds(*s)))
+            .collect();
+        let _ = writeln!(text, "slowest solvers: {}", list.join(", "));
+    }
+    // The solver column as wide as the longest name (lammps-mindlin-rescale-force: 28).
+    for name in &names {
+        let _ = match run.histories.get(name) {
+            Some(Ok(_)) => Ok(()),
             Some(Err(e)) => writeln!(text, "  {name:<width$} missing: {}", one_line(&e.to_string())),
             None => writeln!(text, "  {name:<width$} not run"),
         };
     }
-    for warning in super::figures::warnings(run) {
-        let _ = writeln!(text, "  warning: {}", one_line(&warning.to_string()));
+    let warnings = super::figures::warnings(run).len();
+    if warnings > 0 {
+        let _ = writeln!(
+            text,
+            "{warnings} warnings: in the report's section \"Case and solvers\""
+        );
     }
-    let count = |v: Verdict| run.outcomes.iter().filter(|o| o.verdict == v).count();
-    let _ = writeln!(
-        text,
-        "checks: {} OK, {} NOOK, {} informational, {} not available, {} known failures, {} known failures that pass (FIXED?)",
-        count(Verdict::Ok),
-        count(Verdict::Nook),
-        count(Verdict::Info),
-        count(Verdict::Unavailable),
-        count(Verdict::Known),
-        count(Verdict::Fixed)
-    );
     text
 }
 

@@ -133,6 +133,16 @@ pub fn normal_scene(pair: ContactPair, delta_um: &[f64]) -> Scene {
     }
 }
 
+/// [`paper_case_in_crate`] with `increments` increments a segment (a report's layout does not
+/// depend on them; 10 make a run of seconds).
+pub fn paper_case_coarse(increments: usize) -> Case {
+    let mut case = paper_case_in_crate();
+    let positions = case.scene.path.positions().to_vec();
+    let segments = positions.len() - 1;
+    case.scene.path = LoadingPath::try_new(positions, vec![increments; segments]).expect("path");
+    case
+}
+
 /// The paper's case with the in-crate solvers only (the external decks, tested in
 /// tests/external.rs, would make report tests minutes long), and the checks that need no deck.
 pub fn paper_case_in_crate() -> Case {

@@ -185,9 +185,32 @@ fn fraction(a: f64, b: f64) -> f64 {
     }
 }
 
+/// What a row found on one solver.
+struct Found {
+    /// What was measured.
+    measured: String,
+    /// The verdict.
+    verdict: Verdict,
+    /// The verdict in a sentence.
+    reading: String,
+    /// The one number that decides it, against what.
+    decides: String,
+}
+
+impl Found {
+    fn new(measured: String, verdict: Verdict, reading: impl Into<String>, decides: String) -> Self {
+        Self {
+            measured,
+            verdict,
+            reading: reading.into(),
+            decides,
+        }
+    }
+}
+
 /// A row's measurement from the evidence of the solver it is judged on and of the other map
-/// solvers (to compare with): (what was measured, verdict, finding).
-type Finding = fn(&Evidence, &References, &[&Evidence]) -> (String, Verdict, String);
+/// solvers (to compare with).
+type Finding = fn(&Evidence, &References, &[&Evidence]) -> Found;
 
 /// The claims about the surface fields.
 pub fn claims(run: &CaseRun, study: &Study) -> Vec<Claim> {
@@ -248,16 +271,17 @@ pub fn claims(run: &CaseRun, study: &Study) -> Vec<Claim> {
                 .filter(|&(k, _)| k != judged)
                 .map(|(_, o)| o)
                 .collect();
-            let (measured, verdict, reading) = row(e, &references, &others);
+            let found = row(e, &references, &others);
             let beside: String = others
                 .iter()
-                .map(|o| format!(". Beside it, {}: {}", o.solver, row(o, &references, &[]).0))
+                .map(|o| format!(". Beside it, {}: {}", o.solver, row(o, &references, &[]).measured))
                 .collect();
             Claim {
                 claim: claim.into(),
-                measured: format!("{}: {measured}{beside}{fe_note}", e.solver),
-                verdict,
-                reading,
+                measured: format!("{}: {}{beside}{fe_note}", e.solver, found.measured),
+                verdict: found.verdict,
+                reading: found.reading,
+                decides: format!("{}: {}", e.solver, found.decides),
                 evidence: format!("figure {figure}-{focus}"),
             }
         })
@@ -288,7 +312,7 @@ impl Judge {
 }
 
 /// p read along x and along y, against the peak.
-fn pressure_axisymmetry(e: &Evidence, _: &References, _: &[&Evidence]) -> (String, Verdict, String) {
+fn pressure_axisymmetry(e: &Evidence, _: &References, _: &[&Evidence]) -> Found {
     let departure = |m: &Measured| fraction(m.measures.pressure_axis_difference, m.measures.pressure_max);
     let measured = format!(
         "p read along x and along y (r ≤ {AXIS_READ} c) differs, relative to its peak, by ≤ {}",
@@ -303,23 +327,29 @@ fn pressure_axisymmetry(e: &Evidence, _: &References, _: &[&Evidence]) -> (Strin
         Some(c) => format!("; it moves by {:.2} % of the peak under refinement", c * 100.0),
         None => String::new(),
     };
+    let decides = format!(
+        "p along x against along y: {}",
+        super::against_limit(d, MAGNITUDE_AXISYMMETRY)
+    );
     if d <= MAGNITUDE_AXISYMMETRY {
-        (
+        Found::new(
             measured,
             Verdict::Confirmed,
             format!(
                 "axisymmetric to {:.2} % of its peak, within a tenth of a contour level{moves}",
                 d * 100.0
             ),
+            decides,
         )
     } else {
-        (
+        Found::new(
             measured,
             Verdict::NotConfirmed,
             format!(
                 "p departs from axisymmetry by {:.2} % of its peak, more than a tenth of a contour level{moves}",
                 d * 100.0
             ),
+            decides,
         )
     }
 }
@@ -327,7 +357,7 @@ fn pressure_axisymmetry(e: &Evidence, _: &References, _: &[&Evidence]) -> (Strin
 /// Stick semi-axes along x and y against each other and against MD: judged on the second
 /// moments (integrals over the stick samples, which converge), the edge fit beside them (where
 /// the discrete edge falls between a mesh's nodes moves it by up to a sample).
-fn stick_zone(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verdict, String) {
+fn stick_zone(e: &Evidence, r: &References, _: &[&Evidence]) -> Found {
     let relative = |axes: Option<[f64; 2]>, c: f64| axes.map(|[x, y]| [fraction(x, c), fraction(y, c)]);
     let moments = |m: &Measured| relative(m.measures.stick_moments, m.c);
     let edges = |m: &Measured| relative(m.measures.stick_axes, m.c);
@@ -341,7 +371,12 @@ fn stick_zone(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verdict
         measured.push_str(&format!("; MD (mdr) c_s = {:.4} c", cs / c));
     }
     let Some([x, y]) = moments(e.best()) else {
-        return (measured, Verdict::NotMeasured, "no stick zone to measure".into());
+        return Found::new(
+            measured,
+            Verdict::NotMeasured,
+            "no stick zone to measure",
+            "no stick zone".into(),
+        );
     };
     // What refinement still moves the semi-axes; without two rungs, half a sample (where the
     // discrete edge falls).
@@ -353,29 +388,32 @@ fn stick_zone(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verdict
         None => (0.5 * e.best().measures.spacing / e.best().c, "half a sample"),
     };
     let departure = (y - x).abs();
+    let decides = format!("|a_y − a_x| = {departure:.1e} c against {resolution:.1e} c ({how})");
     if departure <= resolution {
-        (
+        Found::new(
             measured,
             Verdict::Confirmed,
             format!(
                 "no departure from a disc is resolved: the second moments' |a_y − a_x| = {departure:.1e} c, within {how} \
                  ({resolution:.1e} c)"
             ),
+            decides,
         )
     } else {
-        (
+        Found::new(
             measured,
             Verdict::NotConfirmed,
             format!(
                 "the stick zone is elongated: the second moments' |a_y − a_x| = {departure:.1e} c beyond {how} \
                  ({resolution:.1e} c)"
             ),
+            decides,
         )
     }
 }
 
 /// The departure from MD's traction, split into its transverse and parallel parts.
-fn mismatch(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verdict, String) {
+fn mismatch(e: &Evidence, r: &References, _: &[&Evidence]) -> Found {
     let part = |m: &Measured, k: usize| m.measures.departure.map(|d| fraction(d[k], r.mu_p0));
     let measured = format!(
         "RMS over the contact of the departure from MD's traction (mdr's q(r) along x), relative to μp0: transverse \
@@ -385,16 +423,22 @@ fn mismatch(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verdict, 
     );
     let best = e.best();
     let (Some(transverse), Some(parallel)) = (part(best, 0), part(best, 1)) else {
-        return (
+        return Found::new(
             measured,
             Verdict::NotMeasured,
+            format!("needs {TANGENTIAL_REFERENCE}'s traction"),
             format!("needs {TANGENTIAL_REFERENCE}'s traction"),
         );
     };
     let peak = best.measures.peak.map_or(0.0, |p| p.value);
     let share = fraction(best.measures.transverse_share, peak);
+    let decides = format!(
+        "RMS transverse q_y {:.2} % against parallel q_x − q_MD {:.2} % of μp0",
+        transverse * 100.0,
+        parallel * 100.0
+    );
     if transverse > parallel {
-        (
+        Found::new(
             measured,
             Verdict::Partly,
             format!(
@@ -403,18 +447,20 @@ fn mismatch(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verdict, 
                  which q_y changes by ≤ {:.2} % of the peak",
                 share * 100.0
             ),
+            decides,
         )
     } else {
-        (
+        Found::new(
             measured,
             Verdict::NotConfirmed,
-            "the parallel part q_x − q_MD is the larger: the neglect of q_y is not the main departure from MD".into(),
+            "the parallel part q_x − q_MD is the larger: the neglect of q_y is not the main departure from MD",
+            decides,
         )
     }
 }
 
 /// Where the largest |q| lies against the stick edge, and what a coarse mesh does to it.
-fn peak_location(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verdict, String) {
+fn peak_location(e: &Evidence, r: &References, _: &[&Evidence]) -> Found {
     let offset = |m: &Measured| {
         let p = m.measures.peak?;
         Some((p.radius() - p.edge?) / m.measures.spacing)
@@ -443,10 +489,11 @@ fn peak_location(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verd
     }
     let best = e.best();
     let Some(o) = offset(best) else {
-        return (
+        return Found::new(
             measured,
             Verdict::NotMeasured,
-            "no stick zone to locate the maximum against".into(),
+            "no stick zone to locate the maximum against",
+            "no stick zone".into(),
         );
     };
     // Why a coarse mesh smears it: on the stick side μp − |q| = μp0 √(c_s² − r²)/c grows as
@@ -461,17 +508,20 @@ fn peak_location(e: &Evidence, r: &References, _: &[&Evidence]) -> (String, Verd
             s * 100.0
         )
     });
+    let decides = format!("max |q| {o:+.1} samples h from the stick edge against ±1 h");
     if o.abs() <= 1.0 {
-        (
+        Found::new(
             measured,
             Verdict::NotConfirmed,
             format!("the maximum lies on the stick/slip boundary, within one sample (as MD says){why}"),
+            decides,
         )
     } else {
-        (
+        Found::new(
             measured,
             Verdict::Confirmed,
             format!("the maximum lies {o:+.1} samples from the stick/slip boundary{why}"),
+            decides,
         )
     }
 }

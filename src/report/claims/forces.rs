@@ -2,13 +2,13 @@
 //! normal force against Hertz (on the hemisphere, and on the paper's caps), the pressure
 //! distribution, and the finite element tangential force against Mindlin–Deresiewicz.
 
-use super::{is_finite_element, percent, Claim, Verdict};
+use super::{against_limit, is_finite_element, percent, Claim, Verdict};
 use crate::domain::{Domain, DomainKind, Grip};
 use crate::history::{History, Quantity};
 use crate::registry;
 use crate::report::figures::surface::{FieldView, HalfAxis};
 use crate::report::figures::{fields_at, histories, position_errors, NORMAL_REFERENCE, TANGENTIAL_REFERENCE};
-use crate::report::paper::{reading_verdict, Quoted, QUOTED_APPROACH};
+use crate::report::paper::{reading_verdict, Quoted, QUOTED_APPROACH, THREE_FIGURES};
 use crate::verify::CaseRun;
 
 /// A finite element P "agrees" with Hertz within 1 %: the paper's Figure 8 is read to about 1 %
@@ -95,6 +95,11 @@ fn hertz_peak_pressure(run: &CaseRun, quoted: &Quoted) -> Claim {
         measured,
         verdict,
         reading,
+        decides: format!(
+            "the closest reading's p0 = {:.1} MPa against the quoted {quote:.0} MPa (±{:.2} %)",
+            v.closest.1 * 1e-6,
+            THREE_FIGURES * 100.0
+        ),
         evidence: "section \"The paper's own numbers\"".into(),
     }
 }
@@ -151,6 +156,11 @@ fn fem_peak_pressure(run: &CaseRun, quoted: &Quoted) -> Claim {
         measured,
         verdict,
         reading,
+        decides: format!(
+            "worst FE p0 off Hertz's {:.1} MPa by {}",
+            hertz * 1e-6,
+            against_limit(worst, FORCE_AGREEMENT)
+        ),
         evidence: format!("checks peak_pressure at position {position}; figure pressure-profile-{position}"),
     }
 }
@@ -195,6 +205,10 @@ fn fem_normal_force(run: &CaseRun) -> Claim {
     let (verdict, reading) = judge(worst, FORCE_AGREEMENT, "of Hertz at every position in contact");
     Claim {
         claim: claim.into(),
+        decides: format!(
+            "worst |P/P_hertz − 1| = {}",
+            against_limit(worst, FORCE_AGREEMENT)
+        ),
         measured: format!(
             "P / P_hertz − 1 at the path positions in contact: {}.",
             list.join("; ")
@@ -258,6 +272,10 @@ fn fem_normal_force_on_caps(run: &CaseRun) -> Claim {
     );
     Claim {
         claim: claim.into(),
+        decides: format!(
+            "fem-axisym on caps: worst |P/P_hertz − 1| = {}",
+            against_limit(largest.abs(), FORCE_AGREEMENT)
+        ),
         measured: format!(
             "fem-axisym on two 20 mm caps gripped rigidly on their cut faces: P / P_hertz − 1 up to {}{at_quoted}; \
              against mdr-domain (Hertz–MD in series with the caps' computed compliance) within {:.2} % at every position \
@@ -372,8 +390,13 @@ fn pressure_distribution(run: &CaseRun) -> Claim {
             ),
         ),
     };
+    let worst = fe.iter().fold(0.0, |m: f64, (_, e)| m.max(*e));
     Claim {
         claim: claim.into(),
+        decides: format!(
+            "worst FE RMS(p − p_hertz)/p0 = {}",
+            against_limit(worst, PROFILE_AGREEMENT)
+        ),
         measured: format!(
             "RMS of (p − p_hertz)/p0 along x over 0.1 c < r < 0.9 c at position {focus}: {}.",
             list.join("; ")
@@ -436,6 +459,10 @@ fn fem_tangential_force(run: &CaseRun) -> Claim {
     let (verdict, reading) = judge(worst, TANGENTIAL_AGREEMENT, "of the peak |Q| at every position");
     Claim {
         claim: claim.into(),
+        decides: format!(
+            "worst FE |Q − Q_{TANGENTIAL_REFERENCE}| / max|Q| = {}",
+            against_limit(worst, TANGENTIAL_AGREEMENT)
+        ),
         measured: format!(
             "largest |Q − Q_{TANGENTIAL_REFERENCE}| over the path positions, relative to the peak |Q|: {}.",
             list.join("; ")

@@ -43,7 +43,7 @@ impl Verdict {
     }
 
     /// Its CSS class in the report.
-    fn class(self) -> &'static str {
+    pub fn class(self) -> &'static str {
         match self {
             Verdict::Confirmed => "ok",
             Verdict::Partly => "info",
@@ -64,6 +64,8 @@ pub struct Claim {
     pub verdict: Verdict,
     /// The verdict in a sentence.
     pub reading: String,
+    /// The one number that decides the verdict, against what ("0.41 % against ≤ 1 %").
+    pub decides: String,
     /// The figure, check or section behind it.
     pub evidence: String,
 }
@@ -76,6 +78,7 @@ impl Claim {
             measured: format!("not measured: needs {needs}"),
             verdict: Verdict::NotMeasured,
             reading: String::new(),
+            decides: format!("needs {needs}"),
             evidence: evidence.into(),
         }
     }
@@ -94,8 +97,7 @@ pub fn claims(run: &CaseRun, study: &Study, quoted: &Quoted) -> Vec<Claim> {
 }
 
 /// The section: the claims table and how the surface fields were resolved.
-pub fn section(run: &CaseRun, study: &Study, quoted: &Quoted) -> Section {
-    let claims = claims(run, study, quoted);
+pub fn section(run: &CaseRun, study: &Study, claims: &[Claim]) -> Section {
     let table = Table {
         header: ["claim (paper)", "measured", "verdict", "finding", "behind it"]
             .iter()
@@ -122,10 +124,11 @@ pub fn section(run: &CaseRun, study: &Study, quoted: &Quoted) -> Section {
     let (notes, study_table) = study_notes(run, study);
     paragraphs.extend(notes);
     Section {
-        title: "The paper's claims put to the test".into(),
+        title: "The paper's claims in detail".into(),
         paragraphs,
         tables: std::iter::once(table).chain(study_table).collect(),
         figures: vec![],
+        folded: true,
     }
 }
 
@@ -182,6 +185,11 @@ fn study_notes(run: &CaseRun, study: &Study) -> (Vec<String>, Option<Table>) {
         rows,
     };
     (vec![text], Some(table))
+}
+
+/// A worst relative difference against the limit that judges it: "0.41 % against ≤ 1.00 %".
+fn against_limit(worst: f64, limit: f64) -> String {
+    format!("{:.2} % against ≤ {:.2} %", worst * 100.0, limit * 100.0)
 }
 
 /// A relative difference as a signed percentage, "+0.37 %".

@@ -143,7 +143,7 @@ fn surface_field_claims_are_measured_on_a_map_solver_with_its_resolution() {
     }
     // The section lists the study's rungs, their wall time marked as a timing (masked when
     // reports are compared).
-    let section = section(&run, &study, &quoted());
+    let section = section(&run, &study, &claims);
     assert_eq!(section.tables.len(), 2);
     assert_eq!(section.tables[1].rows.len(), 2);
     assert!(section.tables[1].rows.iter().all(|r| r[3].class == "timing"));

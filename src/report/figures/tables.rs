@@ -2,10 +2,10 @@
 //! the solvers they concern.
 
 use super::histories;
-use crate::check::Verdict;
+use crate::check::Outcome;
 use crate::report::document::{Cell, Table};
 use crate::report::format_value;
-use crate::solver::SolveError;
+use crate::report::glance::{missing_cell, verdict_class};
 use crate::verify::CaseRun;
 
 /// A warning stated once, with the solvers that gave it (none for the scene's own).
@@ -56,12 +56,31 @@ pub fn warnings(run: &CaseRun) -> Vec<Warning> {
     grouped
 }
 
-/// The check table: verdict, what, value, reference, error, tolerance and reason.
+/// The checks in the order a reader takes them in: the most severe verdict first
+/// ([`Verdict::severity`]), then by solver in the case's order, then as the case lists them.
+pub fn checks_by_severity(run: &CaseRun) -> Vec<&Outcome> {
+    let solvers = run.case.required_solvers();
+    let rank = |o: &Outcome| {
+        solvers
+            .iter()
+            .position(|s| *s == o.spec.solver)
+            .unwrap_or(solvers.len())
+    };
+    let mut outcomes: Vec<&Outcome> = run.outcomes.iter().collect();
+    // A stable sort: the case's own order stays within a solver.
+    outcomes.sort_by_key(|o| (std::cmp::Reverse(o.verdict.severity()), rank(o)));
+    outcomes
+}
+
+/// The check table: verdict, solver, what, value against reference, error against tolerance,
+/// and the tolerance's reason; the most severe first, grouped by solver.
 pub fn check_table(run: &CaseRun) -> Table {
-    // Five columns, so that the table fits a laptop screen: what is checked, the value against
-    // its reference, the error against the tolerance, and why that tolerance.
+    // Six columns whose text wraps, so that the table fits a laptop screen with the reason in
+    // view: what is checked, the value against its reference, the error against the tolerance,
+    // and why that tolerance.
     let header = [
         "verdict",
+        "solver",
         "check",
         "value against reference",
         "error (measure) / tolerance",
@@ -69,18 +88,10 @@ pub fn check_table(run: &CaseRun) -> Table {
     ];
     Table {
         header: header.iter().map(|s| s.to_string()).collect(),
-        rows: run
-            .outcomes
-            .iter()
+        rows: checks_by_severity(run)
+            .into_iter()
             .map(|o| {
-                let class = match o.verdict {
-                    Verdict::Ok => "ok",
-                    Verdict::Nook => "nook",
-                    Verdict::Info => "info",
-                    Verdict::Unavailable => "na",
-                    Verdict::Known => "known",
-                    Verdict::Fixed => "nook",
-                };
+                let class = verdict_class(o.verdict);
                 let unit = o.spec.quantity.unit();
                 let worst = o
                     .worst_step
@@ -98,12 +109,8 @@ pub fn check_table(run: &CaseRun) -> Table {
                 );
                 vec![
                     Cell::with_class(o.verdict.label(), class),
-                    Cell::plain(format!(
-                        "{} {} at {}{worst}",
-                        o.spec.solver,
-                        o.spec.quantity.name(),
-                        o.spec.at
-                    )),
+                    Cell::plain(&o.spec.solver),
+                    Cell::plain(format!("{} at {}{worst}", o.spec.quantity.name(), o.spec.at)),
                     Cell::plain(format!(
                         "{} {unit} against {} {unit} ({})",
                         format_value(o.value),
@@ -226,16 +233,7 @@ pub fn solver_table(run: &CaseRun) -> Table {
                     ]
                 }
                 Some(Err(e)) => {
-                    let (status, class) = match e {
-                        SolveError::Unavailable(_) => ("missing: not available", "na"),
-                        SolveError::NotApplicable(_) => ("missing: not applicable", "na"),
-                        SolveError::Failed(_) => ("missing: failed", "nook"),
-                    };
-                    let mut row = vec![
-                        Cell::plain(name),
-                        Cell::with_class(status, class),
-                        Cell::plain(e.to_string()),
-                    ];
+                    let mut row = vec![Cell::plain(name), missing_cell(e), Cell::plain(e.to_string())];
                     row.extend((0..4).map(|_| Cell::plain("—")));
                     row
                 }
@@ -251,6 +249,66 @@ pub fn solver_table(run: &CaseRun) -> Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn checks_list_the_most_severe_first_grouped_by_solver() {
+        use crate::case::Case;
+        use crate::check::{CheckSpec, ErrorMeasure, Reference, Verdict, Where};
+        use crate::history::Quantity;
+        let text = "friction = 0.2\nsolvers = [\"hertz\", \"mdr\"]\n[body1]\nradius = 0.1\nyoung = 70e9\n\
+                    poisson = 0.3\n[path]\nunit = \"um\"\ndelta_n = [0, 10]\ndelta_t = [0, 0]\nsubsteps = 1\n";
+        let case = Case::parse(std::path::Path::new("order.toml"), text).unwrap();
+        let outcome = |solver: &str, verdict: Verdict| Outcome {
+            spec: CheckSpec {
+                solver: solver.into(),
+                quantity: Quantity::NormalForce,
+                at: Where::EveryStep,
+                reference: Reference::Solver("hertz".into()),
+                measure: ErrorMeasure::Relative,
+                tolerance: Some(0.01),
+                reason: format!("{solver} {}", verdict.label()),
+                known_failure: None,
+            },
+            verdict,
+            value: None,
+            reference: None,
+            error: Some(0.001),
+            worst_step: None,
+            message: None,
+        };
+        let run = CaseRun {
+            case,
+            warnings: Vec::new(),
+            histories: crate::check::Histories::new(),
+            outcomes: vec![
+                outcome("mdr", Verdict::Ok),
+                outcome("hertz", Verdict::Info),
+                outcome("mdr", Verdict::Nook),
+                outcome("hertz", Verdict::Ok),
+                outcome("hertz", Verdict::Nook),
+                outcome("mdr", Verdict::Unavailable),
+            ],
+        };
+        let table = check_table(&run);
+        let order: Vec<(&str, &str)> = table
+            .rows
+            .iter()
+            .map(|r| (r[0].text.as_str(), r[1].text.as_str()))
+            .collect();
+        assert_eq!(
+            order,
+            [
+                ("NOOK", "hertz"),
+                ("NOOK", "mdr"),
+                ("N/A", "mdr"),
+                ("INFO", "hertz"),
+                ("OK", "hertz"),
+                ("OK", "mdr")
+            ]
+        );
+        // The reason stays in the row, in its own column.
+        assert_eq!(table.rows[0][5].text, "hertz NOOK");
+    }
 
     #[test]
     fn details_keep_four_significant_digits() {

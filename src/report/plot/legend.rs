@@ -3,7 +3,7 @@
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 
-use super::{fonts, text_width, DATA_STROKE};
+use super::{dashes, fonts, marker, text_width, DATA_STROKE};
 
 /// Height of one legend row [px].
 const ROW: u32 = 22;
@@ -36,6 +36,8 @@ pub struct Entry {
     pub name: String,
     /// The sample's colour.
     pub colour: RGBColor,
+    /// Its line's dashes and its marker's shape ([`super::pen`]).
+    pub variant: usize,
     /// The sample.
     pub mark: Mark,
 }
@@ -99,18 +101,22 @@ impl Legend {
                         }
                     }
                     Mark::Line | Mark::Marker => {
-                        root.draw(&PathElement::new(
-                            vec![(a, y), (b, y)],
-                            entry.colour.stroke_width(DATA_STROKE),
-                        ))
-                        .map_err(|e| fail(&e))?;
+                        // The line's dashes as the data draw them: the same lengths on and off.
+                        let (on, off) = dashes(entry.variant).unwrap_or((SAMPLE, 0));
+                        for s in (a..b).step_by((on + off) as usize) {
+                            root.draw(&PathElement::new(
+                                vec![(s, y), ((s + on as i32).min(b), y)],
+                                entry.colour.stroke_width(DATA_STROKE),
+                            ))
+                            .map_err(|e| fail(&e))?;
+                        }
                         if entry.mark == Mark::Marker {
-                            root.draw(&Circle::new(((a + b) / 2, y), 4, entry.colour.filled()))
+                            root.draw(&marker(((a + b) / 2, y), entry.colour, entry.variant))
                                 .map_err(|e| fail(&e))?;
                         }
                     }
                     Mark::Point => {
-                        root.draw(&Circle::new(((a + b) / 2, y), 4, entry.colour.filled()))
+                        root.draw(&marker(((a + b) / 2, y), entry.colour, entry.variant))
                             .map_err(|e| fail(&e))?;
                     }
                     Mark::Swatch => {

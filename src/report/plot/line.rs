@@ -9,10 +9,13 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::legend::{Entry, Legend, Mark};
-use super::{compose, fonts, register_font, span, text_width, tick_label, COLOURS, DATA_STROKE};
+use super::{
+    compose, dashes, fonts, pen, register_font, span, text_width, tick_label, DATA_STROKE, MARKER_SIZE,
+    TRIANGLE_SIZE,
+};
 
-/// Width and height of every line plot [px], legend included.
-const SIZE: (u32, u32) = (900, 480);
+/// Width and height of a line plot [px], legend included, unless the figure sizes it.
+pub const SIZE: (u32, u32) = (900, 480);
 
 /// The colour of a guide series.
 pub(super) const GUIDE: RGBColor = RGBColor(120, 120, 120);
@@ -96,10 +99,11 @@ pub struct LinePlot {
     pub axes: Axes,
 }
 
-/// A series with its colour, ready to draw.
+/// A series with its colour and variant ([`super::pen`]), ready to draw.
 struct Drawn<'a> {
     series: &'a Series,
     colour: RGBColor,
+    variant: usize,
     /// Points on a log axis at or below zero are left out (the caller says so in the caption).
     points: Vec<Vec<(f64, f64)>>,
 }
@@ -108,6 +112,13 @@ impl LinePlot {
     /// The plot as an SVG document: the chart on the left, the legend in its own area on the
     /// right. On a log axis, points ≤ 0 are not drawn (never on an invented floor).
     pub fn to_svg(&self) -> Result<String> {
+        self.to_svg_in(SIZE, &[])
+    }
+
+    /// The plot in `size` px, the k-th coloured series drawn with the figure's pen `pens[k]`
+    /// ([`super::pen`]; `k` itself where `pens` has no entry), so that the panels of one figure
+    /// give each solver one colour-and-variant pair and never give one pair to two solvers.
+    pub fn to_svg_in(&self, size: (u32, u32), pens: &[usize]) -> Result<String> {
         register_font()?;
         let (log_x, log_y) = match self.axes {
             Axes::Linear => (false, false),
@@ -115,17 +126,25 @@ impl LinePlot {
             Axes::LogLog => (true, true),
         };
         let drawable = |&(x, y): &(f64, f64)| (!log_x || x > 0.0) && (!log_y || y > 0.0);
-        let mut colours = COLOURS.iter().cycle();
+        let mut coloured = 0;
         let drawn: Vec<Drawn> = self
             .series
             .iter()
-            .map(|series| Drawn {
+            .map(|series| {
+                let (colour, variant) = match series.style {
+                    Style::Reference => (BLACK, 0),
+                    Style::Guide => (GUIDE, 0),
+                    _ => {
+                        coloured += 1;
+                        pen(pens.get(coloured - 1).copied().unwrap_or(coloured - 1))
+                    }
+                };
+                (series, colour, variant)
+            })
+            .map(|(series, colour, variant)| Drawn {
                 series,
-                colour: match series.style {
-                    Style::Reference => BLACK,
-                    Style::Guide => GUIDE,
-                    _ => *colours.next().expect("a cycle"),
-                },
+                colour,
+                variant,
                 points: series
                     .runs
                     .iter()
@@ -140,6 +159,7 @@ impl LinePlot {
                 .map(|d| Entry {
                     name: d.series.name.clone(),
                     colour: d.colour,
+                    variant: d.variant,
                     mark: match d.series.style {
                         Style::Reference => Mark::Dashed,
                         Style::Guide => Mark::Dotted,
@@ -155,7 +175,7 @@ impl LinePlot {
         } else {
             legend.width()?
         };
-        let chart_size = (SIZE.0 - legend_width, SIZE.1);
+        let chart_size = (size.0.saturating_sub(legend_width).max(size.0 / 3), size.1);
         let all = || drawn.iter().flat_map(|d| d.points.iter().flatten());
         let x = span(all().map(|p| p.0), log_x);
         let y = span(all().map(|p| p.1), log_y);
@@ -173,7 +193,7 @@ impl LinePlot {
         if legend_width > 0 {
             parts.push((Some("legend"), (chart_size.0, 34), legend.to_svg()?));
         }
-        Ok(compose(SIZE, &parts))
+        Ok(compose(size, &parts))
     }
 
     /// The chart alone, with a y label area of `y_area` px; records the y tick labels.
@@ -266,26 +286,50 @@ impl LinePlot {
                             GUIDE.stroke_width(DATA_STROKE),
                         ))
                         .map(|_| ()),
-                    Style::Line if joined => chart
-                        .draw_series(LineSeries::new(points, d.colour.stroke_width(DATA_STROKE)))
-                        .map(|_| ()),
-                    Style::Markers if joined => {
-                        let line = LineSeries::new(points.clone(), d.colour.stroke_width(DATA_STROKE));
-                        chart.draw_series(line).map_err(|e| fail(&e))?;
-                        chart
-                            .draw_series(points.map(|p| Circle::new(p, 4, d.colour.filled())))
-                            .map(|_| ())
-                    }
+                    Style::Line if joined => draw_run(&mut chart, run, d, (true, false)),
+                    Style::Markers if joined => draw_run(&mut chart, run, d, (true, true)),
                     // A point with no neighbour in its run is a marker whatever the style.
-                    _ => chart
-                        .draw_series(points.map(|p| Circle::new(p, 4, d.colour.filled())))
-                        .map(|_| ()),
+                    _ => draw_run(&mut chart, run, d, (false, true)),
                 }
                 .map_err(|e| fail(&e))?;
             }
         }
         Ok(())
     }
+}
+
+/// A coloured series' run: its line (solid or dashed by its variant) where `line`, its markers
+/// (shaped by its variant, as [`super::marker`] shapes them in the legend) where `markers`.
+fn draw_run<'a, X, Y>(
+    chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+    run: &[(f64, f64)],
+    d: &Drawn,
+    (line, markers): (bool, bool),
+) -> Result<(), DrawingAreaErrorKind<std::io::Error>>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let points = run.iter().copied();
+    if line {
+        let style = d.colour.stroke_width(DATA_STROKE);
+        match dashes(d.variant) {
+            None => chart.draw_series(LineSeries::new(points.clone(), style))?,
+            Some((on, off)) => chart.draw_series(DashedLineSeries::new(points.clone(), on, off, style))?,
+        };
+    }
+    if markers {
+        let style = d.colour.filled();
+        let (r, t) = (MARKER_SIZE as i32, TRIANGLE_SIZE as i32);
+        match d.variant {
+            0 => chart.draw_series(points.map(|p| Circle::new(p, MARKER_SIZE, style)))?,
+            1 => chart.draw_series(
+                points.map(|p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)),
+            )?,
+            _ => chart.draw_series(points.map(|p| TriangleMarker::new(p, t, style)))?,
+        };
+    }
+    Ok(())
 }
 
 #[cfg(test)]

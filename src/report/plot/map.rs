@@ -335,17 +335,20 @@ impl MapPlot {
                         name: "stick".into(),
                         colour: STICK,
                         mark: Mark::Swatch,
+                        variant: 0,
                     },
                     Entry {
                         name: "slip".into(),
                         colour: SLIP,
                         mark: Mark::Swatch,
+                        variant: 0,
                     },
                 ];
                 entries.extend(self.overlays.iter().map(|o| Entry {
                     name: o.label.clone(),
                     colour: BLACK,
                     mark: Mark::Dashed,
+                    variant: 0,
                 }));
                 let legend = Legend { entries };
                 return Ok(Some((legend.width()?, legend.to_svg()?)));

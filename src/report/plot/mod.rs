@@ -15,7 +15,7 @@ mod legend;
 mod line;
 mod map;
 
-pub use line::{Axes, LinePlot, Series, Style};
+pub use line::{Axes, LinePlot, Series, Style, SIZE};
 pub use map::{Cells, MapPanel, MapPlot, MapValue, Overlay, Scale};
 
 use std::sync::Once;
@@ -43,8 +43,9 @@ pub mod fonts {
 /// Data strokes are at least this wide [px]; axes, grid lines and ticks are thinner.
 pub const DATA_STROKE: u32 = 2;
 
-/// Distinguishable line colours (Tableau 10); the reference series is black.
-const COLOURS: [RGBColor; 10] = [
+/// Distinguishable line colours: Tableau 10, then ten darker or more saturated ones unlike any
+/// of them; the reference series is black and a guide grey, so neither is here.
+const COLOURS: [RGBColor; 20] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -55,7 +56,59 @@ const COLOURS: [RGBColor; 10] = [
     RGBColor(127, 127, 127),
     RGBColor(188, 189, 34),
     RGBColor(23, 190, 207),
+    RGBColor(0, 0, 128),
+    RGBColor(128, 0, 0),
+    RGBColor(0, 128, 128),
+    RGBColor(128, 128, 0),
+    RGBColor(240, 50, 230),
+    RGBColor(230, 180, 0),
+    RGBColor(0, 90, 0),
+    RGBColor(75, 0, 130),
+    RGBColor(250, 128, 114),
+    RGBColor(90, 60, 20),
 ];
+
+/// Series drawn in one line style before the next style begins: about as many as a reader tells
+/// apart by colour alone.
+const PER_STYLE: usize = 10;
+
+/// How the `slot`-th coloured series of a figure is drawn: its colour, and a variant (0 solid
+/// line and round markers, 1 dashed and square, 2 dotted and triangular) that changes every
+/// [`PER_STYLE`] series. Every colour-and-variant pair differs up to 60 series.
+pub fn pen(slot: usize) -> (RGBColor, usize) {
+    (COLOURS[slot % COLOURS.len()], (slot / PER_STYLE) % 3)
+}
+
+/// A filled marker at `at` in `colour`, its shape by variant: a circle, a square, a triangle.
+fn marker<'a, C: Clone + 'a, DB: DrawingBackend + 'a>(
+    at: C,
+    colour: RGBColor,
+    variant: usize,
+) -> plotters::element::DynElement<'a, DB, C> {
+    use plotters::element::IntoDynElement;
+    let style = colour.filled();
+    let at = EmptyElement::at(at);
+    let (r, t) = (MARKER_SIZE as i32, TRIANGLE_SIZE as i32);
+    match variant {
+        0 => (at + Circle::new((0, 0), MARKER_SIZE, style)).into_dyn(),
+        1 => (at + Rectangle::new([(-r, -r), (r, r)], style)).into_dyn(),
+        _ => (at + TriangleMarker::new((0, 0), t, style)).into_dyn(),
+    }
+}
+
+/// A round or square marker's half-width [px].
+const MARKER_SIZE: u32 = 4;
+/// A triangular marker's size [px]: a little larger, its area near the others'.
+const TRIANGLE_SIZE: u32 = 5;
+
+/// The dash pattern of a variant [px drawn, px skipped], or `None` for a solid line.
+fn dashes(variant: usize) -> Option<(u32, u32)> {
+    match variant {
+        0 => None,
+        1 => Some((10, 5)),
+        _ => Some((3, 4)),
+    }
+}
 
 /// Registers the embedded font once per process.
 fn register_font() -> Result<()> {
@@ -156,7 +209,7 @@ fn power_of_ten_label(value: f64) -> String {
 
 /// One SVG document from parts drawn separately: each part's content is placed at its offset
 /// inside a group, with a class where given (`legend` marks a legend or colour bar).
-fn compose(size: (u32, u32), parts: &[(Option<&str>, (u32, u32), String)]) -> String {
+pub fn compose(size: (u32, u32), parts: &[(Option<&str>, (u32, u32), String)]) -> String {
     let mut svg = format!(
         "<svg width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" xmlns=\"http://www.w3.org/2000/svg\">\n",
         w = size.0,
@@ -197,6 +250,21 @@ mod tests {
         assert_eq!(tick_label(1e-9, (1e-9, 1e-2), true), "10⁻⁹");
         assert_eq!(tick_label(100.0, (1.0, 1e3), true), "10²");
         assert_eq!(tick_label(2e-5, (1e-6, 1e-4), true), "2×10⁻⁵");
+    }
+
+    #[test]
+    fn every_series_has_its_own_colour_and_variant() {
+        // The first 20 differ in colour alone; up to 60 the pairs differ.
+        let rgb = |c: RGBColor| (c.0, c.1, c.2);
+        let colours: std::collections::HashSet<_> = (0..20).map(|k| rgb(pen(k).0)).collect();
+        assert_eq!(colours.len(), 20);
+        let pairs: std::collections::HashSet<_> = (0..60).map(|k| (rgb(pen(k).0), pen(k).1)).collect();
+        assert_eq!(pairs.len(), 60);
+        // The first ten are solid; beyond about ten series a dash pattern as well.
+        assert!((0..10).all(|k| pen(k).1 == 0));
+        assert!((10..20).all(|k| pen(k).1 == 1 && dashes(1).is_some()));
+        // None is the reference's black or the guide's grey.
+        assert!((0..20).all(|k| pen(k).0 != BLACK && pen(k).0 != super::line::GUIDE));
     }
 
     #[test]

@@ -2,17 +2,13 @@
 //! transverse traction q_y against q_x, its sign pattern over the quadrants, the axisymmetry of
 //! |q|, and the comparison of the judged solver with the other map solvers.
 
-use super::{cusp_sampling, fraction, Evidence, Measured, References, Verdict, MAGNITUDE_AXISYMMETRY};
+use super::{cusp_sampling, fraction, Evidence, Found, Measured, References, Verdict, MAGNITUDE_AXISYMMETRY};
 use crate::report::claims::measure::{AXIS_READ, BOXES_PER_RADIUS};
 
 /// The transverse traction: its size against q_x (on the recovered values, judged; averaged over
 /// boxes; at single samples), its sign
 /// pattern, the axisymmetry of |q|, and how it compares with the other map solvers.
-pub(super) fn claim(
-    e: &Evidence,
-    references: &References,
-    others: &[&Evidence],
-) -> (String, Verdict, String) {
+pub(super) fn claim(e: &Evidence, references: &References, others: &[&Evidence]) -> Found {
     let as_percent = |v: Option<f64>| v.map(|r| format!("{:.2} %", r * 100.0));
     let best = &e.best().measures;
     let peak = best.peak.map_or(0.0, |p| p.value);
@@ -41,7 +37,12 @@ pub(super) fn claim(
         fraction(best.transverse_share, peak) * 100.0
     );
     let Some(r) = recovered(e.best()).filter(|&r| r > 0.0) else {
-        return (measured, Verdict::NotConfirmed, "no transverse traction".into());
+        return Found::new(
+            measured,
+            Verdict::NotConfirmed,
+            "no transverse traction",
+            "max |q_y| / max |q_x| = 0".into(),
+        );
     };
     // A mesh's single-sample maximum is a one-node overshoot at the stick edge (fit::recovery):
     // said, not judged on.
@@ -115,7 +116,18 @@ pub(super) fn claim(
             ),
         ),
     };
-    (measured, verdict, format!("{finding}{pointwise}{beside}"))
+    let decides = format!(
+        "max |q_y| / max |q_x| = {:.1} %; |q| along x against y {:.2} % against ≤ {:.2} % of its peak",
+        r * 100.0,
+        d * 100.0,
+        (MAGNITUDE_AXISYMMETRY.max(change).max(cusp)) * 100.0
+    );
+    Found::new(
+        measured,
+        verdict,
+        format!("{finding}{pointwise}{beside}"),
+        decides,
+    )
 }
 
 /// max|q_y| / max|q_x| over the boxes, if there is a q_x.
