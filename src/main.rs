@@ -10,6 +10,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use spherecontact::case::{limits, Case};
 use spherecontact::external::{geo, toolchain::Toolchain};
+use spherecontact::impact::{command as impact, ImpactRun};
 use spherecontact::report::{history_files, junit, summary, table};
 use spherecontact::{io, registry, resolution, solver, verify};
 
@@ -26,7 +27,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run a case's solvers and write DIR/<solver>.csv and DIR/<solver>.json.
+    /// Run a case's solvers and write DIR/<solver>.csv and DIR/<solver>.json (an impact case:
+    /// DIR/<solver>.csv per sweep point and DIR/<solver>-trace.csv, docs/impact.md).
     Run {
         /// The case file.
         case: PathBuf,
@@ -273,6 +275,11 @@ fn run(
     resolution: &[String],
     ranks: Option<u32>,
 ) -> Result<ExitCode, InputError> {
+    if impact::is_impact_file(case) {
+        let plan = impact::plan(case, solvers, out).map_err(InputError)?;
+        let ok = plan.execute().map_err(InputError)?;
+        return Ok(if ok { ExitCode::SUCCESS } else { ExitCode::FAILURE });
+    }
     // Plan: the case and every solver named must be valid before anything is written.
     let case = load_case(case, ranks, &resolution_options(resolution)?)?;
     let mut plan = planned_solvers(&case, solvers)?;
@@ -338,6 +345,12 @@ fn verify_cases(
     if files.is_empty() {
         return Err(InputError("no case files to verify".into()));
     }
+    let (impact_files, files): (Vec<PathBuf>, Vec<PathBuf>) =
+        files.into_iter().partition(|f| impact::is_impact_file(f));
+    let impact_cases = impact_files
+        .iter()
+        .map(|f| spherecontact::case::load_impact(f))
+        .collect::<Result<Vec<_>, _>>()?;
     let cases = files
         .iter()
         .map(|f| load_case(f, ranks, &resolutions))
@@ -349,8 +362,17 @@ fn verify_cases(
     for run in &runs {
         print!("{}", table::case_block(run));
     }
-    let outcomes = runs.iter().flat_map(|r| &r.outcomes);
-    let count = |label: &str| outcomes.clone().filter(|o| o.verdict.label() == label).count();
+    let impact_runs: Vec<ImpactRun> = impact_cases.into_iter().map(ImpactRun::of).collect();
+    for run in &impact_runs {
+        print!("{}", run.block());
+    }
+    let verdicts = runs.iter().flat_map(|r| r.outcomes.iter().map(|o| o.verdict));
+    let verdicts = verdicts.chain(
+        impact_runs
+            .iter()
+            .flat_map(|r| r.outcomes.iter().map(|o| o.verdict)),
+    );
+    let count = |label: &str| verdicts.clone().filter(|v| v.label() == label).count();
     let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
     println!("verify: {ok} passed, {nook} failed, {info} informational, {na} not available");
     if let Some(file) = junit_file {
@@ -360,13 +382,12 @@ fn verify_cases(
     if require_external && na > 0 {
         println!("verify: {na} not-available checks count as failures (--require-external)");
     }
-    Ok(
-        if runs.iter().all(verify::CaseRun::passed) && !(require_external && na > 0) {
-            ExitCode::SUCCESS
-        } else {
-            ExitCode::FAILURE
-        },
-    )
+    let passed = runs.iter().all(verify::CaseRun::passed) && impact_runs.iter().all(ImpactRun::passed);
+    Ok(if passed && !(require_external && na > 0) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
 }
 
 fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, InputError> {
@@ -544,6 +565,18 @@ fn list() -> Result<ExitCode, InputError> {
     }
     println!("cases:");
     for file in case_files(Path::new("cases")).unwrap_or_default() {
+        if impact::is_impact_file(&file) {
+            match spherecontact::case::load_impact(&file) {
+                Ok(case) => println!(
+                    "  {:<22} {}  (impact) {}",
+                    case.name,
+                    file.display(),
+                    case.description.lines().next().unwrap_or("")
+                ),
+                Err(e) => println!("  (invalid) {e}"),
+            }
+            continue;
+        }
         match Case::load(&file) {
             Ok(case) => println!(
                 "  {:<22} {}  {}",

@@ -82,6 +82,7 @@ pub mod case_solvers;
 mod check_rules;
 mod domain;
 mod error;
+mod impact_rules;
 pub mod input;
 mod raw;
 pub mod reference;
@@ -91,6 +92,7 @@ mod scene_rules;
 pub use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
+pub use impact_rules::{is_impact, load_impact, parse_impact};
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
