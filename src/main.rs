@@ -107,6 +107,15 @@ enum Command {
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
     },
+    /// Run impact cases (default: every file under cases/impact/) with their checks and write
+    /// the report "How far is your DEM code from exact Mindlin–Deresiewicz in impact?".
+    Impact {
+        /// Impact case files; default: every .toml under cases/impact/.
+        cases: Vec<PathBuf>,
+        /// Output folder: the report, and each case's solver files in <case>/.
+        #[arg(long, default_value = "out/impact")]
+        out: PathBuf,
+    },
     /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
     /// (build with --release for representative numbers).
     Bench {
@@ -179,6 +188,9 @@ fn main() -> ExitCode {
             repeat,
             out,
         } => bench(&case, &solvers, repeat as usize, out),
+        Command::Impact { cases, out } => impact::report(&cases, &out)
+            .map(|ok| if ok { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+            .map_err(InputError),
     };
     match result {
         Ok(code) => code,

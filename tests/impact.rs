@@ -217,3 +217,15 @@ fn bad_impact_cases_exit_2_naming_file_field_and_range() {
         assert!(!stderr.contains("panicked"), "{name}: {stderr}");
     }
 }
+
+#[test]
+fn the_impact_command_writes_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = root().join("cases/impact/chung-ooi-3.toml");
+    let output = spherecontact(&["impact", case.to_str().unwrap(), "--out", "out"], dir.path());
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stdout));
+    let html = std::fs::read_to_string(dir.path().join("out/report.html")).unwrap();
+    assert!(html.contains("How far is your DEM code from exact Mindlin–Deresiewicz in impact?"));
+    assert!(dir.path().join("out/figures/chung-ooi-3-normal-restitution-prescribed.svg").exists());
+    assert!(dir.path().join("out/chung-ooi-3/mdr.csv").exists());
+}

@@ -91,3 +91,46 @@ pub fn verify(file: &Path) -> Result<ImpactRun, String> {
     let case = case::load_impact(file).map_err(|e| e.to_string())?;
     Ok(ImpactRun::of(case))
 }
+
+/// The impact cases shipped under `dir` (`cases/impact`): its `.toml` files, sorted.
+pub fn shipped_cases(dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let entries = std::fs::read_dir(dir).map_err(|e| format!("{}: cannot list cases: {e}", dir.display()))?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// `spherecontact impact`: plans (every case valid, `out` writable), runs every case with its
+/// checks, writes each case's solver files into `out/<case>/` and the report into `out`, prints
+/// the check rows; true when every case passed.
+pub fn report(files: &[PathBuf], out: &Path) -> Result<bool, String> {
+    let files = if files.is_empty() {
+        shipped_cases(Path::new("cases/impact"))?
+    } else {
+        files.to_vec()
+    };
+    if files.is_empty() {
+        return Err("no impact cases to run".into());
+    }
+    let cases = files
+        .iter()
+        .map(|f| case::load_impact(f).map_err(|e| e.to_string()))
+        .collect::<Result<Vec<_>, _>>()?;
+    crate::io::check_output_folder(out).map_err(|e| format!("--out {}: {e}", out.display()))?;
+    let runs: Vec<ImpactRun> = cases.into_iter().map(ImpactRun::of).collect();
+    for run in &runs {
+        let dir = out.join(&run.case.name);
+        std::fs::create_dir_all(&dir).map_err(|e| format!("--out {}: {e}", dir.display()))?;
+        files::write(&dir, &run.case, &run.runs).map_err(|e| format!("--out {}: {e}", dir.display()))?;
+        print!("{}", run.block());
+    }
+    let document = crate::report::impact::document(&runs).map_err(|e| format!("building the report: {e}"))?;
+    document
+        .write(out)
+        .map_err(|e| format!("--out {}: {e}", out.display()))?;
+    println!("report: {}", out.join("report.html").display());
+    Ok(runs.iter().all(ImpactRun::passed))
+}

@@ -8,6 +8,7 @@ pub mod dem_scoreboard;
 pub mod document;
 pub mod figures;
 pub mod history_files;
+pub mod impact;
 pub mod junit;
 pub mod paper;
 pub mod plot;
