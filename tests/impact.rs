@@ -19,6 +19,18 @@ fn shipped(n: u32) -> ImpactCase {
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// Runs `spherecontact` with `args` in `dir` and asserts it succeeds.
+fn succeeds(args: &[&str], dir: &std::path::Path) {
+    let output = spherecontact(args, dir);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
 #[test]
 fn every_shipped_impact_case_loads_and_names_its_sources() {
     let files: Vec<_> = common::every_case_file()
@@ -42,7 +54,7 @@ fn every_shipped_impact_case_loads_and_names_its_sources() {
 fn run_writes_a_row_per_sweep_point_with_the_documented_columns() {
     let dir = tempfile::tempdir().unwrap();
     let case = root().join("cases/impact/chung-ooi-4.toml");
-    let output = spherecontact(
+    succeeds(
         &[
             "run",
             case.to_str().unwrap(),
@@ -54,12 +66,6 @@ fn run_writes_a_row_per_sweep_point_with_the_documented_columns() {
             "out",
         ],
         dir.path(),
-    );
-    assert_eq!(
-        output.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
     );
     for file in [
         "mdr.csv",
@@ -96,15 +102,9 @@ fn an_undefined_quantity_is_an_empty_cell() {
     // Test 3 is normal impact: no slip before or after, so e_t is undefined at every point.
     let dir = tempfile::tempdir().unwrap();
     let case = root().join("cases/impact/chung-ooi-3.toml");
-    let output = spherecontact(
+    succeeds(
         &["run", case.to_str().unwrap(), "--solver", "mdr", "--out", "out"],
         dir.path(),
-    );
-    assert_eq!(
-        output.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
     );
     let text = std::fs::read_to_string(dir.path().join("out/mdr.csv")).unwrap();
     for row in text.lines().skip(1) {
@@ -223,9 +223,17 @@ fn the_impact_command_writes_the_report() {
     let dir = tempfile::tempdir().unwrap();
     let case = root().join("cases/impact/chung-ooi-3.toml");
     let output = spherecontact(&["impact", case.to_str().unwrap(), "--out", "out"], dir.path());
-    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stdout));
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stdout)
+    );
     let html = std::fs::read_to_string(dir.path().join("out/report.html")).unwrap();
     assert!(html.contains("How far is your DEM code from exact Mindlin–Deresiewicz in impact?"));
-    assert!(dir.path().join("out/figures/chung-ooi-3-normal-restitution-prescribed.svg").exists());
+    assert!(dir
+        .path()
+        .join("out/figures/chung-ooi-3-normal-restitution-prescribed.svg")
+        .exists());
     assert!(dir.path().join("out/chung-ooi-3/mdr.csv").exists());
 }

@@ -180,12 +180,7 @@ impl Validator<'_> {
             return Err(self.error(&raw.kind, "kind", "allowed: \"impact\" (absent for a path case)"));
         }
         let name = self.name(raw.name.as_ref())?;
-        let friction = self.number(
-            &raw.friction,
-            "friction",
-            |m| (0.0..=limits::MAX_FRICTION).contains(&m),
-            "0 ≤ μ ≤ 10",
-        )?;
+        let friction = self.friction(&raw.friction)?;
         let restitution = match &raw.restitution {
             Some(e) => self.number(e, "restitution", |e| (0.01..=1.0).contains(&e), "0.01 ≤ e ≤ 1")?,
             None => 1.0,
@@ -517,15 +512,7 @@ impl Validator<'_> {
         let solver = self.impact_solver_name(&raw.solver, &format!("{field}.solver"))?;
         let quantity = Quantity::from_name(raw.quantity.get_ref()).ok_or_else(|| {
             let allowed: Vec<&str> = Quantity::ALL.iter().map(|q| q.name()).collect();
-            self.error(
-                &raw.quantity,
-                format!("{field}.quantity"),
-                format!(
-                    "unknown quantity `{}` (allowed: {})",
-                    raw.quantity.get_ref(),
-                    allowed.join(", ")
-                ),
-            )
+            self.unknown_quantity(&raw.quantity, field, &allowed)
         })?;
         let variant = match raw.variant.as_ref().map(|v| (v, v.get_ref().as_str())) {
             None | Some((_, "prescribed")) => Variant::Prescribed,

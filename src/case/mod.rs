@@ -237,14 +237,32 @@ impl Validator<'_> {
         }
     }
 
-    fn case(mut self, raw: RawCase) -> Result<Case, CaseError> {
-        let name = self.name(raw.name.as_ref())?;
-        let friction = self.number(
-            &raw.friction,
+    /// The Coulomb coefficient `friction`, 0 ≤ μ ≤ 10.
+    fn friction(&self, value: &Spanned<f64>) -> Result<f64, CaseError> {
+        self.number(
+            value,
             "friction",
             |m| (0.0..=limits::MAX_FRICTION).contains(&m),
             "0 ≤ μ ≤ 10",
-        )?;
+        )
+    }
+
+    /// An unknown quantity at `field`, listing `names`.
+    fn unknown_quantity(&self, raw: &Spanned<String>, field: &str, names: &[&str]) -> CaseError {
+        self.error(
+            raw,
+            format!("{field}.quantity"),
+            format!(
+                "unknown quantity `{}` (allowed: {})",
+                raw.get_ref(),
+                names.join(", ")
+            ),
+        )
+    }
+
+    fn case(mut self, raw: RawCase) -> Result<Case, CaseError> {
+        let name = self.name(raw.name.as_ref())?;
+        let friction = self.friction(&raw.friction)?;
         let pair = self.pair(&raw)?;
         let path = self.path(&raw.path, &pair)?;
         self.derived(&raw, &pair, friction, &path)?;
