@@ -469,7 +469,8 @@ impl Validator<'_> {
             };
             let v = point.approach_speed();
             let closed = HertzImpact::of(&point.elastic(), &hertz);
-            let message = if !(v > 0.0) {
+            // Velocities are validated finite: v is a number.
+            let message = if v <= 0.0 {
                 format!(
                     "the bodies do not approach{at}: normal approach speed v2z − v1z = {} m/s (allowed: > 0)",
                     crate::number::Short(v)

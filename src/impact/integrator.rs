@@ -155,7 +155,7 @@ pub fn integrate(
     stepping: Stepping,
 ) -> Result<Integration, IntegrationError> {
     let approach = point.approach_speed();
-    if !(approach > 0.0) {
+    if approach <= 0.0 || approach.is_nan() {
         return Err(IntegrationError::NoApproach(approach));
     }
     let inertia = Inertia::of(point);
@@ -167,7 +167,7 @@ pub fn integrate(
     let (mut max_normal_force, mut max_overlap) = (0.0_f64, 0.0_f64);
     let mut trace = Vec::new();
     let record = |sample: Sample, index: usize, trace: &mut Vec<Sample>| {
-        if stepping.stride > 0 && index % stepping.stride == 0 {
+        if stepping.stride > 0 && index.is_multiple_of(stepping.stride) {
             trace.push(sample);
         }
     };
