@@ -42,6 +42,7 @@ pub mod fem;
 pub mod fit;
 pub mod hertz;
 pub mod history;
+pub mod impact;
 pub mod io;
 pub mod limits;
 pub mod map_measure;

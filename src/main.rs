@@ -11,6 +11,7 @@ use clap::{Parser, Subcommand};
 use spherecontact::case::{limits, Case, ReadRoots};
 use spherecontact::external::permission::{self, CommandPermission};
 use spherecontact::external::{geo, toolchain::Toolchain};
+use spherecontact::impact::{command as impact, ImpactRun};
 use spherecontact::report::{history_files, junit, summary, table};
 use spherecontact::{io, registry, resolution, solver, text, verify};
 
@@ -55,7 +56,8 @@ impl CommandOptions {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run a case's solvers and write DIR/<solver>.csv and DIR/<solver>.json.
+    /// Run a case's solvers and write DIR/<solver>.csv and DIR/<solver>.json (an impact case:
+    /// DIR/<solver>.csv per sweep point and DIR/<solver>-trace.csv, docs/impact.md).
     Run {
         /// The case file.
         case: PathBuf,
@@ -150,6 +152,17 @@ enum Command {
         resolution: Vec<String>,
         #[command(flatten)]
         commands: CommandOptions,
+        #[command(flatten)]
+        force: Force,
+    },
+    /// Run impact cases (default: every file under cases/impact/) with their checks and write
+    /// the report "How far is your DEM code from exact Mindlin–Deresiewicz in impact?".
+    Impact {
+        /// Impact case files; default: every .toml under cases/impact/.
+        cases: Vec<PathBuf>,
+        /// Output folder: the report, and each case's solver files in <case>/.
+        #[arg(long, default_value = "out/impact")]
+        out: PathBuf,
         #[command(flatten)]
         force: Force,
     },
@@ -293,6 +306,9 @@ fn main() -> ExitCode {
         } => commands
             .permission()
             .and_then(|p| bench(&case, &solvers, repeat as usize, out, force.force, roots, &p)),
+        Command::Impact { cases, out, force } => impact::report(&cases, &out, force.force)
+            .map(|ok| if ok { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+            .map_err(InputError),
     };
     match result {
         Ok(code) => code,
@@ -403,6 +419,11 @@ fn run(
     roots: &ReadRoots,
     permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
+    if impact::is_impact_file(case) {
+        let plan = impact::plan(case, solvers, out, force).map_err(InputError)?;
+        let ok = plan.execute().map_err(InputError)?;
+        return Ok(if ok { ExitCode::SUCCESS } else { ExitCode::FAILURE });
+    }
     // Plan: the case and every solver named must be valid before anything is written.
     let case = load_case(case, ranks, &resolution_options(resolution)?, roots, permission)?;
     let mut plan = planned_solvers(&case, solvers)?;
@@ -474,6 +495,12 @@ fn verify_cases(
     if files.is_empty() {
         return Err(InputError("no case files to verify".into()));
     }
+    let (impact_files, files): (Vec<PathBuf>, Vec<PathBuf>) =
+        files.into_iter().partition(|f| impact::is_impact_file(f));
+    let impact_cases = impact_files
+        .iter()
+        .map(|f| spherecontact::case::load_impact(f))
+        .collect::<Result<Vec<_>, _>>()?;
     let cases = files
         .iter()
         .map(|f| load_case(f, ranks, &resolutions, roots, permission))
@@ -491,8 +518,17 @@ fn verify_cases(
     for run in &runs {
         print!("{}", table::case_block(run));
     }
-    let outcomes = runs.iter().flat_map(|r| &r.outcomes);
-    let count = |label: &str| outcomes.clone().filter(|o| o.verdict.label() == label).count();
+    let impact_runs: Vec<ImpactRun> = impact_cases.into_iter().map(ImpactRun::of).collect();
+    for run in &impact_runs {
+        print!("{}", run.block());
+    }
+    let verdicts = runs.iter().flat_map(|r| r.outcomes.iter().map(|o| o.verdict));
+    let verdicts = verdicts.chain(
+        impact_runs
+            .iter()
+            .flat_map(|r| r.outcomes.iter().map(|o| o.verdict)),
+    );
+    let count = |label: &str| verdicts.clone().filter(|v| v.label() == label).count();
     let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
     let (known, fixed) = (count("KNOWN"), count("FIXED?"));
     println!(
@@ -511,13 +547,12 @@ fn verify_cases(
     if require_external && na > 0 {
         println!("verify: {na} not-available checks count as failures (--require-external)");
     }
-    Ok(
-        if runs.iter().all(verify::CaseRun::passed) && !(require_external && na > 0) {
-            ExitCode::SUCCESS
-        } else {
-            ExitCode::FAILURE
-        },
-    )
+    let passed = runs.iter().all(verify::CaseRun::passed) && impact_runs.iter().all(ImpactRun::passed);
+    Ok(if passed && !(require_external && na > 0) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
 }
 
 fn mesh(
@@ -732,6 +767,18 @@ fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
     }
     println!("cases:");
     for file in case_files(Path::new("cases")).unwrap_or_default() {
+        if impact::is_impact_file(&file) {
+            match spherecontact::case::load_impact(&file) {
+                Ok(case) => println!(
+                    "  {:<22} {}  (impact) {}",
+                    text::one_line(&case.name),
+                    text::one_line(&file.display().to_string()),
+                    text::one_line(case.description.lines().next().unwrap_or(""))
+                ),
+                Err(e) => println!("  (invalid) {}", text::one_line(&e.to_string())),
+            }
+            continue;
+        }
         match Case::load_with(&file, roots) {
             Ok(case) => {
                 println!(

@@ -37,6 +37,7 @@ use crate::driver::{self, PathIncrement, PathModel};
 use crate::hertz::Hertz;
 use crate::history::{History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MAX_MDR_SPRINGS;
+use crate::pair::ContactPair;
 use crate::path::Step;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
@@ -67,8 +68,8 @@ impl Default for Mdr {
     }
 }
 
-/// The state of the spring bed along a path.
-pub(super) struct SpringBed {
+/// The state of the spring bed along a path (or an impact, `crate::impact`).
+pub(crate) struct SpringBed {
     /// Profile g(x_i) = x_i²/R* [m].
     profile: Vec<f64>,
     /// Tangential displacement u_i of each spring [m].
@@ -88,21 +89,32 @@ pub(super) struct SpringBed {
 }
 
 /// The bed's forces after one increment.
-pub(super) struct BedState {
+pub(crate) struct BedState {
     /// P [N].
-    pub(super) normal_force: f64,
+    pub(crate) normal_force: f64,
     /// Q [N].
-    pub(super) tangential_force: f64,
+    pub(crate) tangential_force: f64,
     /// The stick radius [m].
-    pub(super) stick_radius: f64,
+    pub(crate) stick_radius: f64,
 }
 
 impl SpringBed {
     /// A bed of `springs` springs for `scene`'s pair, friction and largest contact.
     pub(super) fn new(scene: &Scene, springs: usize) -> Self {
-        let half_width = (1.0 + WINDOW_MARGIN) * scene.max_contact_radius();
+        Self::with_window(&scene.pair, scene.friction, scene.max_contact_radius(), springs)
+    }
+
+    /// A bed of `springs` springs for `pair` and friction `friction`, whose window holds every
+    /// contact radius up to `max_contact_radius` [m] (with the margin `WINDOW_MARGIN`).
+    pub(crate) fn with_window(
+        pair: &ContactPair,
+        friction: f64,
+        max_contact_radius: f64,
+        springs: usize,
+    ) -> Self {
+        let half_width = (1.0 + WINDOW_MARGIN) * max_contact_radius;
         let dx = half_width / springs as f64;
-        let r_star = scene.pair.effective_radius();
+        let r_star = pair.effective_radius();
         // Spring i sits at the midpoint x_i = (i + ½) Δx of its cell.
         let profile: Vec<f64> = (0..springs)
             .map(|i| ((i as f64 + 0.5) * dx).powi(2) / r_star)
@@ -119,15 +131,27 @@ impl SpringBed {
             u: vec![0.0; springs],
             touched: 0,
             dx,
-            normal_modulus: scene.pair.effective_modulus(),
-            tangential_modulus: 4.0 * scene.pair.mindlin_shear_modulus(),
-            friction: scene.friction,
+            normal_modulus: pair.effective_modulus(),
+            tangential_modulus: 4.0 * pair.mindlin_shear_modulus(),
+            friction,
         }
+    }
+
+    /// The largest approach at which every spring in contact lies inside the window [m]: the
+    /// profile height of the outermost spring.
+    pub(crate) fn reach(&self) -> f64 {
+        self.profile.last().copied().unwrap_or(0.0)
+    }
+
+    /// Every spring leaves contact and forgets its history.
+    pub(crate) fn release(&mut self) {
+        self.u[..self.touched].fill(0.0);
+        self.touched = 0;
     }
 
     /// P at approach `delta_n` (no state changes: the normal bed has no memory) and its slope
     /// dP/dδn = 2E* Δx k, k the springs in contact.
-    pub(super) fn normal_force(&self, delta_n: f64) -> (f64, f64) {
+    pub(crate) fn normal_force(&self, delta_n: f64) -> (f64, f64) {
         let in_contact = self.profile.partition_point(|&g| g < delta_n);
         let normal = in_contact as f64 * delta_n - self.profile_sums[in_contact];
         let scale = 2.0 * self.normal_modulus * self.dx;
@@ -137,7 +161,7 @@ impl SpringBed {
     /// Q after a trial step to approach `delta_n` with shift increment `increment_t`, without
     /// committing it, and its slope dQ/d(increment) = 2G̃ Δx (springs that stick). Springs beyond
     /// those that touched before carry u = 0, as [`Self::advance`] leaves them.
-    pub(super) fn trial(&self, delta_n: f64, increment_t: f64) -> (f64, f64) {
+    pub(crate) fn trial(&self, delta_n: f64, increment_t: f64) -> (f64, f64) {
         let in_contact = self.profile.partition_point(|&g| g < delta_n);
         let slip_ratio = self.friction * self.normal_modulus / self.tangential_modulus;
         let (mut sum, mut sticking) = (0.0, 0usize);
@@ -157,7 +181,7 @@ impl SpringBed {
     }
 
     /// Moves the rigid profile to approach `delta_n` and shifts it by `increment_t`.
-    pub(super) fn advance(&mut self, delta_n: f64, increment_t: f64) -> BedState {
+    pub(crate) fn advance(&mut self, delta_n: f64, increment_t: f64) -> BedState {
         // The springs in contact, w = δn − g(x) > 0, are a prefix of the bed (g grows with x);
         // those beyond it that touched before have left contact and forget their history.
         let in_contact = self.profile.partition_point(|&g| g < delta_n);
@@ -233,8 +257,7 @@ impl PathModel for Walker<'_> {
 
     /// Every spring leaves contact and forgets its history.
     fn release(&mut self, _step: &Step) {
-        self.bed.u[..self.bed.touched].fill(0.0);
-        self.bed.touched = 0;
+        self.bed.release();
     }
 
     /// The bed gives P and Q; p0 is not among its rows.

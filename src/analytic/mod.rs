@@ -28,30 +28,39 @@ use incremental::IncrementalSolver;
 
 /// The analytic solvers, references first, then the DEM laws.
 pub fn solvers() -> Vec<Box<dyn Solver>> {
-    vec![
+    let references: Vec<Box<dyn Solver>> = vec![
         Box::new(hertz::HertzSolver),
         Box::new(cattaneo_mindlin::CattaneoMindlin),
         Box::new(mdr::Mdr::default()),
-        Box::new(IncrementalSolver {
+    ];
+    let laws = dem_laws().into_iter().map(|law| Box::new(law) as Box<dyn Solver>);
+    references.into_iter().chain(laws).collect()
+}
+
+/// The incremental DEM laws (Hertz normal force, an incremental tangential law): driven along a
+/// path as solvers, and as the contact law of an impact (`crate::impact`).
+pub fn dem_laws() -> Vec<IncrementalSolver> {
+    vec![
+        IncrementalSolver {
             name: "hertz-mindlin-spring",
             description: "no-slip Hertz–Mindlin spring k_t = 8G*c with a Coulomb cap (LIGGGHTS, YADE)",
             make_law: |scene| Box::new(hertz_mindlin_spring::HertzMindlinSpring::new(scene)),
-        }),
-        Box::new(IncrementalSolver {
+        },
+        IncrementalSolver {
             name: "thornton",
             description: "Thornton (1991): Mindlin–Deresiewicz increments with θ, T*, T** and μΔN(1−θ)",
             make_law: |scene| Box::new(thornton::law(scene)),
-        }),
-        Box::new(IncrementalSolver {
+        },
+        IncrementalSolver {
             name: "md-incremental",
             description: "Mindlin–Deresiewicz incremental cases that Zhang & Vu-Quoc build on, \
                           displacement-driven, Masing memory; not Zhang & Vu-Quoc's own refinements",
             make_law: |scene| Box::new(md_cases::law(scene)),
-        }),
-        Box::new(IncrementalSolver {
+        },
+        IncrementalSolver {
             name: "walton-braun",
             description: "Walton & Braun (1986): softening k_t from the last reversal, T* scaled with N",
             make_law: |scene| Box::new(walton_braun::WaltonBraun::new(scene)),
-        }),
+        },
     ]
 }

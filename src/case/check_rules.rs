@@ -25,15 +25,7 @@ impl Validator<'_> {
                 .chain(&Quantity::MAP_MEASURES)
                 .map(|q| q.name())
                 .collect();
-            self.error(
-                &raw.quantity,
-                format!("{field}.quantity"),
-                format!(
-                    "unknown quantity `{}` (allowed: {})",
-                    raw.quantity.get_ref(),
-                    names.join(", ")
-                ),
-            )
+            self.unknown_quantity(&raw.quantity, field, &names)
         })?;
         let at = self.at(&raw.at, &format!("{field}.at"), positions)?;
         let reference = self.reference(&raw.reference, &format!("{field}.reference"), quantity)?;

@@ -90,6 +90,7 @@ pub mod case_solvers;
 mod check_rules;
 mod domain;
 mod error;
+mod impact_rules;
 pub mod input;
 mod raw;
 pub mod reads;
@@ -100,6 +101,7 @@ mod scene_rules;
 pub use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
+pub use impact_rules::{is_impact, load_impact, parse_impact};
 pub use reads::{CaseTree, ReadRoots};
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -265,14 +267,32 @@ impl Validator<'_> {
         }
     }
 
-    fn case(mut self, raw: RawCase) -> Result<Case, CaseError> {
-        let name = self.name(raw.name.as_ref())?;
-        let friction = self.number(
-            &raw.friction,
+    /// The Coulomb coefficient `friction`, 0 ≤ μ ≤ 10.
+    fn friction(&self, value: &Spanned<f64>) -> Result<f64, CaseError> {
+        self.number(
+            value,
             "friction",
             |m| (0.0..=limits::MAX_FRICTION).contains(&m),
             "0 ≤ μ ≤ 10",
-        )?;
+        )
+    }
+
+    /// An unknown quantity at `field`, listing `names`.
+    fn unknown_quantity(&self, raw: &Spanned<String>, field: &str, names: &[&str]) -> CaseError {
+        self.error(
+            raw,
+            format!("{field}.quantity"),
+            format!(
+                "unknown quantity `{}` (allowed: {})",
+                raw.get_ref(),
+                names.join(", ")
+            ),
+        )
+    }
+
+    fn case(mut self, raw: RawCase) -> Result<Case, CaseError> {
+        let name = self.name(raw.name.as_ref())?;
+        let friction = self.friction(&raw.friction)?;
         let pair = self.pair(&raw)?;
         let path = self.path(&raw.path, &pair)?;
         self.derived(&raw, &pair, friction, &path)?;

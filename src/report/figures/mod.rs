@@ -93,7 +93,7 @@ fn data_of(plot: &LinePlot, x: &str, y: &str) -> Table {
 }
 
 /// A figure from a line plot.
-fn figure(id: &str, plot: LinePlot, caption: String, x: &str, y: &str) -> Result<Figure> {
+pub(crate) fn figure(id: &str, plot: LinePlot, caption: String, x: &str, y: &str) -> Result<Figure> {
     Ok(Figure {
         id: id.into(),
         data: data_of(&plot, x, y),

@@ -1,0 +1,141 @@
+//! `spherecontact run` on an impact case: plan (the case and the solvers named, validated; the
+//! output folder claimed, [`crate::io::OutputFolder`]), then execute (run, write the files, print
+//! a line per run).
+
+use std::path::{Path, PathBuf};
+
+use super::case::ImpactCase;
+use super::run::{self, solver_names};
+use super::{files, ImpactRun};
+use crate::case;
+use crate::io::{self, OutputFolder};
+
+/// A validated `run` of an impact case: nothing is written before it exists.
+#[derive(Debug)]
+pub struct RunPlan {
+    /// The case.
+    pub case: ImpactCase,
+    /// The solvers to run.
+    pub solvers: Vec<String>,
+    /// The output folder, claimed (and locked) for this run.
+    pub out: OutputFolder,
+}
+
+/// True when `file` holds an impact case (`kind = "impact"`); false when it cannot be read (the
+/// path-case loader then reports why).
+pub fn is_impact_file(file: &Path) -> bool {
+    case::input::read_text(file).is_ok_and(|text| case::is_impact(&text))
+}
+
+/// Plans a run: the case validated, each solver named once and known, `out` claimed (`force`:
+/// also a folder holding files the harness did not write).
+pub fn plan(file: &Path, solvers: &[String], out: &Path, force: bool) -> Result<RunPlan, String> {
+    let case = case::load_impact(file).map_err(|e| e.to_string())?;
+    let solvers = if solvers.is_empty() {
+        case.solvers.clone()
+    } else {
+        solvers.to_vec()
+    };
+    for (i, name) in solvers.iter().enumerate() {
+        if solvers[..i].contains(name) {
+            return Err(format!(
+                "--solver: `{name}` is named twice (allowed: each solver once)"
+            ));
+        }
+        if !solver_names().contains(&name.as_str()) {
+            return Err(format!(
+                "--solver: `{name}` cannot run an impact (allowed: {})",
+                solver_names().join(", ")
+            ));
+        }
+    }
+    let out = claim(out, force)?;
+    Ok(RunPlan { case, solvers, out })
+}
+
+impl RunPlan {
+    /// Runs the plan, writes its files and prints a line per run; false if a run failed.
+    pub fn execute(self) -> Result<bool, String> {
+        let out = self.out.path();
+        let runs = run::run_case(&self.case, &self.solvers);
+        let written = files::write(out, &self.case, &runs)
+            .map_err(|e| format!("writing results to {}: {e}", out.display()))?;
+        let mut ok = true;
+        for (run, path) in runs.iter().zip(&written) {
+            for (at, result) in &run.points {
+                if let Err(e) = result {
+                    ok = false;
+                    eprintln!(
+                        "error: {} ({}) at {}: {e}",
+                        run.solver,
+                        run.variant.name(),
+                        crate::report::format_value(*at)
+                    );
+                }
+            }
+            println!(
+                "{:<22} {:<10} {:>9.3} ms  -> {}",
+                run.solver,
+                run.variant.name(),
+                run.wall_time_s * 1e3,
+                path.display()
+            );
+        }
+        Ok(ok)
+    }
+}
+
+/// Loads and runs an impact case with its checks, for `verify`.
+pub fn verify(file: &Path) -> Result<ImpactRun, String> {
+    let case = case::load_impact(file).map_err(|e| e.to_string())?;
+    Ok(ImpactRun::of(case))
+}
+
+/// The impact cases shipped under `dir` (`cases/impact`): its `.toml` files, sorted.
+pub fn shipped_cases(dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let entries = std::fs::read_dir(dir).map_err(|e| format!("{}: cannot list cases: {e}", dir.display()))?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// `spherecontact impact`: plans (every case valid, `out` claimed), runs every case with its
+/// checks, writes each case's solver files into `out/<case>/` and the report into `out`, prints
+/// the check rows; true when every case passed.
+pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String> {
+    let files = if files.is_empty() {
+        shipped_cases(Path::new("cases/impact"))?
+    } else {
+        files.to_vec()
+    };
+    if files.is_empty() {
+        return Err("no impact cases to run".into());
+    }
+    let cases = files
+        .iter()
+        .map(|f| case::load_impact(f).map_err(|e| e.to_string()))
+        .collect::<Result<Vec<_>, _>>()?;
+    let folder = claim(out, force)?;
+    let out = folder.path();
+    let runs: Vec<ImpactRun> = cases.into_iter().map(ImpactRun::of).collect();
+    for run in &runs {
+        let dir = out.join(&run.case.name);
+        io::create_folder(&dir).map_err(|e| format!("--out {}: {e}", dir.display()))?;
+        files::write(&dir, &run.case, &run.runs).map_err(|e| format!("--out {}: {e}", dir.display()))?;
+        print!("{}", run.block());
+    }
+    let document = crate::report::impact::document(&runs).map_err(|e| format!("building the report: {e}"))?;
+    document
+        .write(out)
+        .map_err(|e| format!("--out {}: {e}", out.display()))?;
+    println!("report: {}", out.join("report.html").display());
+    Ok(runs.iter().all(ImpactRun::passed))
+}
+
+/// `out` claimed as this run's output folder (refused: `--out DIR: why`).
+fn claim(out: &Path, force: bool) -> Result<OutputFolder, String> {
+    OutputFolder::claim(out, force).map_err(|e| format!("--out {}: {e}", out.display()))
+}

@@ -1,0 +1,87 @@
+//! Dynamic impact of two spheres (or a sphere on a rigid flat): the DEM benchmarks of Chung &
+//! Ooi (2011, Granular Matter 13:643–656), with the exact quasi-static reference.
+//!
+//! An impact case (`kind = "impact"`, `cases/impact/`) describes bodies with density, initial
+//! velocities and spins, friction, an optional prescribed restitution and a sweep of one initial
+//! condition ([`case`]). Each solver is a contact law ([`law`]) integrated with the rigid-body
+//! dynamics of both bodies ([`integrator`]); `mdr` — MDR's spring bed, exact Mindlin–Deresiewicz
+//! for any oblique history of elastically similar bodies — makes the integration the exact
+//! quasi-static theory of oblique impact; the DEM laws of [`crate::analytic`] run in its place.
+//! The outcome of each impact ([`outcome`]) is written per solver ([`files`]) and judged by the
+//! case's checks ([`judge`]): Hertz's closed forms of normal impact ([`closed_form`]) and the
+//! exact reference.
+//!
+//! **Why not the [`crate::solver::Solver`] trait.** A `Solver` maps a scene's prescribed path
+//! (δn, δt at every step) to forces: the motion is the input. In an impact the motion is the
+//! output — the path is not known before the forces are — and the result is not a history of
+//! the path's steps but the rebound (restitutions, spins, angles) of each sweep point. A contact
+//! law that answers one increment at a time ([`law::ContactLaw`]) is what both need: MDR's bed
+//! and the DEM laws' incremental updates are reused as they are (not copied) through it.
+//!
+//! docs/impact.md holds the conventions, the damping law and the measured convergence.
+
+pub mod case;
+pub mod closed_form;
+pub mod command;
+#[cfg(test)]
+mod cross_check;
+pub mod files;
+pub mod integrator;
+pub mod judge;
+pub mod law;
+pub mod outcome;
+pub mod run;
+
+pub use case::ImpactCase;
+
+/// A case run: its solvers' runs and its checks' outcomes.
+#[derive(Debug)]
+pub struct ImpactRun {
+    /// The case.
+    pub case: ImpactCase,
+    /// Every solver in every variant.
+    pub runs: Vec<run::SolverRun>,
+    /// The checks' outcomes, in the case's order.
+    pub outcomes: Vec<judge::CheckOutcome>,
+}
+
+impl ImpactRun {
+    /// Runs every solver the case and its checks need, and judges the checks.
+    pub fn of(case: ImpactCase) -> Self {
+        let runs = run::run_case(&case, &case.required_solvers());
+        let outcomes = judge::judge(&case, &runs);
+        Self { case, runs, outcomes }
+    }
+
+    /// True when no check is NOOK and every solver ran at every sweep point.
+    pub fn passed(&self) -> bool {
+        let solved = self.runs.iter().all(|r| r.points.iter().all(|(_, o)| o.is_ok()));
+        solved
+            && self
+                .outcomes
+                .iter()
+                .all(|o| o.verdict != crate::check::Verdict::Nook)
+    }
+
+    /// The block `verify` prints: a row per check, and each failed sweep point.
+    pub fn block(&self) -> String {
+        let mut text = format!("== {} ({})\n", self.case.name, self.case.file.display());
+        for run in &self.runs {
+            for (at, result) in &run.points {
+                if let Err(e) = result {
+                    text.push_str(&format!(
+                        "SOLVER {} ({}) at {}: {e}\n",
+                        run.solver,
+                        run.variant.name(),
+                        crate::report::format_value(*at)
+                    ));
+                }
+            }
+        }
+        for outcome in &self.outcomes {
+            text.push_str(&judge::outcome_row(&self.case.name, outcome));
+            text.push('\n');
+        }
+        text
+    }
+}

@@ -1,0 +1,127 @@
+//! Running an impact case: each solver's contact law through the integrator at every sweep
+//! point, in each variant (prescribed restitution, and elastic when e < 1).
+
+use std::time::Instant;
+
+use super::case::{ImpactCase, Point, Variant};
+use super::closed_form::HertzImpact;
+use super::integrator::{self, Integration, IntegrationError, Sample, Stepping};
+use super::law::{ContactLaw, Damping, DemLaw, MdrLaw};
+use super::outcome::Outcome;
+use crate::analytic;
+use crate::hertz::Hertz;
+
+/// The name of the exact reference: MDR's spring bed as the contact law.
+pub const REFERENCE: &str = "mdr";
+
+/// The most steps a contact may take, as a multiple of the steps per Hertz contact duration:
+/// an elastic contact lasts one duration, a damped one less (its rebound is faster).
+const STEP_BUDGET: usize = 4;
+
+/// The MDR window holds contact radii up to this factor of the elastic impact's largest one
+/// (the bed's own 5 % margin comes on top).
+const WINDOW_FACTOR: f64 = 1.05;
+
+/// At most this many samples in the trace of the first sweep point.
+const TRACE_SAMPLES: usize = 2000;
+
+/// The names of the solvers an impact case may run: the exact reference, then the DEM laws.
+pub fn solver_names() -> Vec<&'static str> {
+    std::iter::once(REFERENCE)
+        .chain(analytic::dem_laws().into_iter().map(|law| law.name))
+        .collect()
+}
+
+/// One solver in one variant over the sweep.
+#[derive(Clone, Debug)]
+pub struct SolverRun {
+    /// The solver.
+    pub solver: String,
+    /// The variant.
+    pub variant: Variant,
+    /// Each sweep point's value and outcome, or why it has none.
+    pub points: Vec<(Option<f64>, Result<Outcome, String>)>,
+    /// The trace of the first sweep point.
+    pub trace: Vec<Sample>,
+    /// Wall time of the sweep [s].
+    pub wall_time_s: f64,
+}
+
+/// The contact law `solver` for `point` (none for an unknown name).
+fn law_for(case: &ImpactCase, solver: &str, point: &Point) -> Option<Box<dyn ContactLaw>> {
+    let pair = case.pair();
+    if solver == REFERENCE {
+        let hertz = Hertz::of(&pair);
+        let reach = HertzImpact::of(point, &hertz).max_overlap * WINDOW_FACTOR;
+        let radius = hertz.contact_radius(reach);
+        return Some(Box::new(MdrLaw::new(&pair, case.friction, radius, case.springs)));
+    }
+    let law = analytic::dem_laws().into_iter().find(|l| l.name == solver)?;
+    Some(Box::new(DemLaw::new(&law, &pair, case.friction)))
+}
+
+/// Integrates one impact of `case` with `solver`'s law at `steps` steps per Hertz duration.
+pub fn impact(
+    case: &ImpactCase,
+    solver: &str,
+    point: &Point,
+    steps: usize,
+    traced: bool,
+) -> Result<Integration, String> {
+    let mut law = law_for(case, solver, point).ok_or_else(|| format!("no impact solver `{solver}`"))?;
+    let hertz = Hertz::of(&case.pair());
+    let duration = HertzImpact::of(point, &hertz).duration;
+    let damping =
+        (point.restitution < 1.0).then(|| Damping::new(point.restitution, point.effective_mass(), &hertz));
+    let stepping = Stepping {
+        step: duration / steps as f64,
+        max_steps: STEP_BUDGET * steps,
+        stride: if traced {
+            (STEP_BUDGET * steps).div_ceil(TRACE_SAMPLES).max(1)
+        } else {
+            0
+        },
+    };
+    integrator::integrate(point, law.as_mut(), damping.as_ref(), stepping)
+        .map_err(|e: IntegrationError| e.to_string())
+}
+
+/// Runs `solver` over every sweep point of `case` in `variant`.
+pub fn run_solver(case: &ImpactCase, solver: &str, variant: Variant) -> SolverRun {
+    let start = Instant::now();
+    let mut trace = Vec::new();
+    let points = case
+        .points()
+        .iter()
+        .enumerate()
+        .map(|(index, point)| {
+            let point = match variant {
+                Variant::Prescribed => *point,
+                Variant::Elastic => point.elastic(),
+            };
+            let result = impact(case, solver, &point, case.steps, index == 0).map(|integration| {
+                if index == 0 {
+                    trace = integration.trace.clone();
+                }
+                Outcome::of(&point, &integration)
+            });
+            (point.value, result)
+        })
+        .collect();
+    SolverRun {
+        solver: solver.to_owned(),
+        variant,
+        points,
+        trace,
+        wall_time_s: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// Every solver the case needs (its list, then those its checks name), in every variant.
+pub fn run_case(case: &ImpactCase, solvers: &[String]) -> Vec<SolverRun> {
+    let variants = case.variants();
+    solvers
+        .iter()
+        .flat_map(|solver| variants.iter().map(move |&v| run_solver(case, solver, v)))
+        .collect()
+}
