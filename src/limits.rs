@@ -49,8 +49,10 @@ pub const MAX_MDR_SPRINGS: usize = 1_000_000;
 /// FEM ladder (c/80). A meridian mesh uniform at size h over 1.5 c_max around the pole has about
 /// 8.2 (c_max/h)² triangles: 0.84 million at c_max/320, a few seconds for gmsh. The in-crate
 /// FEM's memory grows as (c_max/h)² log(c_max/h) (the factor's fill): a frictional fem-axisym
-/// run passes [`MEMORY_BUDGET`] near c_max/150 and is refused there before it factors
-/// ([`crate::memory`]); the decks are separate programs under their own timeouts.
+/// run on the paper's spheres passes [`MEMORY_BUDGET`] near c_max/200 (estimated 2.0 GB at
+/// c_max/160, 8.7 GB at c_max/320, of which 4.5 GB the n = 1 factor) and is refused beyond,
+/// before it factors ([`crate::memory`]); the decks are separate programs under their own
+/// timeouts.
 pub const MAX_ELEMENTS_PER_CONTACT_RADIUS: f64 = 320.0;
 
 /// The pole element sizes a meridian mesh may take (fem-axisym, mdr-domain, the axisymmetric

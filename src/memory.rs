@@ -20,6 +20,12 @@ use crate::resolution::PoleLimits;
 /// Bytes of an `f64` (and of a `usize` index).
 pub const WORD: u64 = 8;
 
+/// What the measured peak adds to the large arrays, as a fraction of them: a few per cent for
+/// the models above 0.5 GB (fem-axisym frictional and frictionless to c_max/320, fem-3d to
+/// c_max/14: `examples/memory_estimate.rs`); the small models add a few tens of MB of program
+/// and history on top, which the tests leave out by measuring against a closed form's run.
+pub const SLACK: f64 = 0.05;
+
 /// The memory a solver's model will hold at its peak, part by part [bytes]: what it holds to
 /// the end, and what it holds for a while (a workspace, a block of solves), of which the largest
 /// counts at the peak.
@@ -58,10 +64,21 @@ impl Estimate {
         self.transient.iter().max_by_key(|(_, b)| *b)
     }
 
-    /// The peak [bytes]: everything held, and the largest transient part.
-    pub fn total(&self) -> u64 {
+    /// The large arrays at the peak [bytes]: everything held, and the largest transient part.
+    fn arrays(&self) -> u64 {
         let held: u64 = self.parts.iter().map(|(_, b)| b).sum();
         held + self.largest_transient().map_or(0, |(_, b)| *b)
+    }
+
+    /// The allocator's slack and the many small arrays the parts leave out [bytes]: [`SLACK`]
+    /// of the large arrays.
+    pub fn slack(&self) -> u64 {
+        (SLACK * self.arrays() as f64) as u64
+    }
+
+    /// The peak [bytes]: the large arrays and their slack.
+    pub fn total(&self) -> u64 {
+        self.arrays() + self.slack()
     }
 }
 
@@ -153,6 +170,7 @@ impl OverBudget {
             .chain(self.estimate.largest_transient())
             .filter(|(_, b)| *b >= MEMORY_BUDGET / 100)
             .map(|(what, b)| format!("{what} {}", gigabytes(*b)))
+            .chain([format!("slack {}", gigabytes(self.estimate.slack()))])
             .collect();
         let limits = self.sizing.limits;
         let fit = self.finest_fitting();
@@ -235,15 +253,16 @@ mod tests {
         let mut big = Estimate::default();
         big.add("factor n = 1", 4 * MEMORY_BUDGET);
         let error = budget(320.0).check(&big).unwrap_err();
-        // 4 × the budget at (c/h)² scaling: half the divisions fit.
-        assert_eq!(error.finest_fitting(), 160.0);
+        // 4 × the budget and 5 % slack at (c/h)² scaling: 320 / √4.2 = 156.1 divisions fit.
+        assert_eq!(error.finest_fitting(), 156.0);
         let text = error.to_string();
         for needle in [
             "fem-axisym",
             "c_max/320",
             "factor n = 1",
             "exceeds the budget",
-            "c_max/160",
+            "c_max/156",
+            "slack",
             "accepted range c_max/320 to c_max/2",
         ] {
             assert!(text.contains(needle), "{needle} not in {text}");

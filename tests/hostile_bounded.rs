@@ -77,11 +77,10 @@ fn recorded_estimate(out: &Path, solver: &str) -> f64 {
     found.unwrap_or_else(|| panic!("no memory_estimate_bytes in {text:.2000}"))
 }
 
-/// How far the peak above the process's baseline may lie from the estimate: the estimate adds
-/// the large arrays (factors, their workspace, stiffness, dense blocks, mesh); the allocator's
-/// slack and the many small vectors it leaves out put the measured peak between 0.7 and 1.3 times
-/// the estimate from c/20 to c/160 (docs/security.md, "Memory and time bounds").
-const ESTIMATE_FACTOR: f64 = 1.6;
+/// How far the peak above the process's baseline may lie from the estimate: measured between
+/// 0.91 and 1.12 times the estimate on fem-axisym's and fem-3d's ladders (docs/security.md,
+/// "Memory and time bounds"); 1.25 leaves room for another allocator or machine.
+const ESTIMATE_FACTOR: f64 = 1.25;
 
 #[test]
 fn the_memory_estimate_is_within_its_factor_of_the_measured_peak() {

@@ -82,6 +82,17 @@ impl Plan {
         self.symbolic.len_val()
     }
 
+    /// The memory of a solve of `columns` right-hand sides through the factor [bytes]: the
+    /// right-hand sides and the solve's workspace (which holds their permuted copy).
+    pub fn solve_bytes(&self, columns: usize) -> u64 {
+        let workspace = self
+            .symbolic
+            .solve_in_place_scratch::<f64>(columns, Par::Seq)
+            .layout()
+            .map_or(usize::MAX, |layout| layout.size());
+        WORD * (self.symbolic.nrows() * columns) as u64 + workspace as u64
+    }
+
     fn scratch(&self) -> Result<usize, String> {
         let request = self
             .symbolic

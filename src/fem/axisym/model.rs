@@ -169,10 +169,7 @@ impl BodyPlan {
         let (nodes, triangles) = (self.mesh.nodes.len(), self.mesh.triangles.len());
         estimate.add("mesh", WORD * (2 * nodes + 6 * triangles) as u64);
         let m = self.candidates.len();
-        estimate.add_transient(
-            "n = 0 condensation solves",
-            WORD * (self.system.dofs.count() * BLOCK) as u64,
-        );
+        estimate.add_transient("n = 0 condensation solves", self.plan.solve_bytes(BLOCK));
         estimate.add_dense("n = 0 condensed compliance", m, m);
         if let Some(shear) = &self.shear {
             estimate.extend(shear.estimate(m)?);

@@ -115,16 +115,13 @@ impl Planned {
             "mesh and node graph",
             WORD * (3 * nodes + 10 * self.mesh.tetrahedra.len() + graph + 3 * nodes) as u64,
         );
-        let (m, trailing, n) = (
-            self.surface.len(),
-            self.order.trailing.len(),
-            self.system.dofs.count(),
-        );
+        let (m, trailing) = (self.surface.len(), self.order.trailing.len());
+        let dense = WORD * (3 * m * trailing) as u64;
         let solves = match self.condensation {
-            Condensation::TrailingBlock => trailing * trailing + 3 * m * trailing,
-            Condensation::BlockedSolves => n * condense::BLOCK + 3 * m * trailing,
+            Condensation::TrailingBlock => WORD * (trailing * trailing) as u64,
+            Condensation::BlockedSolves => self.plan.solve_bytes(condense::BLOCK),
         };
-        estimate.add_transient("condensation solves", WORD * solves as u64);
+        estimate.add_transient("condensation solves", dense + solves);
         estimate.add_dense("condensed compliances", m, 5 * m);
         Ok(estimate)
     }
