@@ -129,28 +129,25 @@ impl Planned {
     /// Factors and condenses: the model.
     pub fn build(self) -> Result<Model, String> {
         let memory_estimate = self.estimate()?.total();
-        let Self {
-            mesh,
-            lame,
-            system,
-            surface,
-            order,
-            plan,
-            condensation,
-            mut times,
-        } = self;
+        let mut times = self.times;
         let t2 = Instant::now();
-        let factor = plan.factor(&system.stiffness)?;
+        let factor = self.plan.factor(&self.system.stiffness)?;
         let t3 = Instant::now();
-        let condensed = condense::condense(&system, &factor, &order, &surface, condensation);
+        let condensed = condense::condense(
+            &self.system,
+            &factor,
+            &self.order,
+            &self.surface,
+            self.condensation,
+        );
         times.factor += (t3 - t2).as_secs_f64();
         times.condense = t3.elapsed().as_secs_f64();
         Ok(Model {
-            mesh,
-            lame,
-            system,
+            mesh: self.mesh,
+            lame: self.lame,
+            system: self.system,
             factor,
-            surface,
+            surface: self.surface,
             condensed,
             times,
             memory_estimate,
