@@ -14,6 +14,7 @@ use spherecontact::fem::axisym::model::{grading, Settings, GROWTH};
 use spherecontact::fem::element::tri6::Integration;
 use spherecontact::fem::factor::Ordering;
 use spherecontact::fem::mesh::meridian;
+use spherecontact::memory::{self, Budget};
 use spherecontact::pair::{Body, Material};
 
 fn main() {
@@ -58,13 +59,23 @@ fn main() {
                 integration: Integration::Full,
                 domain,
                 growth: GROWTH / refinement,
+                shear: false,
+                contact_radius: c_max,
             };
             let g = grading(&body, &settings, c_max);
             let mesh = meridian::graded(&g).unwrap();
             let start = std::time::Instant::now();
             let tangential = domain.grip == Grip::Rigid;
-            let finite =
-                FiniteBody::new(mesh, body.material, domain.grip, Integration::Full, tangential).unwrap();
+            let budget = Budget::new("mdr-domain", c_max, settings.pole_size, memory::MERIDIAN);
+            let finite = FiniteBody::new(
+                mesh,
+                body.material,
+                domain.grip,
+                Integration::Full,
+                tangential,
+                &budget,
+            )
+            .unwrap();
             let factored = start.elapsed().as_secs_f64();
             for delta_um in [5.0, 10.0, 17.0, 20.0] {
                 let l = finite.compliance(c_of(delta_um)).unwrap();

@@ -16,6 +16,7 @@
 
 use crate::history::{History, Metadata, StepResult};
 use crate::path::Step;
+use crate::progress;
 use crate::scene::Scene;
 use crate::solver::SolveError;
 
@@ -69,7 +70,8 @@ pub fn open_row(step: &Step, peak_pressure: bool) -> StepResult {
     }
 }
 
-/// Walks the path of `scene` with `model` (see the module doc); one row a step.
+/// Walks the path of `scene` with `model` (see the module doc); one row a step, each reported
+/// to the run's progress meter ([`crate::progress::tick`]).
 pub fn walk(scene: &Scene, model: &mut dyn PathModel) -> Result<Vec<StepResult>, SolveError> {
     let steps = scene.steps();
     let mut rows = Vec::with_capacity(steps.len());
@@ -81,6 +83,7 @@ pub fn walk(scene: &Scene, model: &mut dyn PathModel) -> Result<Vec<StepResult>,
             model.release(step);
             rows.push(open_row(step, model.reports_peak_pressure()));
         }
+        progress::tick(k + 1, steps.len());
     }
     Ok(rows)
 }

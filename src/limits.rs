@@ -53,8 +53,12 @@ pub const MAX_MDR_SPRINGS: usize = 1_000_000;
 
 /// The finest mesh [pole elements per largest contact radius]: 4 times the finest rung of the
 /// FEM ladder (c/80). A meridian mesh uniform at size h over 1.5 c_max around the pole has about
-/// 8.2 (c_max/h)² triangles: 0.84 million at c_max/320, a few seconds and a few hundred MB for
-/// gmsh or the in-crate FEM.
+/// 8.2 (c_max/h)² triangles: 0.84 million at c_max/320, a few seconds for gmsh. The in-crate
+/// FEM's memory grows as (c_max/h)² log(c_max/h) (the factor's fill): a frictional fem-axisym
+/// run on the paper's spheres passes [`MEMORY_BUDGET`] near c_max/200 (estimated 2.0 GB at
+/// c_max/160, 8.7 GB at c_max/320, of which 4.5 GB the n = 1 factor) and is refused beyond,
+/// before it factors ([`crate::memory`]); the decks are separate programs under their own
+/// timeouts.
 pub const MAX_ELEMENTS_PER_CONTACT_RADIUS: f64 = 320.0;
 
 /// The pole element sizes a meridian mesh may take (fem-axisym, mdr-domain, the axisymmetric
@@ -72,6 +76,13 @@ pub const SOLID_POLE: PoleLimits = PoleLimits {
     finest: 14.0,
     coarsest: 2.0,
 };
+
+/// The most memory one in-crate solver's model may take [bytes] (3 GiB), estimated before it
+/// allocates its factors ([`crate::memory`]): solvers run side by side (`bench`, CI jobs, the
+/// external decks, other users of a shared machine), so each keeps to a few GB of an ordinary
+/// 16–24 GB machine. A model over it is refused with the estimate, the budget and the
+/// resolutions that fit, as that solver's failure (the other solvers of the run go on).
+pub const MEMORY_BUDGET: u64 = 3 << 30;
 
 /// The characters of a plain name, as shown in messages.
 pub const NAME_CHARACTERS: &str = "A–Z a–z 0–9 . _ -, starting with a letter or digit";

@@ -13,7 +13,7 @@ use spherecontact::external::permission::{self, CommandPermission};
 use spherecontact::external::{geo, toolchain::Toolchain};
 use spherecontact::impact::{command as impact, ImpactRun};
 use spherecontact::report::{history_files, junit, summary, table};
-use spherecontact::{io, registry, resolution, solver, text, verify};
+use spherecontact::{io, progress, registry, resolution, solver, text, verify};
 
 #[derive(Parser)]
 #[command(
@@ -446,7 +446,8 @@ fn run(
         eprintln!("warning: {}: {warning}", case.name());
     }
     for solver in plan {
-        match solver::run(solver.as_ref(), &case.scene) {
+        let label = format!("{} {}", case.name(), solver.name());
+        match progress::run(solver.as_ref(), &case.scene, &label) {
             Ok(history) => {
                 if let Err(e) = history_files::write(folder.path(), &history) {
                     eprintln!(
@@ -728,9 +729,17 @@ fn report(
             .progress_chars("=> "),
     );
     bar.set_prefix(case.name().to_owned());
-    let run = verify::run_case_with_progress(case, &mut |name, index, _| {
-        bar.set_position(index as u64);
-        bar.set_message(name.to_owned());
+    // The progress lines go above the bar (a hidden bar prints nothing: stderr then).
+    let lines = bar.clone();
+    let printer: Box<dyn Fn(&str)> = match bar.is_hidden() {
+        true => Box::new(|line| eprintln!("{line}")),
+        false => Box::new(move |line| lines.println(line)),
+    };
+    let run = progress::printing_through(printer, || {
+        verify::run_case_with_progress(case, &mut |name, index, _| {
+            bar.set_position(index as u64);
+            bar.set_message(name.to_owned());
+        })
     });
     bar.finish_and_clear();
     let document = match paper_references {

@@ -37,6 +37,13 @@ pub trait Solver: Send + Sync {
     /// metadata's model, resolution and warnings; [`run`] adds name, version and wall time.
     fn solve(&self, scene: &Scene) -> Result<History, SolveError>;
 
+    /// A coarse estimate of the wall time of [`Solver::solve`] on `scene` [s], from its size
+    /// ([`crate::cost`]), to announce a long run before it starts ([`crate::progress`]); `None`
+    /// where there is no model (the external programs, which run under their own timeouts).
+    fn estimated_seconds(&self, _scene: &Scene) -> Option<f64> {
+        None
+    }
+
     /// The same solver at a ladder of resolutions for `scene`, coarse to fine (springs, grid,
     /// mesh size — sizes scale with the scene's contact), for convergence and speed-against-error
     /// studies; empty where resolution has no meaning (closed forms, incremental laws whose
@@ -177,6 +184,10 @@ impl Solver for Resolved {
         Ok(history)
     }
 
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        self.inner.estimated_seconds(scene)
+    }
+
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
         self.inner.resolution_ladder(scene)
     }
@@ -223,5 +234,9 @@ impl Solver for SurfaceVtu {
                 .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
         }
         Ok(history)
+    }
+
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        self.inner.estimated_seconds(scene)
     }
 }

@@ -2,6 +2,7 @@
 
 use crate::case::Case;
 use crate::check::{Histories, Outcome};
+use crate::progress;
 use crate::solver::{self, SolveError};
 
 /// A case after its solvers ran and its checks were judged.
@@ -35,7 +36,8 @@ pub fn run_case(case: Case) -> CaseRun {
     run_case_with_progress(case, &mut |_, _, _| {})
 }
 
-/// [`run_case`], calling `progress(solver, index, count)` before each solver runs.
+/// [`run_case`], calling `progress(solver, index, count)` before each solver runs; a long solver
+/// run is announced and metered on stderr ([`crate::progress`]).
 pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, usize)) -> CaseRun {
     let mut warnings = case.scene.warnings();
     let mut histories = Histories::new();
@@ -43,7 +45,7 @@ pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, 
     for (index, name) in names.iter().cloned().enumerate() {
         progress(&name, index, names.len());
         let result = match case.solver(&name) {
-            Some(s) => solver::run(s.as_ref(), &case.scene),
+            Some(s) => progress::run(s.as_ref(), &case.scene, &format!("{} {name}", case.name())),
             None => Err(solver::SolveError::Unavailable(format!(
                 "no solver `{name}` in this build"
             ))),

@@ -18,6 +18,7 @@ use spherecontact::fem::element::tri6::Integration;
 use spherecontact::fem::factor::Ordering;
 use spherecontact::fem::mesh::meridian;
 use spherecontact::fem::{FemAxisym, MdrDomain};
+use spherecontact::memory::{self, Budget};
 use spherecontact::pair::{Body, Material};
 use spherecontact::scene::Scene;
 use spherecontact::solver::run;
@@ -55,6 +56,8 @@ fn body(domain: Domain, divisions: f64, refinement: f64) -> FiniteBody {
         integration: Integration::Full,
         domain,
         growth: GROWTH / refinement,
+        shear: false,
+        contact_radius: c_max,
     };
     let mesh = meridian::graded(&grading(&BODY, &settings, c_max)).unwrap();
     FiniteBody::new(
@@ -63,6 +66,7 @@ fn body(domain: Domain, divisions: f64, refinement: f64) -> FiniteBody {
         domain.grip,
         Integration::Full,
         domain.grip == Grip::Rigid,
+        &Budget::new("mdr-domain", c_max, settings.pole_size, memory::MERIDIAN),
     )
     .unwrap()
 }

@@ -264,6 +264,10 @@ impl Solver for CattaneoMindlin {
         "Cattaneo–Mindlin at constant normal load, Masing unloading and reloading"
     }
 
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        Some(crate::cost::law(scene.steps().len()))
+    }
+
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         let start = Self::tangential_start(scene)?;
         let hertz = scene.hertz();

@@ -16,6 +16,10 @@ impl Solver for HertzSolver {
         "Hertz closed form: normal force, contact radius, peak pressure"
     }
 
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        Some(crate::cost::law(scene.steps().len()))
+    }
+
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         let hertz = scene.hertz();
         let steps = scene

@@ -65,6 +65,10 @@ impl Solver for IncrementalSolver {
         self.description
     }
 
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        Some(crate::cost::law(scene.steps().len()))
+    }
+
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         let steps = scene.steps();
         let mut walker = Walker {

@@ -354,6 +354,10 @@ impl Solver for Mdr {
             .collect()
     }
 
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        Some(crate::cost::mdr(self.springs, scene.steps().len()))
+    }
+
     /// `n`: springs on the half-line, 1 ≤ n ≤ [`MAX_MDR_SPRINGS`].
     fn at_resolution(&self, _scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
         let springs = resolution::count(self.name(), value, 1, MAX_MDR_SPRINGS, false)?;

@@ -25,6 +25,7 @@ use serde_json::json;
 
 use super::mdr::SpringBed;
 use crate::history::{History, Metadata, StepResult};
+use crate::progress;
 use crate::scene::Scene;
 
 /// Sample points of the surface fields (the reference profile of field checks: 4× MDR's).
@@ -178,7 +179,8 @@ impl SeriesMdr {
         let exact = self.compliance.is_zero();
         let mut rows = Vec::with_capacity(steps.len());
         let mut fields = Vec::new();
-        for step in &steps {
+        for (k, step) in steps.iter().enumerate() {
+            progress::tick(k, steps.len());
             let local = if exact {
                 Self::commit(&mut bed, step.delta_n, step.delta_t - previous_t)
             } else {

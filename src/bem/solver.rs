@@ -236,6 +236,10 @@ impl Solver for Bem {
         self.solve_with_fields(scene).map(|(history, _)| history)
     }
 
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        Some(crate::cost::bem(self.grid, scene.steps().len()))
+    }
+
     /// Grids of 16² … 128² panels over the same window.
     fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
         [16, 32, 64, 128]

@@ -19,7 +19,7 @@ pub struct Condensed {
 }
 
 /// Contact columns solved at once (a blocked multi-right-hand-side solve).
-const BLOCK: usize = 64;
+pub const BLOCK: usize = 64;
 
 /// Condenses a factored system of `n` free DOFs onto the free DOFs `dofs`; `reaction` lists the
 /// (DOF, coefficient) pairs whose sum is the far-boundary reaction.

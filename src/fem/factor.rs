@@ -15,6 +15,8 @@ use faer::sparse::SparseColMat;
 use faer::{Conj, Mat, MatMut, Par, Side};
 use std::collections::VecDeque;
 
+use crate::memory::{Estimate, WORD};
+
 /// The fill-reducing ordering of the factorisation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Ordering {
@@ -30,18 +32,24 @@ pub struct Factor {
     values: Vec<f64>,
 }
 
-impl Factor {
-    /// Factors `lower` (the lower triangle of K) with `ordering`.
+/// The symbolic factorisation of a matrix: the factor's structure, known before its values are
+/// allocated, so that its memory can be judged first ([`Plan::estimate`]).
+pub struct Plan {
+    symbolic: SymbolicCholesky<usize>,
+}
+
+impl Plan {
+    /// The symbolic factorisation of `lower` (the lower triangle of K) with `ordering`.
     pub fn new(lower: &SparseColMat<usize, f64>, ordering: Ordering) -> Result<Self, String> {
         match ordering {
-            Ordering::Amd => Self::factorize(lower, SymmetricOrdering::Amd),
+            Ordering::Amd => Self::symbolic(lower, SymmetricOrdering::Amd),
             Ordering::ReverseCuthillMcKee => Self::with_permutation(lower, &reverse_cuthill_mckee(lower)),
         }
     }
 
-    /// Factors `lower` with a given fill-reducing order: row `forward[k]` of K becomes row k of
-    /// P K Pᵀ (e.g. a nested dissection, or an order that puts chosen unknowns last so that
-    /// [`Factor::trailing_block`] is their Schur complement's factor).
+    /// The symbolic factorisation of `lower` with a given fill-reducing order: row `forward[k]`
+    /// of K becomes row k of P K Pᵀ (e.g. a nested dissection, or an order that puts chosen
+    /// unknowns last so that [`Factor::trailing_block`] is their Schur complement's factor).
     pub fn with_permutation(lower: &SparseColMat<usize, f64>, forward: &[usize]) -> Result<Self, String> {
         let n = lower.nrows();
         if forward.len() != n {
@@ -57,19 +65,70 @@ impl Factor {
             }
             inverse[i] = k;
         }
-        Self::factorize(
+        Self::symbolic(
             lower,
             SymmetricOrdering::Custom(PermRef::new_checked(forward, &inverse, n)),
         )
     }
 
-    fn factorize(
-        lower: &SparseColMat<usize, f64>,
-        ord: SymmetricOrdering<'_, usize>,
-    ) -> Result<Self, String> {
+    fn symbolic(lower: &SparseColMat<usize, f64>, ord: SymmetricOrdering<'_, usize>) -> Result<Self, String> {
         let symbolic = factorize_symbolic_cholesky(lower.symbolic(), Side::Lower, ord, Default::default())
             .map_err(|e| format!("symbolic Cholesky: {e}"))?;
-        let mut values = vec![0.0; symbolic.len_val()];
+        Ok(Self { symbolic })
+    }
+
+    /// Entries of the factor L.
+    pub fn factor_entries(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// The memory of a solve of `columns` right-hand sides through the factor [bytes]: the
+    /// right-hand sides and the solve's workspace (which holds their permuted copy).
+    pub fn solve_bytes(&self, columns: usize) -> u64 {
+        let workspace = self
+            .symbolic
+            .solve_in_place_scratch::<f64>(columns, Par::Seq)
+            .layout()
+            .map_or(usize::MAX, |layout| layout.size());
+        WORD * (self.symbolic.nrows() * columns) as u64 + workspace as u64
+    }
+
+    fn scratch(&self) -> Result<usize, String> {
+        let request = self
+            .symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default());
+        request
+            .layout()
+            .map(|layout| layout.size())
+            .map_err(|_| "the Cholesky workspace overflows the address space".to_owned())
+    }
+
+    /// The memory of the numeric factorisation of `lower` [bytes]: the factor's values, its
+    /// workspace (which holds a permuted copy of K) and the symbolic structure's indices, as
+    /// parts named after `what`; an `Err` when the workspace cannot even be sized.
+    pub fn estimate(&self, what: &str, lower: &SparseColMat<usize, f64>) -> Result<Estimate, String> {
+        let mut estimate = Estimate::default();
+        estimate.add(format!("{what} factor"), WORD * self.symbolic.len_val() as u64);
+        estimate.add_transient(format!("{what} factorisation workspace"), self.scratch()? as u64);
+        let indices = match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) => s.row_idx().len(),
+            SymbolicCholeskyRaw::Simplicial(s) => s.row_idx().len(),
+        };
+        estimate.add(
+            format!("{what} stiffness and factor indices"),
+            WORD * (2 * lower.compute_nnz() + indices + 4 * lower.nrows()) as u64,
+        );
+        Ok(estimate)
+    }
+
+    /// The numeric factorisation of `lower` (the matrix this plan was made for).
+    pub fn factor(self, lower: &SparseColMat<usize, f64>) -> Result<Factor, String> {
+        let symbolic = self.symbolic;
+        let mut values = Vec::new();
+        values
+            .try_reserve_exact(symbolic.len_val())
+            .map_err(|e| format!("the Cholesky factor ({} entries): {e}", symbolic.len_val()))?;
+        values.resize(symbolic.len_val(), 0.0);
         let par = Par::Seq;
         let mut buffer =
             MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
@@ -85,7 +144,20 @@ impl Factor {
                 Default::default(),
             )
             .map_err(|e| format!("the stiffness is not positive definite: {e}"))?;
-        Ok(Self { symbolic, values })
+        Ok(Factor { symbolic, values })
+    }
+}
+
+impl Factor {
+    /// Factors `lower` (the lower triangle of K) with `ordering` ([`Plan::new`], then
+    /// [`Plan::factor`]).
+    pub fn new(lower: &SparseColMat<usize, f64>, ordering: Ordering) -> Result<Self, String> {
+        Plan::new(lower, ordering)?.factor(lower)
+    }
+
+    /// Factors `lower` with a given fill-reducing order ([`Plan::with_permutation`]).
+    pub fn with_permutation(lower: &SparseColMat<usize, f64>, forward: &[usize]) -> Result<Self, String> {
+        Plan::with_permutation(lower, forward)?.factor(lower)
     }
 
     /// The trailing m × m block L₂₂ of the factor (rows and columns n − m … n − 1 of P K Pᵀ).

@@ -40,13 +40,15 @@
 use faer::Mat;
 use serde::Serialize;
 
+use super::model::assembly_estimate;
 use super::pressure::least_squares;
 use crate::domain::Grip;
 use crate::fem::assembly::{self, System};
 use crate::fem::element::tri6::{Integration, Lame};
 use crate::fem::element::tri6_n1;
-use crate::fem::factor::{Factor, Ordering};
+use crate::fem::factor::{Factor, Ordering, Plan};
 use crate::fem::mesh::meridian::Mesh;
+use crate::memory::{Budget, WORD};
 use crate::pair::Material;
 use crate::quadrature;
 
@@ -186,6 +188,25 @@ impl Factored {
     }
 }
 
+/// One mode's assembled system, its factorisation planned.
+struct Planned {
+    system: System,
+    plan: Plan,
+    components: usize,
+    component: usize,
+}
+
+impl Planned {
+    fn factored(self) -> Result<Factored, String> {
+        Ok(Factored {
+            factor: self.plan.factor(&self.system.stiffness)?,
+            system: self.system,
+            components: self.components,
+            component: self.component,
+        })
+    }
+}
+
 /// A finite body, factored in the modes n = 0 (and n = 1), ready to be loaded at any contact radius.
 pub struct FiniteBody {
     mesh: Mesh,
@@ -196,43 +217,57 @@ pub struct FiniteBody {
 
 impl FiniteBody {
     /// Assembles and factors `mesh` of `material` held by `grip`; the mode n = 1 only when
-    /// `tangential` (it needs the rigid grip).
+    /// `tangential` (it needs the rigid grip). Refused within `budget` before the assembly and
+    /// again before the factorisations when the estimated peak memory exceeds it
+    /// ([`crate::memory`]).
     pub fn new(
         mesh: Mesh,
         material: Material,
         grip: Grip,
         integration: Integration,
         tangential: bool,
+        budget: &Budget,
     ) -> Result<Self, String> {
+        if tangential && grip != Grip::Rigid {
+            return Err("the tangential compliance needs the rigid grip".into());
+        }
+        budget
+            .check(&assembly_estimate(std::slice::from_ref(&mesh), tangential))
+            .map_err(|e| e.to_string())?;
         let lame = Lame::of(&material);
         let ordering = Ordering::Amd;
-        let system = assembly::assemble(&mesh, lame, integration, grip).map_err(|e| e.to_string())?;
-        let normal = Factored {
-            factor: Factor::new(&system.stiffness, ordering)?,
-            system,
-            components: 2,
-            component: 1,
-        };
-        let tangential = if tangential {
-            if grip != Grip::Rigid {
-                return Err("the tangential compliance needs the rigid grip".into());
-            }
-            let system =
-                assembly::assemble_fourier_one(&mesh, lame, integration).map_err(|e| e.to_string())?;
-            Some(Factored {
-                factor: Factor::new(&system.stiffness, ordering)?,
+        let planned = |system: System, components: usize, component: usize| -> Result<Planned, String> {
+            let plan = Plan::new(&system.stiffness, ordering)?;
+            Ok(Planned {
                 system,
-                components: tri6_n1::COMPONENTS,
-                component: 0,
+                plan,
+                components,
+                component,
             })
-        } else {
-            None
         };
+        let system = assembly::assemble(&mesh, lame, integration, grip).map_err(|e| e.to_string())?;
+        let normal = planned(system, 2, 1)?;
+        let tangential = tangential
+            .then(|| {
+                let system =
+                    assembly::assemble_fourier_one(&mesh, lame, integration).map_err(|e| e.to_string())?;
+                planned(system, tri6_n1::COMPONENTS, 0)
+            })
+            .transpose()?;
+        let mut estimate = normal.plan.estimate("n = 0", &normal.system.stiffness)?;
+        estimate.add(
+            "mesh",
+            WORD * (2 * mesh.nodes.len() + 6 * mesh.triangles.len()) as u64,
+        );
+        if let Some(mode) = &tangential {
+            estimate.extend(mode.plan.estimate("n = 1", &mode.system.stiffness)?);
+        }
+        budget.check(&estimate).map_err(|e| e.to_string())?;
         Ok(Self {
             mesh,
             material,
-            normal,
-            tangential,
+            normal: normal.factored()?,
+            tangential: tangential.map(Planned::factored).transpose()?,
         })
     }
 

@@ -11,13 +11,15 @@ use std::time::Instant;
 
 use faer::Mat;
 
+use super::tangential::{Shear, ShearBody, ShearPlan};
 use crate::contact::{Contact, DenseCompliance, FrictionSet, Settings as ContactSettings};
 use crate::domain::Domain;
 use crate::fem::assembly::{self, System};
-use crate::fem::condense::{condense, Condensed};
+use crate::fem::condense::{condense, Condensed, BLOCK};
 use crate::fem::element::tri6::{edge_weights, Integration, Lame};
-use crate::fem::factor::{Factor, Ordering};
+use crate::fem::factor::{Factor, Ordering, Plan};
 use crate::fem::mesh::meridian::{self, Grading, Mesh};
+use crate::memory::{Budget, Estimate, MERIDIAN, WORD};
 use crate::pair::Body;
 use crate::scene::Scene;
 
@@ -74,6 +76,11 @@ pub struct Settings {
     pub domain: Domain,
     /// Growth of the element size beyond the fine zone (default [`GROWTH`]).
     pub growth: f64,
+    /// Whether the model includes the tangential problem (the Fourier mode n = 1,
+    /// [`super::tangential`]).
+    pub shear: bool,
+    /// The path's largest contact radius c_max [m], the unit of the resolution in messages.
+    pub contact_radius: f64,
 }
 
 /// Uniformly fine zone: 5 % beyond the candidate zone, so the contact edge sits in it.
@@ -98,42 +105,113 @@ pub struct BodyModel {
     pub candidates: Vec<usize>,
     /// The condensed response at the candidates.
     pub condensed: Condensed,
-    /// Wall times [s]: assembly, factorisation, condensation.
-    pub times: [f64; 3],
+    /// Wall times [s]: assembly, factorisation, condensation, and the whole mode n = 1 (0
+    /// when not solved).
+    pub times: [f64; 4],
 }
 
-impl BodyModel {
-    /// Builds the model of one body from its mesh.
+/// One body assembled in the modes it needs, its factorisations planned (symbolic), nothing
+/// factored yet: what its model will cost is known ([`BodyPlan::estimate`]) before it is paid.
+pub struct BodyPlan {
+    mesh: Mesh,
+    lame: Lame,
+    system: System,
+    plan: Plan,
+    candidates: Vec<usize>,
+    contact_dofs: Vec<usize>,
+    shear: Option<ShearPlan>,
+    /// Wall times [s]: the mode n = 0's assembly and symbolic factorisation, the mode n = 1's
+    /// assembly, ordering and symbolic factorisation.
+    times: [f64; 3],
+}
+
+impl BodyPlan {
+    /// Assembles `mesh` in the mode n = 0 (and n = 1 when `settings.shear`) and plans the
+    /// factorisations.
     pub fn new(mesh: Mesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
         let t0 = Instant::now();
         let system = assembly::assemble(&mesh, lame, settings.integration, settings.domain.grip)
             .map_err(|e| e.to_string())?;
         let t1 = Instant::now();
-        let factor = Factor::new(&system.stiffness, settings.ordering)?;
+        let plan = Plan::new(&system.stiffness, settings.ordering)?;
         let t2 = Instant::now();
         let candidates: Vec<usize> = mesh
             .surface_nodes()
             .into_iter()
             .filter(|&n| mesh.nodes[n][0] <= settings.candidate_radius)
             .collect();
-        let dofs = candidates
+        let contact_dofs = candidates
             .iter()
             .map(|&n| system.dofs.free(2 * n + 1))
             .collect::<Option<Vec<usize>>>()
             .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
-        let condensed = condense(&factor, system.dofs.count(), &dofs, &system.reaction);
+        let shear = settings
+            .shear
+            .then(|| ShearPlan::new(&mesh, lame, &candidates, settings))
+            .transpose()?;
         let times = [t1 - t0, t2 - t1, t2.elapsed()].map(|d| d.as_secs_f64());
         Ok(Self {
             mesh,
-            system,
-            factor,
             lame,
+            system,
+            plan,
             candidates,
-            condensed,
+            contact_dofs,
+            shear,
             times,
         })
     }
 
+    /// The peak memory of this body's model: the mesh, the systems, the factors, the
+    /// condensation's solves and the dense condensed operators.
+    pub fn estimate(&self) -> Result<Estimate, String> {
+        let mut estimate = self.plan.estimate("n = 0", &self.system.stiffness)?;
+        let (nodes, triangles) = (self.mesh.nodes.len(), self.mesh.triangles.len());
+        estimate.add("mesh", WORD * (2 * nodes + 6 * triangles) as u64);
+        let m = self.candidates.len();
+        estimate.add_transient("n = 0 condensation solves", self.plan.solve_bytes(BLOCK));
+        estimate.add_dense("n = 0 condensed compliance", m, m);
+        if let Some(shear) = &self.shear {
+            estimate.extend(shear.estimate(m)?);
+        }
+        Ok(estimate)
+    }
+
+    /// Factors and condenses the planned modes: the body's model and its mode n = 1.
+    pub fn build(self) -> Result<(BodyModel, Option<ShearBody>), String> {
+        let t1 = Instant::now();
+        let factor = self.plan.factor(&self.system.stiffness)?;
+        let t2 = Instant::now();
+        let condensed = condense(
+            &factor,
+            self.system.dofs.count(),
+            &self.contact_dofs,
+            &self.system.reaction,
+        );
+        let t3 = Instant::now();
+        let m = self.candidates.len();
+        let shear = self.shear.map(|s| s.build(m)).transpose()?;
+        let shear_s = if shear.is_some() {
+            self.times[2] + t3.elapsed().as_secs_f64()
+        } else {
+            0.0
+        };
+        let factor_s = self.times[1] + (t2 - t1).as_secs_f64();
+        let times = [self.times[0], factor_s, (t3 - t2).as_secs_f64(), shear_s];
+        let body = BodyModel {
+            mesh: self.mesh,
+            system: self.system,
+            factor,
+            lame: self.lame,
+            candidates: self.candidates,
+            condensed,
+            times,
+        };
+        Ok((body, shear))
+    }
+}
+
+impl BodyModel {
     /// Radii of the candidate nodes.
     pub fn radii(&self) -> Vec<f64> {
         self.candidates.iter().map(|&n| self.mesh.nodes[n][0]).collect()
@@ -200,8 +278,10 @@ pub struct Model {
     pub weights: Vec<f64>,
     /// The pair's Fourier mode n = 1 (each body's factorisation, the condensed compliance at
     /// the candidates' A DOFs [m/N]), when the tangential problem is solved
-    /// ([`Model::with_shear`]).
+    /// ([`Settings::shear`]).
     pub shear: Option<super::tangential::Shear>,
+    /// The estimate of its peak memory, made before it was factored [bytes] ([`crate::memory`]).
+    pub memory_estimate: u64,
 }
 
 /// The generator's grading for `body` under `settings`: a sphere's cap (the hemisphere, or the
@@ -238,18 +318,40 @@ impl Model {
         Self::from_meshes(reduction, meshes, lames, settings)
     }
 
-    /// Builds the model from given meshes (one per body of the reduction).
+    /// Builds the model from given meshes (one per body of the reduction): assembles them,
+    /// plans the factorisations and refuses a model whose estimated peak memory exceeds the
+    /// budget ([`crate::memory`]) before any factor is allocated; then factors and condenses.
     pub fn from_meshes(
         reduction: Reduction,
         meshes: Vec<Mesh>,
         lames: Vec<Lame>,
         settings: &Settings,
     ) -> Result<Self, String> {
-        let bodies = meshes
+        let budget = Budget::new(SOLVER, settings.contact_radius, settings.pole_size, MERIDIAN);
+        budget
+            .check(&assembly_estimate(&meshes, settings.shear))
+            .map_err(|e| e.to_string())?;
+        let plans = meshes
             .into_iter()
             .zip(lames)
-            .map(|(mesh, lame)| BodyModel::new(mesh, lame, settings))
+            .map(|(mesh, lame)| BodyPlan::new(mesh, lame, settings))
             .collect::<Result<Vec<_>, _>>()?;
+        let mut estimate = Estimate::default();
+        for plan in &plans {
+            estimate.extend(plan.estimate()?);
+        }
+        budget.check(&estimate).map_err(|e| e.to_string())?;
+        let (bodies, shear): (Vec<BodyModel>, Vec<Option<ShearBody>>) = plans
+            .into_iter()
+            .map(BodyPlan::build)
+            .collect::<Result<Vec<_>, _>>()?
+            .into_iter()
+            .unzip();
+        let shear = shear
+            .into_iter()
+            .collect::<Option<Vec<_>>>()
+            .map(Shear::of)
+            .transpose()?;
         let radii = bodies[0].radii();
         let m = radii.len();
         let mut heights = vec![0.0; m];
@@ -274,16 +376,32 @@ impl Model {
             bodies,
             radii,
             weights,
-            shear: None,
+            shear,
+            memory_estimate: estimate.total(),
         })
     }
+}
 
-    /// Adds the tangential compliance: the mode n = 1 assembled, factored and condensed on the
-    /// same meshes ([`super::tangential`]).
-    pub fn with_shear(mut self, settings: &Settings) -> Result<Self, String> {
-        self.shear = Some(super::tangential::Shear::new(&self.bodies, settings)?);
-        Ok(self)
+/// The solver whose model this is, as named in messages.
+const SOLVER: &str = "fem-axisym";
+
+/// The peak memory of assembling `meshes` (the mode n = 1 too when `shear`), known from the
+/// meshes alone: the element matrices' triplets of the largest mode and their conversion to a
+/// sparse matrix (about as much again), over the meshes. Checked before anything is assembled.
+pub fn assembly_estimate(meshes: &[Mesh], shear: bool) -> Estimate {
+    let mut estimate = Estimate::default();
+    let components: usize = if shear { 3 } else { 2 };
+    let size = 6 * components;
+    let triplet = 3 * WORD;
+    for mesh in meshes {
+        estimate.add(
+            "mesh",
+            WORD * (2 * mesh.nodes.len() + 6 * mesh.triangles.len()) as u64,
+        );
+        let triplets = (mesh.triangles.len() * size * (size + 1) / 2) as u64;
+        estimate.add_transient("assembly triplets and their conversion", 2 * triplet * triplets);
     }
+    estimate
 }
 
 /// The contact of a model on the shared engine: normal (n = 0) and, when the model has its

@@ -19,6 +19,7 @@ use crate::analytic::mdr_series::{SeriesCompliance, SeriesMdr};
 use crate::fem::mesh::meridian;
 use crate::history::History;
 use crate::limits::MERIDIAN_POLE;
+use crate::memory::{self, Budget};
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -71,12 +72,14 @@ impl MdrDomain {
             .map(|body| {
                 let mesh = meridian::graded(&grading(body, &settings, c_max)).map_err(|e| e.to_string())?;
                 let tangential = !scene.is_frictionless();
+                let budget = Budget::new(self.name(), c_max, settings.pole_size, memory::MERIDIAN);
                 FiniteBody::new(
                     mesh,
                     body.material,
                     settings.domain.grip,
                     settings.integration,
                     tangential,
+                    &budget,
                 )?
                 .table(c_max, TABLE_RADII)
             })
@@ -115,6 +118,15 @@ impl Solver for MdrDomain {
 
     fn description(&self) -> &'static str {
         "reference for finite bodies: MDR in series with the [domain]'s computed normal and tangential compliances"
+    }
+
+    /// Twice fem-axisym's set-up (the compliance meshes are refined in the far field) and MDR's
+    /// bed along the path.
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        let steps = scene.steps().len();
+        let settings = self.mesh.settings(scene).ok()?;
+        let divisions = settings.contact_radius / settings.pole_size;
+        Some(2.0 * crate::cost::fem_axisym(divisions, 0) + crate::cost::mdr(self.springs, steps))
     }
 
     /// The pole element size of its compliance meshes: `c/N` or a length, within

@@ -27,6 +27,7 @@ use crate::fem::pole::{self, PoleSized};
 use crate::fit::stick;
 use crate::history::{History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents};
 use crate::limits::MERIDIAN_POLE;
+use crate::progress;
 use crate::resolution::{PoleLimits, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -105,6 +106,8 @@ impl FemAxisym {
             integration,
             domain: scene.domain,
             growth: self.growth.unwrap_or(super::model::GROWTH),
+            shear: Mode::of(scene) == Mode::Solved,
+            contact_radius: c,
         })
     }
 }
@@ -147,6 +150,12 @@ impl Solver for FemAxisym {
         pole::at_resolution(self, scene, value)
     }
 
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        let settings = self.settings(scene).ok()?;
+        let divisions = settings.contact_radius / settings.pole_size;
+        Some(crate::cost::fem_axisym(divisions, scene.steps().len()))
+    }
+
     /// Pole sizes c_max/5 … c_max/80, halving (the external decks' ladder and beyond).
     fn resolution_ladder(&self, scene: &Scene) -> Vec<Box<dyn Solver>> {
         pole::ladder(self, scene, &[5.0, 10.0, 20.0, 40.0, 80.0])
@@ -169,17 +178,13 @@ impl Solver for FemAxisym {
         let settings = self.settings(scene)?;
         let (model, origin) = meshing::model(scene, &settings, self.mesh_file.as_deref(), &self.toolchain)?;
         let mode = Mode::of(scene);
-        let t = Instant::now();
-        let model = if mode == Mode::Solved {
-            model.with_shear(&settings).map_err(SolveError::Failed)?
-        } else {
-            model
-        };
-        let shear_time = t.elapsed().as_secs_f64();
+        let shear_time = model.bodies.iter().map(|b| b.times[3]).sum();
         let mut run = Run::new(&model, scene, mode).map_err(SolveError::Failed)?;
         let t = Instant::now();
-        for step in scene.steps() {
-            run.step(&model, scene, &step, self.vtu_dir.as_deref())?;
+        let steps = scene.steps();
+        for (k, step) in steps.iter().enumerate() {
+            run.step(&model, scene, step, self.vtu_dir.as_deref())?;
+            progress::tick(k + 1, steps.len());
         }
         let contact_time = t.elapsed().as_secs_f64();
         Ok(run.finish(&model, &settings, &origin, [shear_time, contact_time]))
@@ -429,6 +434,7 @@ impl Run {
                 json!(model.bodies.iter().map(|b| b.mesh.triangles.len()).sum::<usize>()),
             ),
             ("pole_size_m", json!(settings.pole_size)),
+            ("memory_estimate_bytes", json!(model.memory_estimate)),
             ("candidates", json!(model.radii.len())),
             ("integration", json!(format!("{:?}", settings.integration))),
             ("ordering", json!(format!("{:?}", settings.ordering))),

@@ -25,10 +25,13 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::{Accum, Mat, Par};
 
-use super::model::{BodyModel, Reduction, Settings};
+use super::model::{Reduction, Settings};
 use crate::fem::assembly::{self, System};
-use crate::fem::factor::Factor;
-use crate::fem::ordering::{self, NodeOrder};
+use crate::fem::element::tri6::Lame;
+use crate::fem::factor::{Factor, Plan};
+use crate::fem::mesh::meridian::Mesh;
+use crate::fem::ordering::{self, ContactLast, NodeOrder};
+use crate::memory::{Estimate, WORD};
 use crate::scene::{Scene, DISSIMILARITY_BETA};
 
 /// What fem-axisym does about the tangential problem of a scene.
@@ -65,7 +68,7 @@ impl Mode {
 }
 
 /// One body's mode n = 1: its system and factorisation (kept for the displacement fields) and
-/// its condensed compliance.
+/// its condensed compliance ([`ShearPlan::build`]).
 pub struct ShearBody {
     /// The assembled n = 1 system (A, B, W a node; far face and axis conditions eliminated).
     pub system: System,
@@ -76,26 +79,52 @@ pub struct ShearBody {
     pub compliance: Mat<f64>,
 }
 
-impl ShearBody {
-    /// Assembles, factors and condenses the mode n = 1 of `body`. The candidates' DOFs are
-    /// ordered last ([`crate::fem::ordering`]), so the factor's trailing block L₂₂ factors their
-    /// Schur complement and the compliance of their A DOFs is Eᵀ (L₂₂ L₂₂ᵀ)⁻¹ E = ZᵀZ with
-    /// Z = L₂₂⁻¹ E (E selects the A rows): one dense triangular solve of the candidates' size
-    /// instead of one solve through the whole factor per candidate.
-    pub fn new(body: &BodyModel, settings: &Settings) -> Result<Self, String> {
-        let system = assembly::assemble_fourier_one(&body.mesh, body.lame, settings.integration)
-            .map_err(|e| e.to_string())?;
-        let mesh = &body.mesh;
+/// One body's mode n = 1 assembled and its factorisation planned, nothing factored yet.
+pub struct ShearPlan {
+    system: System,
+    order: ContactLast,
+    plan: Plan,
+}
+
+impl ShearPlan {
+    /// Assembles the mode n = 1 of `mesh` and plans its factorisation with the `candidates`'
+    /// DOFs ordered last ([`crate::fem::ordering`]), so that the factor's trailing block L₂₂
+    /// factors their Schur complement.
+    pub fn new(mesh: &Mesh, lame: Lame, candidates: &[usize], settings: &Settings) -> Result<Self, String> {
+        let system =
+            assembly::assemble_fourier_one(mesh, lame, settings.integration).map_err(|e| e.to_string())?;
         let points: Vec<[f64; 3]> = mesh.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let order = ordering::contact_last(
             &ordering::node_graph(mesh.nodes.len(), &mesh.triangles),
             &points,
             &system.dofs,
-            &body.candidates,
+            candidates,
             NodeOrder::MinimumDegree,
         )?;
-        let factor = Factor::with_permutation(&system.stiffness, &order.forward)?;
-        let m = body.candidates.len();
+        let plan = Plan::with_permutation(&system.stiffness, &order.forward)?;
+        Ok(Self { system, order, plan })
+    }
+
+    /// The peak memory of the mode n = 1 of a body with `m` candidates: its system and factor,
+    /// the trailing block, the solve's right-hand sides and the condensed compliance.
+    pub fn estimate(&self, m: usize) -> Result<Estimate, String> {
+        let mut estimate = self.plan.estimate("n = 1", &self.system.stiffness)?;
+        let trailing = self.order.trailing.len();
+        estimate.add_transient(
+            "n = 1 trailing block and its solve",
+            WORD * (trailing * trailing + trailing * m) as u64,
+        );
+        estimate.add_dense("n = 1 condensed compliance", m, m);
+        Ok(estimate)
+    }
+
+    /// Factors and condenses onto the `m` candidates' A DOFs: the compliance of their A DOFs is
+    /// Eᵀ (L₂₂ L₂₂ᵀ)⁻¹ E = ZᵀZ with Z = L₂₂⁻¹ E (E selects the A rows): one dense triangular
+    /// solve of the candidates' size instead of one solve through the whole factor per
+    /// candidate.
+    pub fn build(self, m: usize) -> Result<ShearBody, String> {
+        let Self { system, order, plan } = self;
+        let factor = plan.factor(&system.stiffness)?;
         let mut z = Mat::<f64>::zeros(order.trailing.len(), m);
         let mut loaded = vec![false; m];
         for (p, &(j, a)) in order.trailing.iter().enumerate() {
@@ -118,7 +147,7 @@ impl ShearBody {
             1.0,
             Par::Seq,
         );
-        Ok(Self {
+        Ok(ShearBody {
             system,
             factor,
             compliance,
@@ -136,23 +165,16 @@ pub struct Shear {
 }
 
 impl Shear {
-    /// The mode n = 1 of every body of the model.
-    pub fn new(bodies: &[BodyModel], settings: &Settings) -> Result<Self, String> {
-        let shear: Vec<ShearBody> = bodies
-            .iter()
-            .map(|b| ShearBody::new(b, settings))
-            .collect::<Result<_, _>>()?;
-        let mut compliance = shear
+    /// The pair's mode n = 1 from every body's.
+    pub fn of(bodies: Vec<ShearBody>) -> Result<Self, String> {
+        let mut compliance = bodies
             .first()
             .map(|b| b.compliance.clone())
             .ok_or("no body to condense")?;
-        for b in &shear[1..] {
+        for b in &bodies[1..] {
             compliance += &b.compliance;
         }
-        Ok(Self {
-            bodies: shear,
-            compliance,
-        })
+        Ok(Self { bodies, compliance })
     }
 }
 

@@ -122,7 +122,7 @@ pub fn condense(
 }
 
 /// Columns solved at once through the whole factor.
-const BLOCK: usize = 64;
+pub const BLOCK: usize = 64;
 
 /// Bᵀ K⁻¹ B by solves of 64 columns at a time.
 fn blocked(system: &System, factor: &Factor, order: &ContactLast, b: MatRef<'_, f64>) -> Mat<f64> {

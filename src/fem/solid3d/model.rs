@@ -14,9 +14,10 @@ use super::surface::{Rule, Surface};
 use super::system::{self, Grip, System};
 use crate::fem::assembly::Dofs;
 use crate::fem::element::tri6::Lame;
-use crate::fem::factor::{Factor, Ordering};
+use crate::fem::factor::{Factor, Ordering, Plan};
 use crate::fem::mesh::solid::SolidMesh;
 use crate::fem::ordering::{self, ContactLast, NodeOrder};
+use crate::memory::{Estimate, WORD};
 
 /// The elimination order of the factorisation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -85,11 +86,84 @@ pub struct Model {
     pub condensed: Condensed,
     /// Set-up times.
     pub times: Times,
+    /// The estimate of its peak memory, made before it was factored [bytes] ([`crate::memory`]).
+    pub memory_estimate: u64,
+}
+
+/// A body assembled and its factorisation planned (symbolic), nothing factored yet: what its
+/// model will cost is known ([`Planned::estimate`]) before it is paid.
+pub struct Planned {
+    mesh: SolidMesh,
+    lame: Lame,
+    system: System,
+    surface: Surface,
+    order: ContactLast,
+    plan: Plan,
+    condensation: Condensation,
+    times: Times,
+}
+
+impl Planned {
+    /// The peak memory of the model: the mesh, the system and its graph, the factor and its
+    /// workspace, and the condensation (trailing block and right-hand sides, or blocked solves)
+    /// with its dense compliances.
+    pub fn estimate(&self) -> Result<Estimate, String> {
+        let mut estimate = self.plan.estimate("the", &self.system.stiffness)?;
+        let nodes = self.mesh.nodes.len();
+        let graph: usize = self.system.graph.iter().map(Vec::len).sum();
+        estimate.add(
+            "mesh and node graph",
+            WORD * (3 * nodes + 10 * self.mesh.tetrahedra.len() + graph + 3 * nodes) as u64,
+        );
+        let (m, trailing) = (self.surface.len(), self.order.trailing.len());
+        let dense = WORD * (3 * m * trailing) as u64;
+        let solves = match self.condensation {
+            Condensation::TrailingBlock => WORD * (trailing * trailing) as u64,
+            Condensation::BlockedSolves => self.plan.solve_bytes(condense::BLOCK),
+        };
+        estimate.add_transient("condensation solves", dense + solves);
+        estimate.add_dense("condensed compliances", m, 5 * m);
+        Ok(estimate)
+    }
+
+    /// Factors and condenses: the model.
+    pub fn build(self) -> Result<Model, String> {
+        let memory_estimate = self.estimate()?.total();
+        let mut times = self.times;
+        let t2 = Instant::now();
+        let factor = self.plan.factor(&self.system.stiffness)?;
+        let t3 = Instant::now();
+        let condensed = condense::condense(
+            &self.system,
+            &factor,
+            &self.order,
+            &self.surface,
+            self.condensation,
+        );
+        times.factor += (t3 - t2).as_secs_f64();
+        times.condense = t3.elapsed().as_secs_f64();
+        Ok(Model {
+            mesh: self.mesh,
+            lame: self.lame,
+            system: self.system,
+            factor,
+            surface: self.surface,
+            condensed,
+            times,
+            memory_estimate,
+        })
+    }
 }
 
 impl Model {
-    /// Builds the model of `mesh` (already read or generated) for material `lame`.
+    /// Builds the model of `mesh` (already read or generated) for material `lame`
+    /// ([`Model::plan`], then [`Planned::build`]).
     pub fn build(mesh: SolidMesh, lame: Lame, settings: &Settings) -> Result<Self, String> {
+        Self::plan(mesh, lame, settings)?.build()
+    }
+
+    /// Assembles the model of `mesh` for material `lame`, orders it and plans its factorisation.
+    pub fn plan(mesh: SolidMesh, lame: Lame, settings: &Settings) -> Result<Planned, String> {
         let t0 = Instant::now();
         let surface = Surface::new(&mesh, settings.candidate_radius, settings.rule)?;
         let fixed = system::fixed_dofs(&mesh, settings.grip);
@@ -110,25 +184,24 @@ impl Model {
         let order: ContactLast =
             ordering::contact_last(&system.graph, &mesh.nodes, &system.dofs, &surface.nodes, how)?;
         let t2 = Instant::now();
-        let factor = match settings.elimination {
-            Elimination::ContactLast(_) => Factor::with_permutation(&system.stiffness, &order.forward)?,
-            Elimination::DofAmd => Factor::new(&system.stiffness, Ordering::Amd)?,
+        let plan = match settings.elimination {
+            Elimination::ContactLast(_) => Plan::with_permutation(&system.stiffness, &order.forward)?,
+            Elimination::DofAmd => Plan::new(&system.stiffness, Ordering::Amd)?,
         };
-        let t3 = Instant::now();
-        let condensed = condense::condense(&system, &factor, &order, &surface, settings.condensation);
         let times = Times {
             assembly: (t1 - t0).as_secs_f64(),
             ordering: (t2 - t1).as_secs_f64(),
-            factor: (t3 - t2).as_secs_f64(),
-            condense: t3.elapsed().as_secs_f64(),
+            factor: t2.elapsed().as_secs_f64(),
+            condense: 0.0,
         };
-        Ok(Self {
+        Ok(Planned {
             mesh,
             lame,
             system,
-            factor,
             surface,
-            condensed,
+            order,
+            plan,
+            condensation: settings.condensation,
             times,
         })
     }

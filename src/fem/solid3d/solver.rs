@@ -56,6 +56,7 @@ use crate::fem::element::tri6::Lame;
 use crate::fem::pole::{self, PoleSized};
 use crate::history::{History, Metadata, StepResult};
 use crate::limits::SOLID_POLE;
+use crate::memory::{self, Budget};
 use crate::resolution::{PoleLimits, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
@@ -135,7 +136,9 @@ impl FemSolid3d {
         }
     }
 
-    /// The model of `scene` at pole size `h`, with its candidate radius and gmsh's time.
+    /// The model of `scene` at pole size `h`, with its candidate radius and gmsh's time; refused
+    /// before it is factored when its estimated peak memory exceeds the budget
+    /// ([`crate::memory`]: the estimate grows at least as (c_max/h)³, the element count).
     fn model(&self, scene: &Scene, h: f64) -> Result<(Model, f64, f64), SolveError> {
         let radius = scene.pair.body1.radius;
         let zones = Zones::new(scene.max_contact_radius(), h);
@@ -151,7 +154,12 @@ impl FemSolid3d {
         let (mesh, mesh_s) = meshing::generate(&geometry, &Toolchain::default())?;
         let lame = Lame::of(&scene.pair.body1.material);
         let settings = Settings::fastest(zones.candidate_radius, grip(scene), self.rule);
-        let model = Model::build(mesh, lame, &settings).map_err(SolveError::Failed)?;
+        let planned = Model::plan(mesh, lame, &settings).map_err(SolveError::Failed)?;
+        let budget = Budget::new(self.name(), scene.max_contact_radius(), h, memory::SOLID);
+        budget
+            .check(&planned.estimate().map_err(SolveError::Failed)?)
+            .map_err(|e| SolveError::Failed(e.to_string()))?;
+        let model = planned.build().map_err(SolveError::Failed)?;
         Ok((model, zones.candidate_radius, mesh_s))
     }
 }
@@ -200,6 +208,14 @@ impl Solver for FemSolid3d {
     /// A pole element size: `c/N` or a length, within [`SOLID_POLE`].
     fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
         pole::at_resolution(self, scene, value)
+    }
+
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        let h = self.pole_size(scene).ok()?;
+        Some(crate::cost::fem_3d(
+            scene.max_contact_radius() / h,
+            scene.steps().len(),
+        ))
     }
 
     /// Pole sizes c_max/4 … c_max/14.
@@ -305,6 +321,7 @@ impl Finished<'_> {
             ("nodes", json!(model.mesh.nodes.len())),
             ("tetrahedra", json!(model.mesh.tetrahedra.len())),
             ("pole_size_m", json!(self.pole_size)),
+            ("memory_estimate_bytes", json!(model.memory_estimate)),
             ("candidates", json!(model.surface.len())),
             ("factor_entries", json!(model.factor.factor_entries())),
             ("mesh_s", json!(self.mesh_s)),
