@@ -138,6 +138,9 @@ pub enum Verdict {
     Info,
     /// A solver it needs is not installed.
     Unavailable,
+    /// The value moved from its non-regression baseline beyond the solver's tolerance
+    /// ([`crate::baseline`]): a failure, whatever the check's own verdict was.
+    Drift,
 }
 
 impl Verdict {
@@ -148,6 +151,7 @@ impl Verdict {
             Verdict::Nook => "NOOK",
             Verdict::Info => "INFO",
             Verdict::Unavailable => "N/A",
+            Verdict::Drift => "DRIFT",
         }
     }
 }
@@ -169,12 +173,34 @@ pub struct Outcome {
     pub worst_step: Option<usize>,
     /// Why there is no error to show (solver failed, value missing, nothing to compare).
     pub message: Option<String>,
+    /// The value against its non-regression baseline, when the case has one for this check
+    /// ([`crate::baseline`]).
+    pub drift: Option<Drift>,
+}
+
+/// A check's value against the value stored in its baseline.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Drift {
+    /// The value stored.
+    pub baseline: f64,
+    /// |value − baseline| / max(|baseline|, |value|) at the baseline's step: 0 when equal.
+    pub change: f64,
+    /// The largest change accepted for this check's solvers.
+    pub tolerance: f64,
 }
 
 /// The histories of a case's solvers, by name.
 pub type Histories = BTreeMap<String, Result<History, SolveError>>;
 
 impl CheckSpec {
+    /// The solvers the check needs: its subject, then its reference solver if any.
+    pub fn solvers(&self) -> impl Iterator<Item = &String> {
+        std::iter::once(&self.solver).chain(match &self.reference {
+            Reference::Solver(name) => Some(name),
+            Reference::Value { .. } => None,
+        })
+    }
+
     /// Judges this check on the histories of a case's solvers.
     pub fn evaluate(&self, histories: &Histories) -> Outcome {
         let subject = match lookup(histories, &self.solver) {
@@ -237,6 +263,7 @@ impl CheckSpec {
             error: Some(error),
             worst_step: Some(worst_step),
             message: None,
+            drift: None,
         }
     }
 
@@ -264,6 +291,7 @@ impl CheckSpec {
                     error: Some(error),
                     worst_step: subject.at_position(position).map(|r| r.step),
                     message: None,
+                    drift: None,
                 }
             }
             Err(message) => self.outcome_without_error(Verdict::Nook, format!("{}: {message}", self.solver)),
@@ -272,7 +300,7 @@ impl CheckSpec {
 
     /// The judged quantity at `row` of `history`: the row's value, or for a map measure its
     /// measure on the field at the row's path position ([`crate::map_measure`]).
-    fn value(&self, history: &History, row: &StepResult) -> Option<f64> {
+    pub fn value(&self, history: &History, row: &StepResult) -> Option<f64> {
         if self.quantity.is_map_measure() {
             let field = history.field_at(row.position?)?;
             crate::map_measure::measure(self.quantity, field)
@@ -308,6 +336,7 @@ impl CheckSpec {
             error: None,
             worst_step: None,
             message: Some(message),
+            drift: None,
         }
     }
 }

@@ -9,9 +9,11 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use spherecontact::case::{limits, Case};
+use spherecontact::conclusion::Conclusion;
 use spherecontact::external::{geo, toolchain::Toolchain};
-use spherecontact::report::{history_files, junit, summary, table};
-use spherecontact::{io, registry, resolution, solver, verify};
+use spherecontact::report::{history_files, summary};
+use spherecontact::runfile::RunFile;
+use spherecontact::{baseline, io, merge, plan, registry, resolution, schedule, solver, verify};
 
 #[derive(Parser)]
 #[command(
@@ -64,6 +66,52 @@ enum Command {
         /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
+        /// Run only the cases with this label (repeatable: any of them).
+        #[arg(long = "label", value_name = "LABEL")]
+        labels: Vec<String>,
+        /// Leave out the cases with this label (repeatable).
+        #[arg(long = "skip-label", value_name = "LABEL")]
+        skip_labels: Vec<String>,
+        /// Cores for concurrent runs (each solver takes the cores it declares); default: the
+        /// machine's.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: Option<u32>,
+        /// Run only the K-th of N parts of the runs, balanced by their recorded cost (e.g. 2/3);
+        /// `merge` puts the parts' --out folders together.
+        #[arg(long, value_name = "K/N")]
+        shard: Option<String>,
+        /// Write the run file (run.json: every run's history, for `merge`) and the printed
+        /// summary (summary.txt) into this folder.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// The non-regression baselines (<case>.toml) each value is compared with.
+        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+        baselines: PathBuf,
+    },
+    /// Put the --out folders of `verify --shard` runs together: one summary and one JUnit,
+    /// the same as the unsharded run's apart from timings; exit 1 on any NOOK.
+    Merge {
+        /// The folders written by `verify --out`.
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Write JUnit XML here.
+        #[arg(long, value_name = "FILE")]
+        junit: Option<PathBuf>,
+        /// Write the merged summary (summary.txt) into this folder.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
+        #[arg(long)]
+        require_external: bool,
+        /// The non-regression baselines (<case>.toml) each value is compared with.
+        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+        baselines: PathBuf,
+    },
+    /// Non-regression baselines: `baseline update [CASE...]` runs the cases and rewrites their
+    /// baselines (every check's value, each solver's version, resolution and wall time).
+    Baseline {
+        #[command(subcommand)]
+        action: BaselineAction,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -122,6 +170,22 @@ enum Command {
     },
 }
 
+/// What `baseline` does.
+#[derive(Subcommand)]
+enum BaselineAction {
+    /// Run cases and rewrite their baselines.
+    Update {
+        /// Case files or folders; default: every .toml under cases/.
+        cases: Vec<PathBuf>,
+        /// The baselines' folder.
+        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+        baselines: PathBuf,
+        /// Cores for concurrent runs; default: the machine's.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: Option<u32>,
+    },
+}
+
 /// A bad-input error: printed, exit code 2, nothing written.
 struct InputError(String);
 
@@ -153,7 +217,40 @@ fn main() -> ExitCode {
             require_external,
             resolution,
             ranks,
-        } => verify_cases(cases, junit.as_deref(), require_external, &resolution, ranks),
+            labels,
+            skip_labels,
+            jobs,
+            shard,
+            out,
+            baselines,
+        } => (|| {
+            let selection = plan::Selection::new(&labels, &skip_labels)?;
+            let jobs = jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+            let shard = shard.map(|s| s.parse::<plan::Shard>()).transpose()?;
+            let options = plan::CaseOptions {
+                ranks,
+                resolutions: resolution_options(&resolution)?,
+            };
+            let outputs = Outputs::checked(junit, out, require_external)?;
+            let plan = verify_plan(cases, &selection, &options, &baselines)?;
+            verify_cases(plan, shard, jobs, &outputs)
+        })(),
+        Command::Merge {
+            dirs,
+            junit,
+            out,
+            require_external,
+            baselines,
+        } => Outputs::checked(junit, out, require_external)
+            .and_then(|outputs| merge_runs(&dirs, &baselines, &outputs)),
+        Command::Baseline {
+            action:
+                BaselineAction::Update {
+                    cases,
+                    baselines,
+                    jobs,
+                },
+        } => update_baselines(cases, &baselines, jobs),
         Command::Mesh {
             case,
             resolution,
@@ -187,25 +284,6 @@ fn main() -> ExitCode {
     }
 }
 
-/// Every `.toml` file under `dir`, recursively, in sorted order. Symbolic links to folders are
-/// not followed (a link to an ancestor would make the walk endless).
-fn case_files(dir: &Path) -> Result<Vec<PathBuf>, InputError> {
-    let mut files = Vec::new();
-    let entries = std::fs::read_dir(dir)
-        .map_err(|e| InputError(format!("{}: cannot list cases: {e}", dir.display())))?;
-    for entry in entries {
-        let entry = entry?;
-        let path = entry.path();
-        if entry.file_type()?.is_dir() {
-            files.extend(case_files(&path)?);
-        } else if path.extension().is_some_and(|e| e == "toml") {
-            files.push(path);
-        }
-    }
-    files.sort();
-    Ok(files)
-}
-
 /// The `--resolution SOLVER=VALUE` options, split, each solver named once.
 fn resolution_options(options: &[String]) -> Result<Vec<(String, String)>, InputError> {
     let mut pairs: Vec<(String, String)> = Vec::new();
@@ -224,17 +302,11 @@ fn resolution_options(options: &[String]) -> Result<Vec<(String, String)>, Input
 
 /// Loads the case at `file` with the command line's ranks and resolutions over its own.
 fn load_case(file: &Path, ranks: Option<u32>, resolutions: &[(String, String)]) -> Result<Case, InputError> {
-    let mut case = Case::load(file)?;
-    case.ranks = ranks.unwrap_or(case.ranks);
-    for (name, value) in resolutions {
-        case.set_resolution(name, value).map_err(|e| {
-            InputError(format!(
-                "--resolution {name}={value} (case {}): {e}",
-                file.display()
-            ))
-        })?;
-    }
-    Ok(case)
+    let options = plan::CaseOptions {
+        ranks,
+        resolutions: resolutions.to_vec(),
+    };
+    Ok(options.load(file)?)
 }
 
 /// The solvers named on the command line (each once), or the case's own list.
@@ -322,51 +394,155 @@ fn run(
     Ok(code)
 }
 
-fn verify_cases(
-    files: Vec<PathBuf>,
-    junit_file: Option<&Path>,
+/// Where `verify` and `merge` write, checked before any work.
+struct Outputs {
+    junit: Option<PathBuf>,
+    out: Option<PathBuf>,
     require_external: bool,
-    resolution: &[String],
-    ranks: Option<u32>,
-) -> Result<ExitCode, InputError> {
-    let resolutions = resolution_options(resolution)?;
-    let files = if files.is_empty() {
-        case_files(Path::new("cases"))?
-    } else {
-        files
-    };
-    if files.is_empty() {
-        return Err(InputError("no case files to verify".into()));
+}
+
+impl Outputs {
+    fn checked(
+        junit: Option<PathBuf>,
+        out: Option<PathBuf>,
+        require_external: bool,
+    ) -> Result<Self, InputError> {
+        if let Some(file) = &junit {
+            io::check_output_file(file)
+                .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+        }
+        if let Some(dir) = &out {
+            output_folder("--out", dir)?;
+        }
+        Ok(Outputs {
+            junit,
+            out,
+            require_external,
+        })
     }
-    let cases = files
-        .iter()
-        .map(|f| load_case(f, ranks, &resolutions))
-        .collect::<Result<Vec<_>, _>>()?;
-    if let Some(file) = junit_file {
-        io::check_output_file(file).map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
-    }
-    let runs: Vec<_> = cases.into_iter().map(verify::run_case).collect();
-    for run in &runs {
-        print!("{}", table::case_block(run));
-    }
-    let outcomes = runs.iter().flat_map(|r| &r.outcomes);
-    let count = |label: &str| outcomes.clone().filter(|o| o.verdict.label() == label).count();
-    let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
-    println!("verify: {ok} passed, {nook} failed, {info} informational, {na} not available");
-    if let Some(file) = junit_file {
-        io::write_atomically(file, junit::document(&runs).as_bytes())
-            .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
-    }
-    if require_external && na > 0 {
-        println!("verify: {na} not-available checks count as failures (--require-external)");
-    }
-    Ok(
-        if runs.iter().all(verify::CaseRun::passed) && !(require_external && na > 0) {
+
+    /// Prints the verdicts of `runs` and writes the JUnit and summary.
+    fn write(&self, runs: &[verify::CaseRun]) -> Result<ExitCode, InputError> {
+        let conclusion = Conclusion {
+            runs,
+            require_external: self.require_external,
+        };
+        let text = conclusion.text();
+        print!("{text}");
+        if let Some(file) = &self.junit {
+            io::write_atomically(file, conclusion.junit().as_bytes())
+                .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+        }
+        if let Some(dir) = &self.out {
+            std::fs::create_dir_all(dir)
+                .and_then(|()| io::write_atomically(&dir.join("summary.txt"), text.as_bytes()))
+                .map_err(|e| InputError(format!("--out {}: {e}", dir.display())))?;
+        }
+        Ok(if conclusion.passed() {
             ExitCode::SUCCESS
         } else {
             ExitCode::FAILURE
-        },
-    )
+        })
+    }
+}
+
+/// The cases of `verify`, read and selected, with their baselines; nothing run yet.
+struct VerifyPlan {
+    files: Vec<PathBuf>,
+    options: plan::CaseOptions,
+    plan: plan::Plan,
+    baselines: std::collections::BTreeMap<String, baseline::Baseline>,
+}
+
+fn verify_plan(
+    files: Vec<PathBuf>,
+    selection: &plan::Selection,
+    options: &plan::CaseOptions,
+    baselines: &Path,
+) -> Result<VerifyPlan, InputError> {
+    let files = plan::case_files(&if files.is_empty() {
+        vec![PathBuf::from("cases")]
+    } else {
+        files
+    })?;
+    let (mut selected, mut cases) = (Vec::new(), Vec::new());
+    for file in files {
+        let case = options.load(&file)?;
+        if selection.selects(&case) {
+            selected.push(file);
+            cases.push(case);
+        }
+    }
+    if cases.is_empty() {
+        return Err(InputError(
+            "no case files to verify (none given, or none selected by label)".into(),
+        ));
+    }
+    let baselines = baseline::load_all(baselines, cases.iter().map(Case::name))?;
+    let plan = plan::Plan::new(cases, |case, solver| baselines.get(case.name())?.wall_s(solver));
+    Ok(VerifyPlan {
+        files: selected,
+        options: options.clone(),
+        plan,
+        baselines,
+    })
+}
+
+fn verify_cases(
+    verify: VerifyPlan,
+    shard: Option<plan::Shard>,
+    jobs: usize,
+    outputs: &Outputs,
+) -> Result<ExitCode, InputError> {
+    let plan = match shard {
+        Some(shard) => verify.plan.shard(shard),
+        None => verify.plan,
+    };
+    let finished = schedule::execute(&plan, jobs);
+    if let Some(dir) = &outputs.out {
+        RunFile::new(&plan, &finished, verify.files, verify.options, shard)
+            .write(dir)
+            .map_err(|e| InputError(format!("--out {}: {e}", dir.display())))?;
+    }
+    let mut runs = schedule::judge(plan, finished);
+    baseline::compare_all(&verify.baselines, &mut runs);
+    outputs.write(&runs)
+}
+
+fn merge_runs(dirs: &[PathBuf], baselines: &Path, outputs: &Outputs) -> Result<ExitCode, InputError> {
+    let merged = merge::merge(dirs)?;
+    let baselines = baseline::load_all(baselines, merged.plan.cases.iter().map(Case::name))?;
+    for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
+        let shard = shard.as_deref().unwrap_or("whole");
+        eprintln!(
+            "merge: {} (shard {shard}): runs {wall_s:.2} s wall in all",
+            dir.display()
+        );
+    }
+    let mut runs = schedule::judge(merged.plan, merged.finished);
+    baseline::compare_all(&baselines, &mut runs);
+    outputs.write(&runs)
+}
+
+fn update_baselines(cases: Vec<PathBuf>, dir: &Path, jobs: Option<u32>) -> Result<ExitCode, InputError> {
+    let options = plan::CaseOptions::default();
+    let verify = verify_plan(cases, &plan::Selection::default(), &options, dir)?;
+    let jobs = jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+    let finished = schedule::execute(&verify.plan, jobs);
+    std::fs::create_dir_all(dir).map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
+    for run in schedule::judge(verify.plan, finished) {
+        let baseline = baseline::Baseline::of(&run);
+        let file = baseline::file(dir, run.case.name());
+        io::write_atomically(&file, baseline.to_toml().as_bytes())
+            .map_err(|e| InputError(format!("--baselines {}: {e}", file.display())))?;
+        println!(
+            "baseline: {} ({} checks with a value, {} solvers ran)",
+            file.display(),
+            baseline.checks.len(),
+            baseline.solvers.len()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn mesh(case: &Path, resolution: Option<&str>, out: &Path) -> Result<ExitCode, InputError> {
@@ -543,7 +719,7 @@ fn list() -> Result<ExitCode, InputError> {
         println!("  {:<width$} {}", solver.name(), solver.description());
     }
     println!("cases:");
-    for file in case_files(Path::new("cases")).unwrap_or_default() {
+    for file in plan::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
         match Case::load(&file) {
             Ok(case) => println!(
                 "  {:<22} {}  {}",

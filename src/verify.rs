@@ -2,6 +2,7 @@
 
 use crate::case::Case;
 use crate::check::{Histories, Outcome, Verdict};
+use crate::history::History;
 use crate::solver::{self, SolveError};
 
 /// A case after its solvers ran and its checks were judged.
@@ -18,13 +19,18 @@ pub struct CaseRun {
 }
 
 impl CaseRun {
-    /// True when no check is NOOK and every solver the case needs either ran or is not installed.
+    /// True when no check is NOOK or DRIFT and every solver the case needs either ran or is not
+    /// installed.
     pub fn passed(&self) -> bool {
         let solvers_ran = self
             .histories
             .values()
             .all(|r| matches!(r, Ok(_) | Err(SolveError::Unavailable(_))));
-        solvers_ran && self.outcomes.iter().all(|o| o.verdict != Verdict::Nook)
+        solvers_ran
+            && self
+                .outcomes
+                .iter()
+                .all(|o| !matches!(o.verdict, Verdict::Nook | Verdict::Drift))
     }
 }
 
@@ -36,23 +42,42 @@ pub fn run_case(case: Case) -> CaseRun {
 
 /// [`run_case`], calling `progress(solver, index, count)` before each solver runs.
 pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, usize)) -> CaseRun {
-    let mut warnings = case.scene.warnings();
-    let mut histories = Histories::new();
     let names = case.required_solvers();
-    for (index, name) in names.iter().cloned().enumerate() {
-        progress(&name, index, names.len());
-        let result = match case.solver(&name) {
-            Some(s) => solver::run(s.as_ref(), &case.scene),
-            None => Err(solver::SolveError::Unavailable(format!(
-                "no solver `{name}` in this build"
-            ))),
-        };
-        if let Ok(history) = &result {
+    let mut results = Vec::new();
+    for (index, name) in names.iter().enumerate() {
+        progress(name, index, names.len());
+        results.push((name.clone(), run_solver(&case, name)));
+    }
+    judge(case, results)
+}
+
+/// Runs the case's solver called `name`.
+pub fn run_solver(case: &Case, name: &str) -> Result<History, SolveError> {
+    match case.solver(name) {
+        Some(s) => solver::run(s.as_ref(), &case.scene),
+        None => Err(SolveError::Unavailable(format!(
+            "no solver `{name}` in this build"
+        ))),
+    }
+}
+
+/// Judges the case's checks on its solvers' `results` (in the case's order). A check that needs
+/// a solver not among them is left out: a shard judges only the checks whose solvers it ran
+/// (`verify --shard`), the merge of all shards judges every check.
+pub fn judge(case: Case, results: Vec<(String, Result<History, SolveError>)>) -> CaseRun {
+    let mut warnings = case.scene.warnings();
+    for (name, result) in &results {
+        if let Ok(history) = result {
             warnings.extend(history.metadata.warnings.iter().map(|w| format!("{name}: {w}")));
         }
-        histories.insert(name, result);
     }
-    let outcomes = case.checks.iter().map(|c| c.evaluate(&histories)).collect();
+    let histories: Histories = results.into_iter().collect();
+    let outcomes = case
+        .checks
+        .iter()
+        .filter(|c| c.solvers().all(|name| histories.contains_key(name)))
+        .map(|c| c.evaluate(&histories))
+        .collect();
     CaseRun {
         case,
         warnings,

@@ -236,6 +236,11 @@ impl Solver for Bem {
         self.solve_with_fields(scene).map(|(history, _)| history)
     }
 
+    /// The FFT products' team: two threads where two cores are free ([`crate::team`]).
+    fn cores(&self) -> usize {
+        crate::team::default_threads()
+    }
+
     /// Grids of 16² … 128² panels over the same window.
     fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
         [16, 32, 64, 128]

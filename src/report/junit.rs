@@ -37,12 +37,16 @@ pub fn document(runs: &[CaseRun]) -> String {
     let _ = writeln!(
         xml,
         "<testsuites name=\"spherecontact verify\" tests=\"{total}\" failures=\"{}\" skipped=\"{}\">",
-        count(Verdict::Nook),
+        count(Verdict::Nook) + count(Verdict::Drift),
         count(Verdict::Unavailable)
     );
     for run in runs {
         let name = run.case.name();
-        let failures = run.outcomes.iter().filter(|o| o.verdict == Verdict::Nook).count();
+        let failures = run
+            .outcomes
+            .iter()
+            .filter(|o| matches!(o.verdict, Verdict::Nook | Verdict::Drift))
+            .count();
         let _ = writeln!(
             xml,
             "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{failures}\">",
@@ -63,8 +67,9 @@ pub fn document(runs: &[CaseRun]) -> String {
             );
             let row = escape(&outcome_row(name, outcome));
             match outcome.verdict {
-                Verdict::Nook => {
-                    let _ = write!(xml, "<failure message=\"NOOK\">{row}</failure>");
+                Verdict::Nook | Verdict::Drift => {
+                    let label = outcome.verdict.label();
+                    let _ = write!(xml, "<failure message=\"{label}\">{row}</failure>");
                 }
                 Verdict::Unavailable => {
                     let _ = write!(xml, "<skipped message=\"{row}\"/>");

@@ -78,6 +78,7 @@ pub fn check_table(run: &CaseRun) -> Table {
                     Verdict::Nook => "nook",
                     Verdict::Info => "info",
                     Verdict::Unavailable => "na",
+                    Verdict::Drift => "nook",
                 };
                 let unit = o.spec.quantity.unit();
                 let worst = o
