@@ -53,9 +53,10 @@ pub fn tolerance(solver: &str) -> (f64, &'static str) {
     match solver {
         "freefem-axisym" | "fenicsx-axisym" | "fenicsx-3d" => (
             1e-9,
-            "an external FEM program: its direct solver (UMFPACK, MUMPS) runs on a threaded BLAS whose \
-             summation order follows the threads it gets, and a penalty system amplifies that rounding; \
-             a change of mesh, penalty or model moves P by 1e-6 or more",
+            "an external FEM program: FreeFEM's MUMPS_seq differs in the last bits run to run (about \
+             1e-14 of P and Q on the same files, external::deck::single_threaded), FEniCSx under MPI sums \
+             by rank, and a penalty system amplifies rounding; a change of mesh, penalty or model moves P \
+             by 1e-6 or more",
         ),
         name if name.starts_with("lammps") || name.starts_with("yade") => (
             1e-9,

@@ -61,6 +61,7 @@ pub mod resolution;
 pub mod runfile;
 pub mod scene;
 pub mod schedule;
+pub mod slurm;
 pub mod solver;
 pub mod team;
 pub mod verify;
