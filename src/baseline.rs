@@ -85,7 +85,7 @@ pub struct SolverRecord {
     pub version: String,
     /// Its resolution, in words.
     pub resolution: String,
-    /// Its wall time [s].
+    /// Its wall time [s], to two significant digits.
     pub wall_s: f64,
 }
 
@@ -147,7 +147,7 @@ impl Baseline {
                     SolverRecord {
                         version: meta.version.clone(),
                         resolution: meta.resolution.clone(),
-                        wall_s: meta.wall_time_s,
+                        wall_s: two_digits(meta.wall_time_s),
                     },
                 ))
             })
@@ -291,6 +291,17 @@ fn current(outcome: &Outcome, step: usize, histories: &Histories) -> Option<f64>
     spec.value(history, history.steps.get(step)?)
 }
 
+/// `x` to two significant digits: a wall time is a cost estimate, and its noise would make every
+/// `baseline update` a diff.
+fn two_digits(x: f64) -> f64 {
+    if x > 0.0 {
+        let scale = 10_f64.powi(1 - x.log10().floor() as i32);
+        (x * scale).round() / scale
+    } else {
+        0.0
+    }
+}
+
 /// The baselines of the cases named found in `dir`, by case name.
 pub fn load_all<'a>(
     dir: &Path,
@@ -311,5 +322,43 @@ pub fn compare_all(baselines: &BTreeMap<String, Baseline>, runs: &mut [CaseRun])
         if let Some(baseline) = baselines.get(run.case.name()) {
             baseline.compare(run);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_file_reads_back_what_was_written_bit_for_bit() {
+        let baseline = Baseline {
+            case: "a-case".into(),
+            solvers: [(
+                "bem".to_owned(),
+                SolverRecord {
+                    version: "0.1.0".into(),
+                    resolution: "64×64 panels \"quoted\"".into(),
+                    wall_s: 0.23,
+                },
+            )]
+            .into_iter()
+            .collect(),
+            checks: vec![CheckRecord {
+                index: 3,
+                check: "bem normal_force at every step vs hertz (relative)".into(),
+                step: 7,
+                value: 0.1 + 0.2,
+            }],
+        };
+        let text = baseline.to_toml();
+        assert_eq!(toml::from_str::<Baseline>(&text).unwrap(), baseline, "{text}");
+    }
+
+    #[test]
+    fn wall_times_keep_two_digits() {
+        assert_eq!(two_digits(2.34923066e-1), 0.23);
+        assert_eq!(two_digits(59.492033547), 59.0);
+        assert_eq!(two_digits(0.0), 0.0);
+        assert_eq!(format!("{:e}", two_digits(2.952e-6)), "3e-6");
     }
 }

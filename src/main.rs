@@ -109,37 +109,7 @@ enum Command {
     },
     /// Write Slurm batch scripts for a sharded verification: a job array of `verify --shard`,
     /// a merge job that depends on it, and submit.sh (nothing is submitted).
-    Slurm {
-        /// Case files or folders; default: every .toml under cases/.
-        cases: Vec<PathBuf>,
-        /// How many shards (array tasks).
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
-        shards: u32,
-        /// Where the scripts go, and the shards' and merged results when they run.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-        /// Run only the cases with this label (repeatable: any of them).
-        #[arg(long = "label", value_name = "LABEL")]
-        labels: Vec<String>,
-        /// Leave out the cases with this label (repeatable).
-        #[arg(long = "skip-label", value_name = "LABEL")]
-        skip_labels: Vec<String>,
-        /// Cores per shard (--cpus-per-task and verify --jobs).
-        #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=1024))]
-        cores: u32,
-        /// The Slurm partition.
-        #[arg(long)]
-        partition: Option<String>,
-        /// Each job's time limit (Slurm's --time, e.g. 1:00:00).
-        #[arg(long)]
-        time: Option<String>,
-        /// Count a check that is N/A as a failure.
-        #[arg(long)]
-        require_external: bool,
-        /// The non-regression baselines.
-        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
-        baselines: PathBuf,
-    },
+    Slurm(SlurmArgs),
     /// Non-regression baselines: `baseline update [CASE...]` runs the cases and rewrites their
     /// baselines (every check's value, each solver's version, resolution and wall time).
     Baseline {
@@ -201,6 +171,40 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+}
+
+/// The arguments of `slurm`.
+#[derive(clap::Args)]
+struct SlurmArgs {
+    /// Case files or folders; default: every .toml under cases/.
+    cases: Vec<PathBuf>,
+    /// How many shards (array tasks).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    shards: u32,
+    /// Where the scripts go, and the shards' and merged results when they run.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Run only the cases with this label (repeatable: any of them).
+    #[arg(long = "label", value_name = "LABEL")]
+    labels: Vec<String>,
+    /// Leave out the cases with this label (repeatable).
+    #[arg(long = "skip-label", value_name = "LABEL")]
+    skip_labels: Vec<String>,
+    /// Cores per shard (--cpus-per-task and verify --jobs).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    cores: u32,
+    /// The Slurm partition.
+    #[arg(long)]
+    partition: Option<String>,
+    /// Each job's time limit (Slurm's --time, e.g. 1:00:00).
+    #[arg(long)]
+    time: Option<String>,
+    /// Count a check that is N/A as a failure.
+    #[arg(long)]
+    require_external: bool,
+    /// The non-regression baselines.
+    #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+    baselines: PathBuf,
 }
 
 /// What `baseline` does.
@@ -284,59 +288,7 @@ fn main() -> ExitCode {
                     jobs,
                 },
         } => update_baselines(cases, &baselines, jobs),
-        Command::Slurm {
-            cases,
-            shards,
-            out,
-            labels,
-            skip_labels,
-            cores,
-            partition,
-            time,
-            require_external,
-            baselines,
-        } => (|| {
-            let selection = plan::Selection::new(&labels, &skip_labels)?;
-            verify_plan(
-                cases.clone(),
-                &selection,
-                &plan::CaseOptions::default(),
-                &baselines,
-            )?;
-            output_folder("--out", &out)?;
-            let root = std::env::current_dir()?;
-            let mut merge_args = vec![
-                "--baselines".to_owned(),
-                root.join(&baselines).display().to_string(),
-            ];
-            if require_external {
-                merge_args.push("--require-external".into());
-            }
-            let mut verify_args: Vec<String> = cases.iter().map(|c| c.display().to_string()).collect();
-            for (option, list) in [("--label", &labels), ("--skip-label", &skip_labels)] {
-                verify_args.extend(list.iter().flat_map(|l| [option.to_owned(), l.clone()]));
-            }
-            verify_args.extend(merge_args.iter().cloned());
-            let job = spherecontact::slurm::SlurmJob {
-                program: std::env::current_exe()?,
-                out: root.join(&out),
-                root,
-                verify_args,
-                merge_args,
-                shards: shards as usize,
-                cores: cores as usize,
-                partition,
-                time,
-            };
-            job.write()
-                .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
-            println!(
-                "slurm: scripts in {}: run {}",
-                out.display(),
-                job.out.join("submit.sh").display()
-            );
-            Ok(ExitCode::SUCCESS)
-        })(),
+        Command::Slurm(args) => slurm(args),
         Command::Mesh {
             case,
             resolution,
@@ -628,6 +580,50 @@ fn update_baselines(cases: Vec<PathBuf>, dir: &Path, jobs: Option<u32>) -> Resul
             baseline.solvers.len()
         );
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Checks the cases and writes the Slurm scripts of `args` (nothing is submitted).
+fn slurm(args: SlurmArgs) -> Result<ExitCode, InputError> {
+    let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
+    verify_plan(
+        args.cases.clone(),
+        &selection,
+        &plan::CaseOptions::default(),
+        &args.baselines,
+    )?;
+    output_folder("--out", &args.out)?;
+    let root = std::env::current_dir()?;
+    let mut merge_args = vec![
+        "--baselines".to_owned(),
+        root.join(&args.baselines).display().to_string(),
+    ];
+    if args.require_external {
+        merge_args.push("--require-external".into());
+    }
+    let mut verify_args: Vec<String> = args.cases.iter().map(|c| c.display().to_string()).collect();
+    for (option, list) in [("--label", &args.labels), ("--skip-label", &args.skip_labels)] {
+        verify_args.extend(list.iter().flat_map(|l| [option.to_owned(), l.clone()]));
+    }
+    verify_args.extend(merge_args.iter().cloned());
+    let job = spherecontact::slurm::SlurmJob {
+        program: std::env::current_exe()?,
+        out: root.join(&args.out),
+        root,
+        verify_args,
+        merge_args,
+        shards: args.shards as usize,
+        cores: args.cores as usize,
+        partition: args.partition,
+        time: args.time,
+    };
+    job.write()
+        .map_err(|e| InputError(format!("--out {}: {e}", args.out.display())))?;
+    println!(
+        "slurm: scripts in {}: run {}",
+        args.out.display(),
+        job.out.join("submit.sh").display()
+    );
     Ok(ExitCode::SUCCESS)
 }
 

@@ -229,3 +229,75 @@ fn a_drift_of_1e_9_fails_verify_until_the_baseline_is_updated() {
     let (code, stdout, _) = verify();
     assert_eq!(code, 0, "{stdout}");
 }
+
+#[test]
+fn every_shipped_case_is_labelled_and_the_heavy_one_is_heavy() {
+    let mut files = common::all_case_files();
+    files.push(root().join("cases-heavy/paper-fig7-3d.toml"));
+    for file in &files {
+        let case = spherecontact::case::Case::load(file).unwrap();
+        assert!(!case.labels.is_empty(), "{} has no labels", file.display());
+        let heavy = case.labels.iter().any(|l| l == "heavy");
+        assert_eq!(
+            heavy,
+            file.starts_with(root().join("cases-heavy")),
+            "{}",
+            file.display()
+        );
+    }
+}
+
+#[test]
+fn slurm_writes_a_job_array_of_shards_and_a_merge_after_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("slurm");
+    let (code, stdout, stderr) = run(&[
+        "slurm",
+        "--label",
+        "hard",
+        "--shards",
+        "3",
+        "--cores",
+        "2",
+        "--out",
+        path(&out),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let shards = text(&out.join("shards.sbatch"));
+    assert!(
+        shards.contains("#SBATCH --array=1-3\n") && shards.contains("#SBATCH --cpus-per-task=2\n"),
+        "{shards}"
+    );
+    assert!(
+        shards.contains(" verify '--label' 'hard' '--baselines' "),
+        "{shards}"
+    );
+    assert!(shards.contains("--jobs 2 --shard \"$k/3\""), "{shards}");
+    let merge = text(&out.join("merge.sbatch"));
+    assert!(
+        merge.contains(&format!(
+            "merge '{}/shard-1' '{0}/shard-2' '{0}/shard-3'",
+            out.display()
+        )),
+        "{merge}"
+    );
+    assert!(text(&out.join("submit.sh")).contains("sbatch --parsable --dependency=afterok:\"$array\""));
+    // Bad input writes nothing.
+    let (code, _, stderr) = run(&[
+        "slurm",
+        "--label",
+        "nope",
+        "--shards",
+        "3",
+        "--out",
+        path(&dir.path().join("x")),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(!dir.path().join("x").exists());
+    let (code, _, stderr) = run(&["verify", "--shard", "4/3"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--shard 4/3: not a shard (allowed: K/N with 1 ≤ K ≤ N ≤ 1000"),
+        "{stderr}"
+    );
+}
