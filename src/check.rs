@@ -183,7 +183,8 @@ pub struct Outcome {
 pub struct Drift {
     /// The value stored.
     pub baseline: f64,
-    /// |value − baseline| / max(|baseline|, |value|) at the baseline's step: 0 when equal.
+    /// |value − baseline| / max(|baseline|, |value|, |reference|) at the baseline's step (the
+    /// reference's magnitude: a profile's value is a small RMS difference): 0 when equal.
     pub change: f64,
     /// The largest change accepted for this check's solvers.
     pub tolerance: f64,
