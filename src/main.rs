@@ -49,45 +49,8 @@ enum Command {
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
         ranks: Option<u32>,
     },
-    /// Run cases and judge their checks; exit 1 on any NOOK.
-    Verify {
-        /// Case files; default: every .toml under cases/.
-        cases: Vec<PathBuf>,
-        /// Write JUnit XML here.
-        #[arg(long, value_name = "FILE")]
-        junit: Option<PathBuf>,
-        /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
-        #[arg(long)]
-        require_external: bool,
-        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
-        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
-        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
-        resolution: Vec<String>,
-        /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-        ranks: Option<u32>,
-        /// Run only the cases with this label (repeatable: any of them).
-        #[arg(long = "label", value_name = "LABEL")]
-        labels: Vec<String>,
-        /// Leave out the cases with this label (repeatable).
-        #[arg(long = "skip-label", value_name = "LABEL")]
-        skip_labels: Vec<String>,
-        /// Cores for concurrent runs (each solver takes the cores it declares); default: the
-        /// machine's.
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-        jobs: Option<u32>,
-        /// Run only the K-th of N parts of the runs, balanced by their recorded cost (e.g. 2/3);
-        /// `merge` puts the parts' --out folders together.
-        #[arg(long, value_name = "K/N")]
-        shard: Option<String>,
-        /// Write the run file (run.json: every run's history, for `merge`) and the printed
-        /// summary (summary.txt) into this folder.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// The non-regression baselines (<case>.toml) each value is compared with.
-        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
-        baselines: PathBuf,
-    },
+    /// Run cases and judge their checks; exit 1 on any NOOK or DRIFT.
+    Verify(VerifyArgs),
     /// Put the --out folders of `verify --shard` runs together: one summary and one JUnit,
     /// the same as the unsharded run's apart from timings; exit 1 on any NOOK.
     Merge {
@@ -173,6 +136,47 @@ enum Command {
     },
 }
 
+/// The arguments of `verify`.
+#[derive(clap::Args)]
+struct VerifyArgs {
+    /// Case files or folders (every .toml under them); default: cases/.
+    cases: Vec<PathBuf>,
+    /// Write JUnit XML here.
+    #[arg(long, value_name = "FILE")]
+    junit: Option<PathBuf>,
+    /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
+    #[arg(long)]
+    require_external: bool,
+    /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+    /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+    #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+    resolution: Vec<String>,
+    /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    ranks: Option<u32>,
+    /// Run only the cases with this label (repeatable: any of them).
+    #[arg(long = "label", value_name = "LABEL")]
+    labels: Vec<String>,
+    /// Leave out the cases with this label (repeatable).
+    #[arg(long = "skip-label", value_name = "LABEL")]
+    skip_labels: Vec<String>,
+    /// Cores for concurrent runs (each solver takes the cores it declares); default: the
+    /// machine's.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    jobs: Option<u32>,
+    /// Run only the K-th of N parts of the runs, balanced by their recorded cost (e.g. 2/3);
+    /// `merge` puts the parts' --out folders together.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<String>,
+    /// Write the run file (run.json: every run's history, for `merge`) and the printed
+    /// summary (summary.txt) into this folder.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// The non-regression baselines (<case>.toml) each value is compared with.
+    #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+    baselines: PathBuf,
+}
+
 /// The arguments of `slurm`.
 #[derive(clap::Args)]
 struct SlurmArgs {
@@ -248,30 +252,7 @@ fn main() -> ExitCode {
             resolution,
             ranks,
         } => run(&case, &solvers, &out, vtu, &resolution, ranks),
-        Command::Verify {
-            cases,
-            junit,
-            require_external,
-            resolution,
-            ranks,
-            labels,
-            skip_labels,
-            jobs,
-            shard,
-            out,
-            baselines,
-        } => (|| {
-            let selection = plan::Selection::new(&labels, &skip_labels)?;
-            let jobs = jobs.map_or_else(schedule::machine_cores, |n| n as usize);
-            let shard = shard.map(|s| s.parse::<plan::Shard>()).transpose()?;
-            let options = plan::CaseOptions {
-                ranks,
-                resolutions: resolution_options(&resolution)?,
-            };
-            let outputs = Outputs::checked(junit, out, require_external)?;
-            let plan = verify_plan(cases, &selection, &options, &baselines)?;
-            verify_cases(plan, shard, jobs, &outputs)
-        })(),
+        Command::Verify(args) => verify_command(args),
         Command::Merge {
             dirs,
             junit,
@@ -524,6 +505,20 @@ fn verify_plan(
         plan,
         baselines,
     })
+}
+
+/// `verify`: the plan checked and built (nothing written on bad input), then executed.
+fn verify_command(args: VerifyArgs) -> Result<ExitCode, InputError> {
+    let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
+    let jobs = args.jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+    let shard = args.shard.map(|s| s.parse::<plan::Shard>()).transpose()?;
+    let options = plan::CaseOptions {
+        ranks: args.ranks,
+        resolutions: resolution_options(&args.resolution)?,
+    };
+    let outputs = Outputs::checked(args.junit, args.out, args.require_external)?;
+    let plan = verify_plan(args.cases, &selection, &options, &args.baselines)?;
+    verify_cases(plan, shard, jobs, &outputs)
 }
 
 fn verify_cases(
