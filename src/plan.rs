@@ -21,20 +21,26 @@ pub enum PlanError {
     /// A `--shard` that is not K/N with 1 ≤ K ≤ N ≤ [`MAX_SHARDS`].
     #[error("--shard {0}: not a shard (allowed: K/N with 1 ≤ K ≤ N ≤ {MAX_SHARDS}, e.g. 2/3)")]
     Shard(String),
-    /// A case file that is not valid.
+    /// A case file that is not valid (boxed: a located error is large).
     #[error(transparent)]
-    Case(#[from] crate::case::CaseError),
+    Case(Box<crate::case::CaseError>),
     /// A `--resolution` that a case's solver does not accept.
     #[error("--resolution {name}={value} (case {}): {error}", case.display())]
     Resolution {
         name: String,
         value: String,
         case: PathBuf,
-        error: crate::resolution::ResolutionError,
+        error: Box<crate::resolution::ResolutionError>,
     },
     /// A case folder that cannot be listed.
     #[error("{}: cannot list cases: {error}", dir.display())]
     List { dir: PathBuf, error: std::io::Error },
+}
+
+impl From<crate::case::CaseError> for PlanError {
+    fn from(error: crate::case::CaseError) -> Self {
+        PlanError::Case(Box::new(error))
+    }
 }
 
 /// The most shards a run may be cut into.
@@ -61,7 +67,7 @@ impl CaseOptions {
                     name: name.clone(),
                     value: value.clone(),
                     case: file.to_path_buf(),
-                    error,
+                    error: Box::new(error),
                 })?;
         }
         Ok(case)
