@@ -152,17 +152,21 @@ pub enum Verdict {
     /// Within tolerance although marked as a known failure: the defect may be fixed, the mark
     /// must be removed (fails the run).
     Fixed,
+    /// The value moved from its non-regression baseline beyond the solver's tolerance
+    /// ([`crate::baseline`]): a failure, whatever the check's own verdict was.
+    Drift,
 }
 
 impl Verdict {
     /// Every verdict (a new one joins the counts and orders by being listed here).
-    pub const ALL: [Verdict; 6] = [
+    pub const ALL: [Verdict; 7] = [
         Verdict::Ok,
         Verdict::Nook,
         Verdict::Info,
         Verdict::Unavailable,
         Verdict::Known,
         Verdict::Fixed,
+        Verdict::Drift,
     ];
 
     /// The label printed in the result table.
@@ -174,12 +178,13 @@ impl Verdict {
             Verdict::Unavailable => "N/A",
             Verdict::Known => "KNOWN",
             Verdict::Fixed => "FIXED?",
+            Verdict::Drift => "DRIFT",
         }
     }
 
     /// Whether this verdict fails the run: NOOK, and FIXED? (a stale known-failure mark).
     pub fn fails_run(self) -> bool {
-        matches!(self, Verdict::Nook | Verdict::Fixed)
+        matches!(self, Verdict::Nook | Verdict::Fixed | Verdict::Drift)
     }
 
     /// The verdict of a check whose error was judged `judged`, under its known-failure mark if
@@ -197,7 +202,7 @@ impl Verdict {
     /// place where verdicts are ranked.
     pub fn severity(self) -> u8 {
         match self {
-            Verdict::Nook | Verdict::Fixed => 4,
+            Verdict::Nook | Verdict::Fixed | Verdict::Drift => 4,
             Verdict::Known => 3,
             Verdict::Unavailable => 2,
             Verdict::Info => 1,
@@ -206,7 +211,7 @@ impl Verdict {
     }
 
     /// Every verdict, the most severe first.
-    pub fn by_severity() -> [Verdict; 6] {
+    pub fn by_severity() -> [Verdict; 7] {
         let mut all = Verdict::ALL;
         all.sort_by_key(|v| std::cmp::Reverse(v.severity()));
         all
@@ -230,12 +235,35 @@ pub struct Outcome {
     pub worst_step: Option<usize>,
     /// Why there is no error to show (solver failed, value missing, nothing to compare).
     pub message: Option<String>,
+    /// The value against its non-regression baseline, when the case has one for this check
+    /// ([`crate::baseline`]).
+    pub drift: Option<Drift>,
+}
+
+/// A check's value against the value stored in its baseline.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Drift {
+    /// The value stored.
+    pub baseline: f64,
+    /// |value − baseline| / max(|baseline|, |value|, |reference|) at the baseline's step (the
+    /// reference's magnitude: a profile's value is a small RMS difference): 0 when equal.
+    pub change: f64,
+    /// The largest change accepted for this check's solvers.
+    pub tolerance: f64,
 }
 
 /// The histories of a case's solvers, by name.
 pub type Histories = BTreeMap<String, Result<History, SolveError>>;
 
 impl CheckSpec {
+    /// The solvers the check needs: its subject, then its reference solver if any.
+    pub fn solvers(&self) -> impl Iterator<Item = &String> {
+        std::iter::once(&self.solver).chain(match &self.reference {
+            Reference::Solver(name) => Some(name),
+            Reference::Value { .. } => None,
+        })
+    }
+
     /// Judges this check on the histories of a case's solvers.
     pub fn evaluate(&self, histories: &Histories) -> Outcome {
         let subject = match lookup(histories, &self.solver) {
@@ -298,6 +326,7 @@ impl CheckSpec {
             error: Some(error),
             worst_step: Some(worst_step),
             message: None,
+            drift: None,
         }
     }
 
@@ -326,6 +355,7 @@ impl CheckSpec {
                     error: Some(error),
                     worst_step: subject.at_position(position).map(|r| r.step),
                     message: None,
+                    drift: None,
                 }
             }
             Err(message) => self.outcome_without_error(Verdict::Nook, format!("{}: {message}", self.solver)),
@@ -334,7 +364,7 @@ impl CheckSpec {
 
     /// The judged quantity at `row` of `history`: the row's value, or for a map measure its
     /// measure on the field at the row's path position ([`crate::map_measure`]).
-    fn value(&self, history: &History, row: &StepResult) -> Option<f64> {
+    pub fn value(&self, history: &History, row: &StepResult) -> Option<f64> {
         if self.quantity.is_map_measure() {
             let field = history.field_at(row.position?)?;
             crate::map_measure::measure(self.quantity, field)
@@ -370,6 +400,7 @@ impl CheckSpec {
             error: None,
             worst_step: None,
             message: Some(message),
+            drift: None,
         }
     }
 }

@@ -1,6 +1,6 @@
 //! What a solver returns: one row of contact quantities per path step, and how it was obtained.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;
 
@@ -8,7 +8,7 @@ use crate::path::Step;
 
 /// The contact quantities of one path step, in SI units. A quantity the solver does not produce
 /// is `None` (an empty CSV cell), never NaN or zero.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct StepResult {
     /// Step index, 0 for the start.
     pub step: usize,
@@ -44,7 +44,7 @@ impl StepResult {
 }
 
 /// A contact quantity that checks and reports can name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Quantity {
     /// Normal force P [N].
@@ -172,7 +172,7 @@ impl fmt::Display for Quantity {
 }
 
 /// How a history was obtained.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Metadata {
     /// The solver's command-line name.
     pub solver: String,
@@ -194,7 +194,7 @@ pub struct Metadata {
 }
 
 /// Which in-plane components of the tangential traction and slip a solver resolves.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum TangentialComponents {
     /// Both q_x and q_y (and both slip components): the BEM grid, the 3D meshes.
@@ -211,7 +211,7 @@ pub enum TangentialComponents {
 ///
 /// Frame: origin at the contact centre, x along δt, y across it, both on the contact plane.
 /// Axisymmetric and 1D solvers sample the x axis (y = 0).
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SurfaceField {
     /// The path position.
     pub position: usize,
@@ -235,7 +235,7 @@ pub struct SurfaceField {
 }
 
 /// How a surface field's samples cover the contact plane.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Layout {
     /// Samples along the x axis of an axisymmetric (or 1D) solution: the same on every radius.
@@ -281,7 +281,7 @@ impl Layout {
 }
 
 /// A solver's result along a whole path.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct History {
     /// How it was obtained.
     pub metadata: Metadata,

@@ -28,10 +28,12 @@
 //! Units are SI throughout (m, N, Pa); a case file may give its path in µm or mm and says so.
 
 pub mod analytic;
+pub mod baseline;
 pub mod bem;
 pub mod bench;
 pub mod case;
 pub mod check;
+pub mod conclusion;
 pub mod contact;
 pub mod cost;
 pub mod dem;
@@ -48,17 +50,22 @@ pub mod io;
 pub mod limits;
 pub mod map_measure;
 pub mod memory;
+pub mod merge;
 pub mod mirror;
 pub mod number;
 pub mod pair;
 pub mod path;
+pub mod plan;
 pub mod profile;
 pub mod progress;
 pub mod quadrature;
 pub mod registry;
 pub mod report;
 pub mod resolution;
+pub mod runfile;
 pub mod scene;
+pub mod schedule;
+pub mod slurm;
 pub mod solver;
 pub mod team;
 pub mod text;

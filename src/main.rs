@@ -9,11 +9,15 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use spherecontact::case::{limits, Case, ReadRoots};
+use spherecontact::conclusion::Conclusion;
 use spherecontact::external::permission::{self, CommandPermission};
 use spherecontact::external::{geo, toolchain::Toolchain};
 use spherecontact::impact::{command as impact, ImpactRun};
-use spherecontact::report::{history_files, junit, summary, table};
-use spherecontact::{io, progress, registry, resolution, solver, text, verify};
+use spherecontact::report::{history_files, junit, summary};
+use spherecontact::runfile::RunFile;
+use spherecontact::{
+    baseline, io, merge, plan, progress, registry, resolution, schedule, solver, text, verify,
+};
 
 #[derive(Parser)]
 #[command(
@@ -82,28 +86,39 @@ enum Command {
         #[command(flatten)]
         force: Force,
     },
-    /// Run cases and judge their checks; exit 1 on any NOOK.
-    Verify {
-        /// Case files; default: every .toml under cases/.
-        cases: Vec<PathBuf>,
+    /// Run cases and judge their checks; exit 1 on any NOOK or DRIFT.
+    Verify(VerifyArgs),
+    /// Put the --out folders of `verify --shard` runs together: one summary and one JUnit,
+    /// the same as the unsharded run's apart from timings; exit 1 on any NOOK.
+    Merge {
+        /// The folders written by `verify --out`.
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
         /// Write JUnit XML here.
         #[arg(long, value_name = "FILE")]
         junit: Option<PathBuf>,
+        /// Write the merged summary (summary.txt) into this folder.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
         /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
         #[arg(long)]
         require_external: bool,
-        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
-        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
-        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
-        resolution: Vec<String>,
-        /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-        ranks: Option<u32>,
-        #[command(flatten)]
-        commands: CommandOptions,
-        /// Replace a --junit file that spherecontact did not write.
+        /// Replace a --junit file that spherecontact did not write, or write --out into a folder
+        /// that holds files it did not write.
         #[arg(long)]
         force: bool,
+        /// The non-regression baselines (<case>.toml) each value is compared with.
+        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+        baselines: PathBuf,
+    },
+    /// Write Slurm batch scripts for a sharded verification: a job array of `verify --shard`,
+    /// a merge job that depends on it, and submit.sh (nothing is submitted).
+    Slurm(SlurmArgs),
+    /// Non-regression baselines: `baseline update [CASE...]` runs the cases and rewrites their
+    /// baselines (every check's value, each solver's version, resolution and wall time).
+    Baseline {
+        #[command(subcommand)]
+        action: BaselineAction,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -196,6 +211,103 @@ struct Force {
     force: bool,
 }
 
+/// The arguments of `verify`.
+#[derive(clap::Args)]
+struct VerifyArgs {
+    /// Case files or folders (every .toml under them); default: cases/.
+    cases: Vec<PathBuf>,
+    /// Write JUnit XML here.
+    #[arg(long, value_name = "FILE")]
+    junit: Option<PathBuf>,
+    /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
+    #[arg(long)]
+    require_external: bool,
+    /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+    /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+    #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+    resolution: Vec<String>,
+    /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    ranks: Option<u32>,
+    /// Run only the cases with this label (repeatable: any of them).
+    #[arg(long = "label", value_name = "LABEL")]
+    labels: Vec<String>,
+    /// Leave out the cases with this label (repeatable).
+    #[arg(long = "skip-label", value_name = "LABEL")]
+    skip_labels: Vec<String>,
+    /// Cores for concurrent runs (each solver takes the cores it declares); default: the
+    /// machine's.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    jobs: Option<u32>,
+    /// Run only the K-th of N parts of the runs, balanced by their recorded cost (e.g. 2/3);
+    /// `merge` puts the parts' --out folders together.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<String>,
+    /// Write the run file (run.json: every run's history, for `merge`) and the printed
+    /// summary (summary.txt) into this folder.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// The non-regression baselines (<case>.toml) each value is compared with.
+    #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+    baselines: PathBuf,
+    #[command(flatten)]
+    commands: CommandOptions,
+    /// Replace a --junit file that spherecontact did not write, or write --out into a folder
+    /// that holds files it did not write.
+    #[arg(long)]
+    force: bool,
+}
+
+/// The arguments of `slurm`.
+#[derive(clap::Args)]
+struct SlurmArgs {
+    /// Case files or folders; default: every .toml under cases/.
+    cases: Vec<PathBuf>,
+    /// How many shards (array tasks).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    shards: u32,
+    /// Where the scripts go, and the shards' and merged results when they run.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Run only the cases with this label (repeatable: any of them).
+    #[arg(long = "label", value_name = "LABEL")]
+    labels: Vec<String>,
+    /// Leave out the cases with this label (repeatable).
+    #[arg(long = "skip-label", value_name = "LABEL")]
+    skip_labels: Vec<String>,
+    /// Cores per shard (--cpus-per-task and verify --jobs).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    cores: u32,
+    /// The Slurm partition.
+    #[arg(long)]
+    partition: Option<String>,
+    /// Each job's time limit (Slurm's --time, e.g. 1:00:00).
+    #[arg(long)]
+    time: Option<String>,
+    /// Count a check that is N/A as a failure.
+    #[arg(long)]
+    require_external: bool,
+    /// The non-regression baselines.
+    #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+    baselines: PathBuf,
+}
+
+/// What `baseline` does.
+#[derive(Subcommand)]
+enum BaselineAction {
+    /// Run cases and rewrite their baselines.
+    Update {
+        /// Case files or folders; default: every .toml under cases/.
+        cases: Vec<PathBuf>,
+        /// The baselines' folder.
+        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+        baselines: PathBuf,
+        /// Cores for concurrent runs; default: the machine's.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: Option<u32>,
+    },
+}
+
 /// A bad-input error: printed, exit code 2, nothing written.
 struct InputError(String);
 
@@ -242,26 +354,25 @@ fn main() -> ExitCode {
                 &p,
             )
         }),
-        Command::Verify {
-            cases,
+        Command::Verify(args) => verify_command(args, roots),
+        Command::Merge {
+            dirs,
             junit,
+            out,
             require_external,
-            resolution,
-            ranks,
-            commands,
+            baselines,
             force,
-        } => commands.permission().and_then(|p| {
-            verify_cases(
-                cases,
-                junit.as_deref(),
-                force,
-                require_external,
-                &resolution,
-                ranks,
-                roots,
-                &p,
-            )
-        }),
+        } => Outputs::checked(junit, out, require_external, force)
+            .and_then(|outputs| merge_runs(&dirs, &baselines, &outputs, roots)),
+        Command::Baseline {
+            action:
+                BaselineAction::Update {
+                    cases,
+                    baselines,
+                    jobs,
+                },
+        } => update_baselines(cases, &baselines, jobs, roots),
+        Command::Slurm(args) => slurm(args, roots),
         Command::Mesh {
             case,
             resolution,
@@ -322,25 +433,6 @@ fn input_error(message: &str) -> ExitCode {
     ExitCode::from(2)
 }
 
-/// Every `.toml` file under `dir`, recursively, in sorted order. Symbolic links to folders are
-/// not followed (a link to an ancestor would make the walk endless).
-fn case_files(dir: &Path) -> Result<Vec<PathBuf>, InputError> {
-    let mut files = Vec::new();
-    let entries = std::fs::read_dir(dir)
-        .map_err(|e| InputError(format!("{}: cannot list cases: {e}", dir.display())))?;
-    for entry in entries {
-        let entry = entry?;
-        let path = entry.path();
-        if entry.file_type()?.is_dir() {
-            files.extend(case_files(&path)?);
-        } else if path.extension().is_some_and(|e| e == "toml") {
-            files.push(path);
-        }
-    }
-    files.sort();
-    Ok(files)
-}
-
 /// The `--resolution SOLVER=VALUE` options, split, each solver named once.
 fn resolution_options(options: &[String]) -> Result<Vec<(String, String)>, InputError> {
     let mut pairs: Vec<(String, String)> = Vec::new();
@@ -366,18 +458,13 @@ fn load_case(
     roots: &ReadRoots,
     permission: &CommandPermission,
 ) -> Result<Case, InputError> {
-    let mut case = Case::load_with(file, roots)?;
-    case.permit_commands(permission);
-    case.ranks = ranks.unwrap_or(case.ranks);
-    for (name, value) in resolutions {
-        case.set_resolution(name, value).map_err(|e| {
-            InputError(format!(
-                "--resolution {name}={value} (case {}): {e}",
-                file.display()
-            ))
-        })?;
-    }
-    Ok(case)
+    let options = plan::CaseOptions {
+        ranks,
+        resolutions: resolutions.to_vec(),
+        roots: roots.clone(),
+        permission: permission.clone(),
+    };
+    Ok(options.load(file)?)
 }
 
 /// The solvers named on the command line (each once), or the case's own list.
@@ -477,83 +564,256 @@ fn run(
     Ok(code)
 }
 
-fn verify_cases(
-    files: Vec<PathBuf>,
-    junit_file: Option<&Path>,
-    force: bool,
+/// Where `verify` and `merge` write, checked before any work.
+struct Outputs {
+    /// The JUnit file as given, and its canonical path (claimed).
+    junit: Option<(PathBuf, PathBuf)>,
+    /// The output folder, claimed (and locked) for this run.
+    out: Option<io::OutputFolder>,
     require_external: bool,
-    resolution: &[String],
-    ranks: Option<u32>,
-    roots: &ReadRoots,
-    permission: &CommandPermission,
-) -> Result<ExitCode, InputError> {
-    let resolutions = resolution_options(resolution)?;
-    let files = if files.is_empty() {
-        case_files(Path::new("cases"))?
+}
+
+impl Outputs {
+    fn checked(
+        junit: Option<PathBuf>,
+        out: Option<PathBuf>,
+        require_external: bool,
+        force: bool,
+    ) -> Result<Self, InputError> {
+        let junit = junit
+            .map(|file| {
+                io::claim_file(&file, force, junit::is_ours)
+                    .map(|canonical| (file.clone(), canonical))
+                    .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))
+            })
+            .transpose()?;
+        let out = out.map(|dir| claim(&dir, force)).transpose()?;
+        Ok(Outputs {
+            junit,
+            out,
+            require_external,
+        })
+    }
+
+    /// Prints the verdicts of `runs` (and the impact cases' `impacts`) and writes the JUnit and
+    /// summary.
+    fn write(&self, runs: &[verify::CaseRun], impacts: &[ImpactRun]) -> Result<ExitCode, InputError> {
+        let conclusion = Conclusion {
+            runs,
+            require_external: self.require_external,
+        };
+        for run in impacts {
+            print!("{}", run.block());
+        }
+        let text = conclusion.text();
+        print!("{text}");
+        if let Some((file, canonical)) = &self.junit {
+            io::write_atomically(canonical, conclusion.junit().as_bytes())
+                .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+        }
+        if let Some(folder) = &self.out {
+            io::write_atomically(&folder.path().join("summary.txt"), text.as_bytes())
+                .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
+        }
+        Ok(if conclusion.passed() && impacts.iter().all(ImpactRun::passed) {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        })
+    }
+}
+
+/// The cases of `verify`, read and selected, with their baselines; nothing run yet.
+struct VerifyPlan {
+    files: Vec<PathBuf>,
+    /// The impact cases among the files (`kind = "impact"`: run apart, docs/impact.md).
+    impacts: Vec<spherecontact::impact::ImpactCase>,
+    options: plan::CaseOptions,
+    plan: plan::Plan,
+    baselines: std::collections::BTreeMap<String, baseline::Baseline>,
+}
+
+fn verify_plan(
+    files: Vec<PathBuf>,
+    selection: &plan::Selection,
+    options: &plan::CaseOptions,
+    baselines: &Path,
+) -> Result<VerifyPlan, InputError> {
+    let files = plan::case_files(&if files.is_empty() {
+        vec![PathBuf::from("cases")]
     } else {
         files
-    };
-    if files.is_empty() {
-        return Err(InputError("no case files to verify".into()));
-    }
+    })?;
     let (impact_files, files): (Vec<PathBuf>, Vec<PathBuf>) =
         files.into_iter().partition(|f| impact::is_impact_file(f));
-    let impact_cases = impact_files
+    let impacts = impact_files
         .iter()
         .map(|f| spherecontact::case::load_impact(f))
         .collect::<Result<Vec<_>, _>>()?;
-    let cases = files
-        .iter()
-        .map(|f| load_case(f, ranks, &resolutions, roots, permission))
-        .collect::<Result<Vec<_>, _>>()?;
+    let (mut selected, mut cases) = (Vec::new(), Vec::new());
+    for file in files {
+        let case = options.load(&file)?;
+        if selection.selects(&case) {
+            selected.push(file);
+            cases.push(case);
+        }
+    }
+    if cases.is_empty() && impacts.is_empty() {
+        return Err(InputError(
+            "no case files to verify (none given, or none selected by label)".into(),
+        ));
+    }
+    let baselines = baseline::load_all(baselines, cases.iter().map(Case::name))?;
     let commands: Vec<String> = cases.iter().flat_map(Case::command_lines).collect();
     commands.iter().for_each(|line| println!("{line}"));
-    let junit_file = junit_file
-        .map(|file| {
-            io::claim_file(file, force, junit::is_ours)
-                .map(|canonical| (file, canonical))
-                .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))
-        })
-        .transpose()?;
-    let runs: Vec<_> = cases.into_iter().map(verify::run_case).collect();
-    for run in &runs {
-        print!("{}", table::case_block(run));
-    }
-    let impact_runs: Vec<ImpactRun> = impact_cases.into_iter().map(ImpactRun::of).collect();
-    for run in &impact_runs {
-        print!("{}", run.block());
-    }
-    let verdicts = runs.iter().flat_map(|r| r.outcomes.iter().map(|o| o.verdict));
-    let verdicts = verdicts.chain(
-        impact_runs
-            .iter()
-            .flat_map(|r| r.outcomes.iter().map(|o| o.verdict)),
-    );
-    let count = |label: &str| verdicts.clone().filter(|v| v.label() == label).count();
-    let (ok, nook, info, na) = (count("OK"), count("NOOK"), count("INFO"), count("N/A"));
-    let (known, fixed) = (count("KNOWN"), count("FIXED?"));
-    println!(
-        "verify: {ok} passed, {nook} failed, {info} informational, {na} not available, {known} known failures, {fixed} known failures that pass (FIXED?: remove their marks)"
-    );
-    if let Some((file, canonical)) = &junit_file {
-        io::write_atomically(canonical, junit::document(&runs).as_bytes())
-            .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
-    }
-    if !commands.is_empty() && !permission.is_allowed() {
+    if !commands.is_empty() && !options.permission.is_allowed() {
         println!(
-            "verify: the programs cases name were not run: {}",
+            "verify: the programs cases name will not run: {}",
             permission::how_to_allow()
         );
     }
-    if require_external && na > 0 {
-        println!("verify: {na} not-available checks count as failures (--require-external)");
-    }
-    let passed = runs.iter().all(verify::CaseRun::passed) && impact_runs.iter().all(ImpactRun::passed);
-    Ok(if passed && !(require_external && na > 0) {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
+    let plan = plan::Plan::new(cases, |case, solver| baselines.get(case.name())?.wall_s(solver));
+    Ok(VerifyPlan {
+        files: selected,
+        impacts,
+        options: options.clone(),
+        plan,
+        baselines,
     })
+}
+
+/// `verify`: the plan checked and built (nothing written on bad input), then executed.
+fn verify_command(args: VerifyArgs, roots: &ReadRoots) -> Result<ExitCode, InputError> {
+    let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
+    let jobs = args.jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+    let shard = args.shard.map(|s| s.parse::<plan::Shard>()).transpose()?;
+    let options = plan::CaseOptions {
+        ranks: args.ranks,
+        resolutions: resolution_options(&args.resolution)?,
+        roots: roots.clone(),
+        permission: args.commands.permission()?,
+    };
+    let outputs = Outputs::checked(args.junit, args.out, args.require_external, args.force)?;
+    let plan = verify_plan(args.cases, &selection, &options, &args.baselines)?;
+    verify_cases(plan, shard, jobs, &outputs)
+}
+
+fn verify_cases(
+    verify: VerifyPlan,
+    shard: Option<plan::Shard>,
+    jobs: usize,
+    outputs: &Outputs,
+) -> Result<ExitCode, InputError> {
+    let plan = match shard {
+        Some(shard) => verify.plan.shard(shard),
+        None => verify.plan,
+    };
+    let finished = schedule::execute(&plan, jobs);
+    if let Some(folder) = &outputs.out {
+        RunFile::new(&plan, &finished, verify.files, verify.options, shard)
+            .write(folder.path())
+            .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
+    }
+    let mut runs = schedule::judge(plan, finished);
+    baseline::compare_all(&verify.baselines, &mut runs);
+    // The impact cases (fast, one thread each) run whole in the first shard.
+    let impacts: Vec<ImpactRun> = match shard {
+        Some(shard) if !shard.is_first() => Vec::new(),
+        _ => verify.impacts.into_iter().map(ImpactRun::of).collect(),
+    };
+    outputs.write(&runs, &impacts)
+}
+
+fn merge_runs(
+    dirs: &[PathBuf],
+    baselines: &Path,
+    outputs: &Outputs,
+    roots: &ReadRoots,
+) -> Result<ExitCode, InputError> {
+    let merged = merge::merge(dirs, roots)?;
+    let baselines = baseline::load_all(baselines, merged.plan.cases.iter().map(Case::name))?;
+    for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
+        let shard = shard.as_deref().unwrap_or("whole");
+        eprintln!(
+            "merge: {} (shard {shard}): runs {wall_s:.2} s wall in all",
+            dir.display()
+        );
+    }
+    let mut runs = schedule::judge(merged.plan, merged.finished);
+    baseline::compare_all(&baselines, &mut runs);
+    outputs.write(&runs, &[])
+}
+
+fn update_baselines(
+    cases: Vec<PathBuf>,
+    dir: &Path,
+    jobs: Option<u32>,
+    roots: &ReadRoots,
+) -> Result<ExitCode, InputError> {
+    let options = plan::CaseOptions {
+        roots: roots.clone(),
+        ..plan::CaseOptions::default()
+    };
+    let verify = verify_plan(cases, &plan::Selection::default(), &options, dir)?;
+    let jobs = jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+    let finished = schedule::execute(&verify.plan, jobs);
+    io::create_folder(dir).map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
+    for run in schedule::judge(verify.plan, finished) {
+        let baseline = baseline::Baseline::of(&run);
+        let file = baseline::file(dir, run.case.name());
+        io::write_atomically(&file, baseline.to_toml().as_bytes())
+            .map_err(|e| InputError(format!("--baselines {}: {e}", file.display())))?;
+        println!(
+            "baseline: {} ({} checks with a value, {} solvers ran)",
+            file.display(),
+            baseline.checks.len(),
+            baseline.solvers.len()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Checks the cases and writes the Slurm scripts of `args` (nothing is submitted).
+fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, InputError> {
+    let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
+    let options = plan::CaseOptions {
+        roots: roots.clone(),
+        ..plan::CaseOptions::default()
+    };
+    verify_plan(args.cases.clone(), &selection, &options, &args.baselines)?;
+    let folder = claim(&args.out, false)?;
+    let root = std::env::current_dir()?;
+    let mut merge_args = vec![
+        "--baselines".to_owned(),
+        root.join(&args.baselines).display().to_string(),
+    ];
+    if args.require_external {
+        merge_args.push("--require-external".into());
+    }
+    let mut verify_args: Vec<String> = args.cases.iter().map(|c| c.display().to_string()).collect();
+    for (option, list) in [("--label", &args.labels), ("--skip-label", &args.skip_labels)] {
+        verify_args.extend(list.iter().flat_map(|l| [option.to_owned(), l.clone()]));
+    }
+    verify_args.extend(merge_args.iter().cloned());
+    let job = spherecontact::slurm::SlurmJob {
+        program: std::env::current_exe()?,
+        out: folder.path().to_path_buf(),
+        root,
+        verify_args,
+        merge_args,
+        shards: args.shards as usize,
+        cores: args.cores as usize,
+        partition: args.partition,
+        time: args.time,
+    };
+    job.write()
+        .map_err(|e| InputError(format!("--out {}: {e}", args.out.display())))?;
+    println!(
+        "slurm: scripts in {}: run {}",
+        args.out.display(),
+        job.out.join("submit.sh").display()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 fn mesh(
@@ -605,7 +865,7 @@ fn doctor() -> ExitCode {
         "command solvers: {}",
         permission.as_ref().map_or_else(|e| e.to_string(), |p| p.state())
     );
-    for file in case_files(Path::new("cases")).unwrap_or_default() {
+    for file in plan::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
         if let Ok(mut case) = Case::load(&file) {
             case.permit_commands(permission.as_ref().unwrap_or(&CommandPermission::refused()));
             case.command_lines().iter().for_each(|line| println!("  {line}"));
@@ -775,7 +1035,7 @@ fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
         println!("  {:<width$} {}", solver.name(), solver.description());
     }
     println!("cases:");
-    for file in case_files(Path::new("cases")).unwrap_or_default() {
+    for file in plan::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
         if impact::is_impact_file(&file) {
             match spherecontact::case::load_impact(&file) {
                 Ok(case) => println!(

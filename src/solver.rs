@@ -79,6 +79,13 @@ pub trait Solver: Send + Sync {
     fn writing_fields_to(&self, _dir: &std::path::Path) -> Option<Box<dyn Solver>> {
         None
     }
+
+    /// The cores a run of this solver keeps busy (its threads, its MPI ranks): what a schedule
+    /// of concurrent runs sets aside for it (`verify --jobs`, [`crate::schedule`]). One by
+    /// default.
+    fn cores(&self) -> usize {
+        1
+    }
 }
 
 /// Runs `solver` on `scene`, timing it and completing the history's metadata.
@@ -192,6 +199,10 @@ impl Solver for Resolved {
         self.inner.resolution_ladder(scene)
     }
 
+    fn cores(&self) -> usize {
+        self.inner.cores()
+    }
+
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
         self.inner.writing_fields_to(dir).map(|inner| {
             Box::new(Resolved {
@@ -214,6 +225,10 @@ pub struct SurfaceVtu {
 impl Solver for SurfaceVtu {
     fn name(&self) -> &str {
         self.inner.name()
+    }
+
+    fn cores(&self) -> usize {
+        self.inner.cores()
     }
 
     fn description(&self) -> &str {

@@ -18,7 +18,7 @@
 //! product) runs its parts alone. What this is not: a scheduler. There is no nesting, no
 //! stealing between workers, and at most one pass in flight.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicPtr, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, TryLockError};
@@ -304,8 +304,39 @@ pub fn default_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS))
 }
 
-/// Calls `f` with the process's team, or with the caller alone while another thread uses it.
+thread_local! {
+    /// The team of the run on this thread, set by [`with_threads`]; `None`: the process's.
+    static RUN_TEAM: RefCell<Option<Team>> = const { RefCell::new(None) };
+}
+
+/// Calls `f` with the team of the calling thread's run ([`with_threads`]) if it has one, else
+/// with the process's team, or with the caller alone while another thread uses it.
 pub fn with_team<R>(f: impl FnOnce(&Team) -> R) -> R {
+    RUN_TEAM.with(|run| match run.try_borrow() {
+        Ok(team) if team.is_some() => f(team.as_ref().expect("checked")),
+        _ => with_process_team(f),
+    })
+}
+
+/// Runs `f` with a team of its own of `threads` (at most [`MAX_THREADS`]) for every product
+/// made on this thread: a run that a schedule gave `threads` cores uses exactly that many,
+/// whatever other runs of the process do at the same time (`verify --jobs`).
+pub fn with_threads<R>(threads: usize, f: impl FnOnce() -> R) -> R {
+    /// Puts the thread's previous team back, also when `f` panics.
+    struct Restore(Option<Team>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let previous = self.0.take();
+            RUN_TEAM.with(|run| *run.borrow_mut() = previous);
+        }
+    }
+    let team = Team::new(threads.min(MAX_THREADS));
+    let _restore = Restore(RUN_TEAM.with(|run| run.replace(Some(team))));
+    f()
+}
+
+/// Calls `f` with the process's team, or with the caller alone while another thread uses it.
+fn with_process_team<R>(f: impl FnOnce(&Team) -> R) -> R {
     match team().try_lock() {
         Ok(team) => f(&team),
         // A panic in an earlier pass left the team consistent (a pass ends only when its parts
@@ -331,6 +362,20 @@ pub fn ranges(len: usize, parts: usize) -> impl Iterator<Item = std::ops::Range<
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_run_uses_the_threads_it_was_given_and_then_the_process_team_again() {
+        // A schedule gives a run one core: its products run on one thread, whatever the
+        // process's team holds; nested, the inner count applies; after, the thread's team is
+        // the process's again.
+        let threads = || with_team(|team| team.threads());
+        with_threads(1, || {
+            assert_eq!(threads(), 1);
+            with_threads(2, || assert_eq!(threads(), 2));
+            assert_eq!(threads(), 1);
+        });
+        assert!(RUN_TEAM.with(|run| run.borrow().is_none()));
+    }
 
     #[test]
     fn every_part_runs_once_on_any_team() {

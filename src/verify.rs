@@ -2,8 +2,9 @@
 
 use crate::case::Case;
 use crate::check::{Histories, Outcome};
+use crate::history::History;
 use crate::progress;
-use crate::solver::{self, SolveError};
+use crate::solver::SolveError;
 
 /// A case after its solvers ran and its checks were judged.
 #[derive(Debug)]
@@ -19,8 +20,8 @@ pub struct CaseRun {
 }
 
 impl CaseRun {
-    /// True when no check is NOOK or FIXED? (a known failure that passes) and every solver the
-    /// case needs either ran or is not installed.
+    /// True when no check fails the run (NOOK, DRIFT, or FIXED?: a known failure that passes)
+    /// and every solver the case needs either ran or is not installed.
     pub fn passed(&self) -> bool {
         let solvers_ran = self
             .histories
@@ -39,23 +40,43 @@ pub fn run_case(case: Case) -> CaseRun {
 /// [`run_case`], calling `progress(solver, index, count)` before each solver runs; a long solver
 /// run is announced and metered on stderr ([`crate::progress`]).
 pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, usize)) -> CaseRun {
-    let mut warnings = case.scene.warnings();
-    let mut histories = Histories::new();
     let names = case.required_solvers();
-    for (index, name) in names.iter().cloned().enumerate() {
-        progress(&name, index, names.len());
-        let result = match case.solver(&name) {
-            Some(s) => progress::run(s.as_ref(), &case.scene, &format!("{} {name}", case.name())),
-            None => Err(solver::SolveError::Unavailable(format!(
-                "no solver `{name}` in this build"
-            ))),
-        };
-        if let Ok(history) = &result {
+    let mut results = Vec::new();
+    for (index, name) in names.iter().enumerate() {
+        progress(name, index, names.len());
+        results.push((name.clone(), run_solver(&case, name)));
+    }
+    judge(case, results)
+}
+
+/// Runs the case's solver called `name` (a long run announced and metered on stderr,
+/// [`crate::progress`]).
+pub fn run_solver(case: &Case, name: &str) -> Result<History, SolveError> {
+    match case.solver(name) {
+        Some(s) => progress::run(s.as_ref(), &case.scene, &format!("{} {name}", case.name())),
+        None => Err(SolveError::Unavailable(format!(
+            "no solver `{name}` in this build"
+        ))),
+    }
+}
+
+/// Judges the case's checks on its solvers' `results` (in the case's order). A check that needs
+/// a solver not among them is left out: a shard judges only the checks whose solvers it ran
+/// (`verify --shard`), the merge of all shards judges every check.
+pub fn judge(case: Case, results: Vec<(String, Result<History, SolveError>)>) -> CaseRun {
+    let mut warnings = case.scene.warnings();
+    for (name, result) in &results {
+        if let Ok(history) = result {
             warnings.extend(history.metadata.warnings.iter().map(|w| format!("{name}: {w}")));
         }
-        histories.insert(name, result);
     }
-    let outcomes = case.checks.iter().map(|c| c.evaluate(&histories)).collect();
+    let histories: Histories = results.into_iter().collect();
+    let outcomes = case
+        .checks
+        .iter()
+        .filter(|c| c.solvers().all(|name| histories.contains_key(name)))
+        .map(|c| c.evaluate(&histories))
+        .collect();
     CaseRun {
         case,
         warnings,

@@ -240,6 +240,11 @@ impl Solver for Bem {
         Some(crate::cost::bem(self.grid, scene.steps().len()))
     }
 
+    /// The FFT products' team: two threads where two cores are free ([`crate::team`]).
+    fn cores(&self) -> usize {
+        crate::team::default_threads()
+    }
+
     /// Grids of 16² … 128² panels over the same window.
     fn resolution_ladder(&self, _scene: &Scene) -> Vec<Box<dyn Solver>> {
         [16, 32, 64, 128]

@@ -14,6 +14,9 @@
 //!                                       # always added); at most 16 positions. Default: every
 //!                                       # position for a path of at most 16, else the focus only
 //! ranks = 2                             # optional: MPI ranks of fenicsx-3d, 1 ≤ ranks ≤ 1024
+//! labels = ["fast", "dem"]              # optional: what kind of work (`verify --label`);
+//!                                       # fast, heavy, external, dem, paper, hard, fem, bem
+//!                                       # (see [`labels`])
 //!
 //! [body1]                               # SI: m, Pa
 //! radius = 0.1                          # 1e-9 ≤ R ≤ 1e3; `inf` for a flat
@@ -92,6 +95,7 @@ mod domain;
 mod error;
 mod impact_rules;
 pub mod input;
+pub mod labels;
 mod raw;
 pub mod reads;
 pub mod reference;
@@ -108,7 +112,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-use crate::check::{CheckSpec, Reference};
+use crate::check::CheckSpec;
 use crate::domain::Domain;
 use crate::number::Short;
 use crate::pair::ContactPair;
@@ -140,6 +144,8 @@ pub struct Case {
     pub tree: CaseTree,
     /// The CalculiX solvers' settings (`[calculix]`; the defaults when absent).
     pub calculix: crate::external::calculix::Settings,
+    /// What kind of work the case is ([`labels::LABELS`]), in its order.
+    pub labels: Vec<String>,
     /// The resolution chosen per solver (`[resolution]`, then `--resolution`), each value
     /// accepted by its solver for this scene; solvers not named run at their default.
     pub resolution: BTreeMap<String, String>,
@@ -214,10 +220,7 @@ impl Case {
     pub fn required_solvers(&self) -> Vec<String> {
         let mut names = self.solvers.clone();
         for check in &self.checks {
-            for name in std::iter::once(&check.solver).chain(match &check.reference {
-                Reference::Solver(name) => Some(name),
-                Reference::Value { .. } => None,
-            }) {
+            for name in check.solvers() {
                 if !names.contains(name) {
                     names.push(name.clone());
                 }
@@ -306,6 +309,7 @@ impl Validator<'_> {
             .map(|(i, c)| self.check(c, &format!("checks[{i}]"), path.positions().len()))
             .collect::<Result<_, _>>()?;
         let focus = self.focus(raw.focus.as_ref(), &path)?;
+        let labels = self.labels(raw.labels.as_ref())?;
         let fields = self.fields(raw.fields.as_ref(), path.positions().len(), focus)?;
         let mut scene = Scene {
             name,
@@ -349,6 +353,7 @@ impl Validator<'_> {
                 Some(table) => self.calculix(table)?,
                 None => Default::default(),
             },
+            labels,
             resolution: BTreeMap::new(),
         };
         if let Some(table) = &raw.resolution {

@@ -17,6 +17,7 @@ pub struct RawCase {
     pub solvers: Spanned<Vec<Spanned<String>>>,
     pub focus: Option<Spanned<i64>>,
     pub ranks: Option<Spanned<i64>>,
+    pub labels: Option<Spanned<Vec<Spanned<String>>>>,
     pub fields: Option<Spanned<toml::Value>>,
     pub body1: RawBody,
     pub body2: Option<RawBody>,

@@ -301,6 +301,10 @@ impl Solver for Solid3dDeck {
         }))
     }
 
+    fn cores(&self) -> usize {
+        self.deck.ranks as usize
+    }
+
     fn with_ranks(&self, ranks: u32) -> Option<Box<dyn Solver>> {
         Some(Box::new(Solid3dDeck {
             deck: Fenicsx3d { ranks },

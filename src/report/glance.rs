@@ -17,7 +17,7 @@ pub fn verdict_class(verdict: Verdict) -> &'static str {
         Verdict::Info => "info",
         Verdict::Unavailable => "na",
         Verdict::Known => "known",
-        Verdict::Fixed => "nook",
+        Verdict::Fixed | Verdict::Drift => "nook",
     }
 }
 
@@ -234,6 +234,7 @@ mod tests {
             [
                 Verdict::Nook,
                 Verdict::Fixed,
+                Verdict::Drift,
                 Verdict::Known,
                 Verdict::Unavailable,
                 Verdict::Info,

@@ -46,7 +46,7 @@ pub fn document(runs: &[CaseRun]) -> String {
     let _ = writeln!(
         xml,
         " tests=\"{total}\" failures=\"{}\" skipped=\"{}\">",
-        count(Verdict::Nook) + count(Verdict::Fixed),
+        count(Verdict::Nook) + count(Verdict::Fixed) + count(Verdict::Drift),
         count(Verdict::Unavailable)
     );
     for run in runs {
@@ -72,8 +72,9 @@ pub fn document(runs: &[CaseRun]) -> String {
             );
             let row = escape(&outcome_row(name, outcome));
             match outcome.verdict {
-                Verdict::Nook => {
-                    let _ = write!(xml, "<failure message=\"NOOK\">{row}</failure>");
+                Verdict::Nook | Verdict::Drift => {
+                    let label = outcome.verdict.label();
+                    let _ = write!(xml, "<failure message=\"{label}\">{row}</failure>");
                 }
                 Verdict::Unavailable => {
                     let _ = write!(xml, "<skipped message=\"{row}\"/>");

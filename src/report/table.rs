@@ -38,6 +38,15 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
         }
         None => row.push_str(" | informational"),
     }
+    if let Some(drift) = &outcome.drift {
+        let _ = write!(
+            row,
+            " | drift {} (baseline {}, tol {})",
+            format_value(Some(drift.change)),
+            format_value(Some(drift.baseline)),
+            format_value(Some(drift.tolerance))
+        );
+    }
     if let Some(message) = &outcome.message {
         let _ = write!(row, " | {message}");
     }

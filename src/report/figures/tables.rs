@@ -275,6 +275,7 @@ mod tests {
             error: Some(0.001),
             worst_step: None,
             message: None,
+            drift: None,
         };
         let run = CaseRun {
             case,

@@ -1,0 +1,372 @@
+//! Non-regression baselines: every check's computed value as last accepted, stored per case in
+//! `reference/baselines/<case>.toml` beside the references, with each solver's version,
+//! resolution and wall time. `verify` compares each value with its baseline at the solvers'
+//! non-regression tolerance ([`tolerance`]) and reports a change beyond it as DRIFT, a failure;
+//! `spherecontact baseline update [CASE...]` rewrites the files, so that a deliberate change is
+//! one reviewed diff (Code_Aster's VALE_CALC beside VALE_REFE).
+//!
+//! ```toml
+//! case = "hertz-normal"
+//!
+//! [solvers."bem"]
+//! version = "0.1.0"
+//! resolution = "64² panels of 3.49e-6 m over ±1.1 c_max"
+//! wall_s = 4.12e-1
+//!
+//! [[checks]]
+//! index = 20
+//! check = "bem normal_force at positions [1, 2] vs hertz (relative)"
+//! step = 25
+//! value = 2.0261e3
+//! ```
+//!
+//! A check without a value (its solver not installed or failed) has no entry, and an absent
+//! entry is no drift. A check whose solver now runs at another resolution than the one stored is
+//! not compared (a baseline belongs to a resolution). The wall times are the plan's recorded
+//! costs ([`crate::plan`]).
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use crate::check::{CheckSpec, Drift, Histories, Outcome, Verdict};
+use crate::verify::CaseRun;
+
+/// The baselines' folder, relative to the current folder (as `cases/` is).
+pub const DIR: &str = "reference/baselines";
+
+/// Why a baseline file cannot be used (bad input: exit code 2).
+#[derive(Debug, thiserror::Error)]
+pub enum BaselineError {
+    /// The file cannot be read.
+    #[error("{}: cannot read the baseline: {error}", file.display())]
+    Read { file: PathBuf, error: std::io::Error },
+    /// The file is not a baseline.
+    #[error("{}: not a baseline (written by `spherecontact baseline update`): {error}", file.display())]
+    Parse { file: PathBuf, error: String },
+}
+
+/// The non-regression tolerance of a solver's values (relative) and its reason.
+pub fn tolerance(solver: &str) -> (f64, &'static str) {
+    match solver {
+        "freefem-axisym" | "fenicsx-axisym" | "fenicsx-3d" => (
+            1e-9,
+            "an external FEM program: FreeFEM's MUMPS_seq differs in the last bits run to run (about \
+             1e-14 of P and Q on the same files, external::deck::single_threaded), FEniCSx under MPI sums \
+             by rank, and a penalty system amplifies rounding; a change of mesh, penalty or model moves P \
+             by 1e-6 or more",
+        ),
+        name if name.starts_with("lammps") || name.starts_with("yade") => (
+            1e-9,
+            "a DEM code driven through text input and output: positions and forces pass through its \
+             own arithmetic and formatting, which another build of the same version may order differently",
+        ),
+        _ => (
+            1e-12,
+            "deterministic: the same source on the same machine gives the same bits (the BEM's team too, \
+             on one or two threads); 1e-12 leaves four orders over double rounding for another compiler's \
+             contractions (FMA)",
+        ),
+    }
+}
+
+/// The largest change accepted for a check: the loosest of its solvers' tolerances.
+fn check_tolerance(spec: &CheckSpec) -> f64 {
+    spec.solvers().map(|s| tolerance(s).0).fold(0.0, f64::max)
+}
+
+/// A solver's entry.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverRecord {
+    /// Its version when the baseline was written.
+    pub version: String,
+    /// Its resolution, in words.
+    pub resolution: String,
+    /// Its wall time [s], to two significant digits.
+    pub wall_s: f64,
+}
+
+/// A check's entry.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CheckRecord {
+    /// The check's index in the case.
+    pub index: usize,
+    /// The check in words ([`key`]): an entry applies only to the same check at the same index.
+    pub check: String,
+    /// The step of the value: the check's worst when the baseline was written.
+    pub step: usize,
+    /// The value computed there.
+    pub value: f64,
+}
+
+/// The baseline of one case.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Baseline {
+    /// The case's name.
+    pub case: String,
+    /// Per solver that ran.
+    #[serde(default)]
+    pub solvers: BTreeMap<String, SolverRecord>,
+    /// Per check with a value.
+    #[serde(default)]
+    pub checks: Vec<CheckRecord>,
+}
+
+/// A check in words: solver, quantity, where, reference and measure.
+pub fn key(spec: &CheckSpec) -> String {
+    format!(
+        "{} {} at {} vs {} ({})",
+        spec.solver,
+        spec.quantity,
+        spec.at,
+        spec.reference,
+        spec.measure.name()
+    )
+}
+
+/// The file of case `name` under `dir`.
+pub fn file(dir: &Path, name: &str) -> PathBuf {
+    dir.join(format!("{name}.toml"))
+}
+
+impl Baseline {
+    /// The baseline of a judged case: every check's value, every solver that ran.
+    pub fn of(run: &CaseRun) -> Self {
+        let solvers = run
+            .histories
+            .iter()
+            .filter_map(|(name, result)| {
+                let meta = &result.as_ref().ok()?.metadata;
+                Some((
+                    name.clone(),
+                    SolverRecord {
+                        version: meta.version.clone(),
+                        resolution: meta.resolution.clone(),
+                        wall_s: two_digits(meta.wall_time_s),
+                    },
+                ))
+            })
+            .collect();
+        let checks = run
+            .outcomes
+            .iter()
+            .filter_map(|outcome| {
+                Some(CheckRecord {
+                    index: run.case.checks.iter().position(|c| *c == outcome.spec)?,
+                    check: key(&outcome.spec),
+                    step: outcome.worst_step?,
+                    value: outcome.value?,
+                })
+            })
+            .collect();
+        Baseline {
+            case: run.case.name().to_owned(),
+            solvers,
+            checks,
+        }
+    }
+
+    /// The baseline of case `name` in `dir`, or `None` when it has none.
+    pub fn load(dir: &Path, name: &str) -> Result<Option<Self>, BaselineError> {
+        let file = file(dir, name);
+        if !file.exists() {
+            return Ok(None);
+        }
+        let text = crate::case::input::read_text(&file).map_err(|error| BaselineError::Read {
+            file: file.clone(),
+            error,
+        })?;
+        let baseline: Baseline = toml::from_str(&text).map_err(|e| BaselineError::Parse {
+            file: file.clone(),
+            error: e.to_string(),
+        })?;
+        if baseline.case != name {
+            return Err(BaselineError::Parse {
+                file,
+                error: format!("it is case `{}`'s, not `{name}`'s", baseline.case),
+            });
+        }
+        Ok(Some(baseline))
+    }
+
+    /// The recorded wall time of `solver` [s].
+    pub fn wall_s(&self, solver: &str) -> Option<f64> {
+        self.solvers.get(solver).map(|s| s.wall_s)
+    }
+
+    /// Compares every check of `run` that has an entry: sets its drift, and its verdict to
+    /// DRIFT when the change exceeds the tolerance (a NOOK stays NOOK).
+    pub fn compare(&self, run: &mut CaseRun) {
+        for outcome in &mut run.outcomes {
+            let Some(index) = run.case.checks.iter().position(|c| *c == outcome.spec) else {
+                continue;
+            };
+            let key = key(&outcome.spec);
+            let Some(record) = self.checks.iter().find(|r| r.index == index && r.check == key) else {
+                continue;
+            };
+            let Some(value) = current(outcome, record.step, &run.histories) else {
+                continue;
+            };
+            let same_resolution =
+                outcome
+                    .spec
+                    .solvers()
+                    .all(|name| match (self.solvers.get(name), run.histories.get(name)) {
+                        (Some(stored), Some(Ok(history))) => stored.resolution == history.metadata.resolution,
+                        _ => false,
+                    });
+            if !same_resolution {
+                continue;
+            }
+            // Scaled by the magnitude of the quantity judged: for a profile the value is an RMS
+            // difference, some 1e-4 of its reference's peak, and scaling by it would amplify the
+            // external decks' last-bit noise by that cancellation (measured: FreeFEM's profile
+            // RMS moved 4.4e-9 of itself run to run, 1.5e-13 of the peak).
+            let reference = outcome.reference.map_or(0.0, f64::abs);
+            let (difference, scale) = (
+                (value - record.value).abs(),
+                record.value.abs().max(value.abs()).max(reference),
+            );
+            let change = if difference == 0.0 {
+                0.0
+            } else {
+                difference / scale
+            };
+            let tolerance = check_tolerance(&outcome.spec);
+            if change > tolerance && outcome.verdict != Verdict::Nook {
+                outcome.verdict = Verdict::Drift;
+            }
+            outcome.drift = Some(Drift {
+                baseline: record.value,
+                change,
+                tolerance,
+            });
+        }
+    }
+
+    /// The file's text: a header, the solvers, the checks (values round-trip exact).
+    pub fn to_toml(&self) -> String {
+        let string = |s: &str| toml::Value::String(s.to_owned()).to_string();
+        let mut text = format!(
+            "# Non-regression baseline of case `{}`: each check's computed value when last accepted,\n\
+             # with each solver's version, resolution and wall time. Written by\n\
+             # `spherecontact baseline update`; `verify` reports a change beyond the solvers'\n\
+             # tolerance as DRIFT (src/baseline.rs).\ncase = {}\n",
+            self.case,
+            string(&self.case)
+        );
+        for (name, solver) in &self.solvers {
+            let _ = write!(
+                text,
+                "\n[solvers.{}]\nversion = {}\nresolution = {}\nwall_s = {:e}\n",
+                string(name),
+                string(&solver.version),
+                string(&solver.resolution),
+                solver.wall_s
+            );
+        }
+        for check in &self.checks {
+            let _ = write!(
+                text,
+                "\n[[checks]]\nindex = {}\ncheck = {}\nstep = {}\nvalue = {:e}\n",
+                check.index,
+                string(&check.check),
+                check.step,
+                check.value
+            );
+        }
+        text
+    }
+}
+
+/// The check's value at `step`: its outcome's when that is its worst step, else the subject's
+/// quantity there (a profile's value exists at its position's step only).
+fn current(outcome: &Outcome, step: usize, histories: &Histories) -> Option<f64> {
+    if outcome.worst_step == Some(step) {
+        return outcome.value;
+    }
+    let spec = &outcome.spec;
+    if crate::profile::Field::of(spec.quantity).is_some() {
+        return None;
+    }
+    let history = histories.get(&spec.solver)?.as_ref().ok()?;
+    spec.value(history, history.steps.get(step)?)
+}
+
+/// `x` to two significant digits: a wall time is a cost estimate, and its noise would make every
+/// `baseline update` a diff.
+fn two_digits(x: f64) -> f64 {
+    if x > 0.0 {
+        let scale = 10_f64.powi(1 - x.log10().floor() as i32);
+        (x * scale).round() / scale
+    } else {
+        0.0
+    }
+}
+
+/// The baselines of the cases named found in `dir`, by case name.
+pub fn load_all<'a>(
+    dir: &Path,
+    names: impl IntoIterator<Item = &'a str>,
+) -> Result<BTreeMap<String, Baseline>, BaselineError> {
+    let mut baselines = BTreeMap::new();
+    for name in names {
+        if let Some(baseline) = Baseline::load(dir, name)? {
+            baselines.insert(name.to_owned(), baseline);
+        }
+    }
+    Ok(baselines)
+}
+
+/// Compares every run with its case's baseline, if any.
+pub fn compare_all(baselines: &BTreeMap<String, Baseline>, runs: &mut [CaseRun]) {
+    for run in runs {
+        if let Some(baseline) = baselines.get(run.case.name()) {
+            baseline.compare(run);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_file_reads_back_what_was_written_bit_for_bit() {
+        let baseline = Baseline {
+            case: "a-case".into(),
+            solvers: [(
+                "bem".to_owned(),
+                SolverRecord {
+                    version: "0.1.0".into(),
+                    resolution: "64×64 panels \"quoted\"".into(),
+                    wall_s: 0.23,
+                },
+            )]
+            .into_iter()
+            .collect(),
+            checks: vec![CheckRecord {
+                index: 3,
+                check: "bem normal_force at every step vs hertz (relative)".into(),
+                step: 7,
+                value: 0.1 + 0.2,
+            }],
+        };
+        let text = baseline.to_toml();
+        assert_eq!(toml::from_str::<Baseline>(&text).unwrap(), baseline, "{text}");
+    }
+
+    #[test]
+    fn wall_times_keep_two_digits() {
+        assert_eq!(two_digits(2.34923066e-1), 0.23);
+        assert_eq!(two_digits(59.492033547), 59.0);
+        assert_eq!(two_digits(0.0), 0.0);
+        assert_eq!(format!("{:e}", two_digits(2.952e-6)), "3e-6");
+    }
+}

@@ -1,0 +1,65 @@
+//! What `verify` and `merge` print and write once the checks are judged: the check table case by
+//! case, the counts, the JUnit document, and whether the run passed.
+
+use std::fmt::Write;
+
+use crate::check::Verdict;
+use crate::report::{junit, table};
+use crate::verify::CaseRun;
+
+/// The verdicts of a verification run.
+pub struct Conclusion<'a> {
+    /// The cases judged, in the plan's order.
+    pub runs: &'a [CaseRun],
+    /// A check that is N/A (a solver not installed) counts as a failure (`--require-external`).
+    pub require_external: bool,
+}
+
+impl Conclusion<'_> {
+    fn count(&self, verdict: Verdict) -> usize {
+        self.runs
+            .iter()
+            .flat_map(|r| &r.outcomes)
+            .filter(|o| o.verdict == verdict)
+            .count()
+    }
+
+    /// The text printed: each case's block of checks, then the counts.
+    pub fn text(&self) -> String {
+        let mut text: String = self.runs.iter().map(table::case_block).collect();
+        let na = self.count(Verdict::Unavailable);
+        let _ = writeln!(
+            text,
+            "verify: {} passed, {} failed, {} informational, {na} not available",
+            self.count(Verdict::Ok),
+            self.count(Verdict::Nook),
+            self.count(Verdict::Info),
+        );
+        let drifted = self.count(Verdict::Drift);
+        if drifted > 0 {
+            let _ = writeln!(
+                text,
+                "verify: {drifted} checks drifted from their baselines (DRIFT; `spherecontact baseline update` accepts a deliberate change)"
+            );
+        }
+        if self.require_external && na > 0 {
+            let _ = writeln!(
+                text,
+                "verify: {na} not-available checks count as failures (--require-external)"
+            );
+        }
+        text
+    }
+
+    /// The JUnit XML document.
+    pub fn junit(&self) -> String {
+        junit::document(self.runs)
+    }
+
+    /// True when every case passed ([`CaseRun::passed`]) and, with `require_external`, no
+    /// check is N/A.
+    pub fn passed(&self) -> bool {
+        self.runs.iter().all(CaseRun::passed)
+            && !(self.require_external && self.count(Verdict::Unavailable) > 0)
+    }
+}

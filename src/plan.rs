@@ -1,0 +1,340 @@
+//! A verification plan: the unit of work is one run, a (case, solver) pair with its cost and the
+//! cores it takes; a plan is the runs of the cases selected by label, cut into balanced shards
+//! when asked, and ordered for a schedule ([`crate::schedule`]).
+//!
+//! Nothing here runs a solver: a plan is built and checked first, then executed.
+
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
+
+use crate::case::labels;
+use crate::case::{Case, ReadRoots};
+use crate::external::permission::CommandPermission;
+
+/// Why a plan cannot be made (bad command-line input: exit code 2, nothing written).
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    /// A `--label` or `--skip-label` that is not a known label.
+    #[error("{option} {label}: unknown label (allowed: {allowed})", allowed = labels::allowed())]
+    UnknownLabel { option: &'static str, label: String },
+    /// A `--shard` that is not K/N with 1 ≤ K ≤ N ≤ [`MAX_SHARDS`].
+    #[error("--shard {0}: not a shard (allowed: K/N with 1 ≤ K ≤ N ≤ {MAX_SHARDS}, e.g. 2/3)")]
+    Shard(String),
+    /// A case file that is not valid (boxed: a located error is large).
+    #[error(transparent)]
+    Case(Box<crate::case::CaseError>),
+    /// A `--resolution` that a case's solver does not accept.
+    #[error("--resolution {name}={value} (case {}): {error}", case.display())]
+    Resolution {
+        name: String,
+        value: String,
+        case: PathBuf,
+        error: Box<crate::resolution::ResolutionError>,
+    },
+    /// A case folder that cannot be listed.
+    #[error("{}: cannot list cases: {error}", dir.display())]
+    List { dir: PathBuf, error: std::io::Error },
+}
+
+impl From<crate::case::CaseError> for PlanError {
+    fn from(error: crate::case::CaseError) -> Self {
+        PlanError::Case(Box::new(error))
+    }
+}
+
+/// The most shards a run may be cut into.
+pub const MAX_SHARDS: usize = 1000;
+
+/// The command line's choices that change a case as read: MPI ranks and resolutions over the
+/// case's own (a run file records them, so that a merge reads the cases back the same).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CaseOptions {
+    /// `--ranks`: MPI ranks over each case's `ranks`.
+    pub ranks: Option<u32>,
+    /// `--resolution SOLVER=VALUE`, split, each solver once.
+    pub resolutions: Vec<(String, String)>,
+    /// The folders beyond its own tree that a case may read (`--allow-read`): not recorded in a
+    /// run file (a merge is given its own).
+    #[serde(skip)]
+    pub roots: ReadRoots,
+    /// Whether the cases' command solvers may run: not recorded (a merge runs nothing).
+    #[serde(skip)]
+    pub permission: CommandPermission,
+}
+
+impl CaseOptions {
+    /// Loads the case at `file` with these options over its own.
+    pub fn load(&self, file: &Path) -> Result<Case, PlanError> {
+        let mut case = Case::load_with(file, &self.roots)?;
+        case.permit_commands(&self.permission);
+        case.ranks = self.ranks.unwrap_or(case.ranks);
+        for (name, value) in &self.resolutions {
+            case.set_resolution(name, value)
+                .map_err(|error| PlanError::Resolution {
+                    name: name.clone(),
+                    value: value.clone(),
+                    case: file.to_path_buf(),
+                    error: Box::new(error),
+                })?;
+        }
+        Ok(case)
+    }
+}
+
+/// Which cases run: those with any of `labels` (all when empty) and none of `skip`.
+#[derive(Clone, Debug, Default)]
+pub struct Selection {
+    labels: Vec<String>,
+    skip: Vec<String>,
+}
+
+impl Selection {
+    /// The selection of `--label` (`labels`) and `--skip-label` (`skip`), each a known label.
+    pub fn new(labels: &[String], skip: &[String]) -> Result<Self, PlanError> {
+        for (option, list) in [("--label", labels), ("--skip-label", skip)] {
+            if let Some(label) = list.iter().find(|l| !labels::is_known(l)) {
+                return Err(PlanError::UnknownLabel {
+                    option,
+                    label: label.clone(),
+                });
+            }
+        }
+        Ok(Selection {
+            labels: labels.to_vec(),
+            skip: skip.to_vec(),
+        })
+    }
+
+    /// True when the case is selected.
+    pub fn selects(&self, case: &Case) -> bool {
+        let has = |label: &String| case.labels.contains(label);
+        (self.labels.is_empty() || self.labels.iter().any(has)) && !self.skip.iter().any(has)
+    }
+}
+
+/// The case files named: a file as given, a folder as every `.toml` under it, recursively, in
+/// sorted order. Symbolic links to folders are not followed (a link to an ancestor would make
+/// the walk endless).
+pub fn case_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, PlanError> {
+    let mut files = Vec::new();
+    for path in paths {
+        if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+            files.extend(toml_files(path)?);
+        } else {
+            files.push(path.clone());
+        }
+    }
+    Ok(files)
+}
+
+/// Every `.toml` file under `dir`, recursively, sorted.
+fn toml_files(dir: &Path) -> Result<Vec<PathBuf>, PlanError> {
+    let list = |error| PlanError::List {
+        dir: dir.to_path_buf(),
+        error,
+    };
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).map_err(list)? {
+        let entry = entry.map_err(list)?;
+        let path = entry.path();
+        if entry.file_type().map_err(list)?.is_dir() {
+            files.extend(toml_files(&path)?);
+        } else if path.extension().is_some_and(|e| e == "toml") {
+            files.push(path);
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+/// One run: a solver of a case, what it is expected to cost and the cores it takes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Run {
+    /// The case's index in the plan.
+    pub case: usize,
+    /// The solver's name.
+    pub solver: String,
+    /// The cores the solver keeps busy ([`crate::solver::Solver::cores`]).
+    pub cores: usize,
+    /// Its expected wall time [s]: recorded with the baselines, else [`default_cost`].
+    pub cost_s: f64,
+}
+
+/// The cases selected and their runs: per case, every solver it needs, in the case's order.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// The cases, in the order given.
+    pub cases: Vec<Case>,
+    /// The runs of this plan (all, or one shard's), case by case.
+    pub runs: Vec<Run>,
+}
+
+impl Plan {
+    /// Every run of `cases`, each costed by `recorded(case, solver)` where known.
+    pub fn new(cases: Vec<Case>, recorded: impl Fn(&Case, &str) -> Option<f64>) -> Self {
+        let runs = cases
+            .iter()
+            .enumerate()
+            .flat_map(|(index, case)| {
+                let recorded = &recorded;
+                case.required_solvers().into_iter().map(move |solver| Run {
+                    case: index,
+                    cores: case.solver(&solver).map_or(1, |s| s.cores().max(1)),
+                    cost_s: recorded(case, &solver).unwrap_or_else(|| default_cost(&solver)),
+                    solver,
+                })
+            })
+            .collect();
+        Plan { cases, runs }
+    }
+
+    /// The plan of one shard: the same cases, the runs [`partition`] gives it.
+    pub fn shard(mut self, shard: Shard) -> Self {
+        let parts = partition(&self.runs, shard.count);
+        self.runs = self
+            .runs
+            .into_iter()
+            .zip(parts)
+            .filter_map(|(run, part)| (part + 1 == shard.index).then_some(run))
+            .collect();
+        self
+    }
+}
+
+/// The run indices, longest first (ties in plan order): the order a schedule starts them and
+/// shards take them, so that the last to finish are short (longest processing time first).
+pub fn longest_first(runs: &[Run]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..runs.len()).collect();
+    order.sort_by(|&a, &b| runs[b].cost_s.total_cmp(&runs[a].cost_s).then(a.cmp(&b)));
+    order
+}
+
+/// The shard (0-based) of each run, `count` shards balanced by cost: each run, longest first,
+/// goes to the shard with the least cost so far (the lowest-numbered on a tie).
+pub fn partition(runs: &[Run], count: usize) -> Vec<usize> {
+    let count = count.max(1);
+    let mut load = vec![0.0_f64; count];
+    let mut parts = vec![0; runs.len()];
+    for index in longest_first(runs) {
+        let lightest = (0..count)
+            .min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b)))
+            .expect("at least one shard");
+        load[lightest] += runs[index].cost_s;
+        parts[index] = lightest;
+    }
+    parts
+}
+
+/// The expected wall time of a solver with nothing recorded [s]: the order of magnitude of its
+/// kind on this project's two-core machine (release build), enough to start the long runs first.
+pub fn default_cost(solver: &str) -> f64 {
+    match solver {
+        "fem-3d" | "fenicsx-3d" => 30.0,
+        "freefem-axisym" | "fenicsx-axisym" | "mdr-domain" | "fem-axisym" => 5.0,
+        "bem" => 3.0,
+        name if name.starts_with("lammps") || name.starts_with("yade") => 1.0,
+        "hertz"
+        | "cattaneo-mindlin"
+        | "hertz-mindlin-spring"
+        | "thornton"
+        | "md-incremental"
+        | "walton-braun" => 0.01,
+        "mdr" => 0.1,
+        // A case's own command or stored results.
+        _ => 1.0,
+    }
+}
+
+/// One part of a sharded run: the `index`-th (1-based) of `count`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// Which part, 1 ≤ index ≤ count.
+    pub index: usize,
+    /// How many parts.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Whether this is the first part (which also runs what is not planned as (case, solver)
+    /// runs: the impact cases).
+    pub fn is_first(&self) -> bool {
+        self.index == 1
+    }
+}
+
+impl FromStr for Shard {
+    type Err = PlanError;
+
+    /// `K/N` with 1 ≤ K ≤ N ≤ [`MAX_SHARDS`].
+    fn from_str(text: &str) -> Result<Self, PlanError> {
+        let bad = || PlanError::Shard(text.to_owned());
+        let (k, n) = text.split_once('/').ok_or_else(bad)?;
+        let (index, count) = (k.parse().map_err(|_| bad())?, n.parse().map_err(|_| bad())?);
+        if 1 <= index && index <= count && count <= MAX_SHARDS {
+            Ok(Shard { index, count })
+        } else {
+            Err(bad())
+        }
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(cost_s: f64) -> Run {
+        Run {
+            case: 0,
+            solver: "s".into(),
+            cores: 1,
+            cost_s,
+        }
+    }
+
+    #[test]
+    fn shards_are_balanced_longest_first_and_cover_every_run_once() {
+        let runs: Vec<Run> = [5.0, 1.0, 4.0, 3.0, 3.0, 2.0, 0.5].map(run).to_vec();
+        let parts = partition(&runs, 3);
+        let load = |k: usize| -> f64 {
+            runs.iter()
+                .zip(&parts)
+                .filter(|(_, &p)| p == k)
+                .map(|(r, _)| r.cost_s)
+                .sum()
+        };
+        // LPT: 5 → A, 4 → B, 3 → C, 3 → C (6), 2 → B (6), 1 → A (6), 0.5 → A.
+        assert_eq!([load(0), load(1), load(2)], [6.5, 6.0, 6.0]);
+        assert_eq!(partition(&runs, 1), vec![0; runs.len()]);
+    }
+
+    #[test]
+    fn a_shard_is_k_of_n() {
+        assert_eq!("2/3".parse::<Shard>().unwrap(), Shard { index: 2, count: 3 });
+        for bad in ["0/3", "4/3", "3", "a/b", "1/1001", "-1/2"] {
+            let error = bad.parse::<Shard>().unwrap_err().to_string();
+            assert!(
+                error.contains(&format!("--shard {bad}")) && error.contains("1 ≤ K ≤ N"),
+                "{error}"
+            );
+        }
+    }
+
+    #[test]
+    fn unknown_labels_are_refused() {
+        let error = Selection::new(&["fast".into()], &["haevy".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.starts_with("--skip-label haevy: unknown label (allowed: fast"),
+            "{error}"
+        );
+    }
+}
