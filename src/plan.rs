@@ -83,6 +83,9 @@ impl CaseOptions {
     }
 }
 
+/// The labels every impact case carries (its file has no `labels`: docs/impact.md).
+pub const IMPACT_LABELS: [&str; 2] = ["dem", "fast"];
+
 /// Which cases run: those with any of `labels` (all when empty) and none of `skip`.
 #[derive(Clone, Debug, Default)]
 pub struct Selection {
@@ -109,7 +112,12 @@ impl Selection {
 
     /// True when the case is selected.
     pub fn selects(&self, case: &Case) -> bool {
-        let has = |label: &String| case.labels.contains(label);
+        self.selects_labels(&case.labels)
+    }
+
+    /// Whether a case labelled `labels` runs.
+    pub fn selects_labels<S: AsRef<str>>(&self, labels: &[S]) -> bool {
+        let has = |label: &String| labels.iter().any(|l| l.as_ref() == label);
         (self.labels.is_empty() || self.labels.iter().any(has)) && !self.skip.iter().any(has)
     }
 }
@@ -254,14 +262,6 @@ pub struct Shard {
     pub index: usize,
     /// How many parts.
     pub count: usize,
-}
-
-impl Shard {
-    /// Whether this is the first part (which also runs what is not planned as (case, solver)
-    /// runs: the impact cases).
-    pub fn is_first(&self) -> bool {
-        self.index == 1
-    }
 }
 
 impl FromStr for Shard {

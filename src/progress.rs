@@ -19,10 +19,6 @@ use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::time::Instant;
 
-use crate::history::History;
-use crate::scene::Scene;
-use crate::solver::{self, SolveError, Solver};
-
 /// The environment variable that turns the progress lines on or off (see the module doc).
 pub const ENV: &str = "SPHERECONTACT_PROGRESS";
 
@@ -135,17 +131,18 @@ impl Meter {
     }
 }
 
-/// Runs `solver` on `scene` (as [`solver::run`]) under `label` (e.g. the case and the solver),
-/// announced when its estimate is long and metered (see the module doc).
-pub fn run(solver: &dyn Solver, scene: &Scene, label: &str) -> Result<History, SolveError> {
+/// Runs `f`, a run of `steps` steps estimated at `seconds` (e.g. [`crate::solver::run_reported`]),
+/// under `label` (e.g. the case and the solver): announced when its estimate is long and metered
+/// (see the module doc).
+pub fn metered<R>(label: &str, seconds: Option<f64>, steps: usize, f: impl FnOnce() -> R) -> R {
     let mode = Mode::current();
     if mode != Mode::Off {
-        if let Some(line) = announcement(label, solver.estimated_seconds(scene), scene.steps().len(), mode) {
+        if let Some(line) = announcement(label, seconds, steps, mode) {
             print(&line);
         }
     }
     let Mode::Every(interval) = mode else {
-        return solver::run(solver, scene);
+        return f();
     };
     let start = Instant::now();
     let previous = METER.with(|cell| {
@@ -156,7 +153,7 @@ pub fn run(solver: &dyn Solver, scene: &Scene, label: &str) -> Result<History, S
             last: start,
         })
     });
-    let result = solver::run(solver, scene);
+    let result = f();
     METER.with(|cell| *cell.borrow_mut() = previous);
     result
 }

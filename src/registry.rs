@@ -14,6 +14,7 @@ pub fn registry() -> Vec<Box<dyn Solver>> {
     // runs where a case lists it (cases/fem-3d-normal.toml) and in tests/fem3d_hertz.rs.
     solvers.push(Box::new(fem::FemSolid3d::default()));
     solvers.extend(external::solvers());
+    solvers.push(Box::new(crate::calculix::CcxAxisym::default()));
     solvers.extend(dem::solvers());
     solvers
 }

@@ -70,7 +70,7 @@ pub trait Solver: Send + Sync {
 
     /// The same solver with the case's CalculiX settings (`[calculix]`: contact formulation,
     /// penalty, element), for the CalculiX solvers; `None` for the others.
-    fn with_calculix(&self, _settings: &crate::external::calculix::Settings) -> Option<Box<dyn Solver>> {
+    fn with_calculix(&self, _settings: &crate::calculix_settings::Settings) -> Option<Box<dyn Solver>> {
         None
     }
 
@@ -104,6 +104,17 @@ pub fn run(solver: &dyn Solver, scene: &Scene) -> Result<History, SolveError> {
         meta.version = env!("CARGO_PKG_VERSION").to_owned();
     }
     Ok(history)
+}
+
+/// [`run`] under `label` (e.g. the case and the solver): announced on stderr when its estimate is
+/// long, and metered while it runs ([`crate::progress`]).
+pub fn run_reported(solver: &dyn Solver, scene: &Scene, label: &str) -> Result<History, SolveError> {
+    crate::progress::metered(
+        label,
+        solver.estimated_seconds(scene),
+        scene.steps().len(),
+        || run(solver, scene),
+    )
 }
 
 /// `solver.solve(scene)`, with a panic turned into a failure of this solver.

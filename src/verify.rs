@@ -3,7 +3,7 @@
 use crate::case::Case;
 use crate::check::{Histories, Outcome};
 use crate::history::History;
-use crate::progress;
+use crate::solver;
 use crate::solver::SolveError;
 
 /// A case after its solvers ran and its checks were judged.
@@ -53,7 +53,7 @@ pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, 
 /// [`crate::progress`]).
 pub fn run_solver(case: &Case, name: &str) -> Result<History, SolveError> {
     match case.solver(name) {
-        Some(s) => progress::run(s.as_ref(), &case.scene, &format!("{} {name}", case.name())),
+        Some(s) => solver::run_reported(s.as_ref(), &case.scene, &format!("{} {name}", case.name())),
         None => Err(SolveError::Unavailable(format!(
             "no solver `{name}` in this build"
         ))),

@@ -1,9 +1,9 @@
 //! Validation of the `[calculix]` table: the CalculiX solvers' contact formulation, penalty
-//! factor and element (see [`crate::external::calculix::settings`]), each against its allowed set.
+//! factor and element (see [`crate::calculix_settings`]), each against its allowed set.
 
 use super::raw::RawCalculix;
 use super::{CaseError, Validator};
-use crate::external::calculix::settings::{SettingError, Settings};
+use crate::calculix_settings::{SettingError, Settings};
 
 impl Validator<'_> {
     /// The `[calculix]` table over the defaults.
@@ -28,8 +28,8 @@ impl Validator<'_> {
 
 #[cfg(test)]
 mod tests {
+    use crate::calculix_settings::Formulation;
     use crate::case::Case;
-    use crate::external::calculix::settings::Formulation;
     use std::path::Path;
 
     fn case(table: &str) -> Result<Case, crate::case::CaseError> {

@@ -48,18 +48,19 @@
 //! **Physical ranges.** At every sweep point the bodies approach along the normal, and Hertz's
 //! largest overlap of the elastic impact is positive, finite and below the smaller radius.
 
-use serde::Deserialize;
 use toml::Spanned;
 
+use super::impact::solver_names;
+use super::impact::{
+    Body2Spin, ImpactBody, ImpactCase, ImpactCheck, ImpactReference, Quantity, Sweep, SweepVariable, Variant,
+};
+use super::impact_closed_form::HertzImpact;
 use super::raw::RawBody;
 use super::{input, CaseError, Validator};
 use crate::hertz::Hertz;
-use crate::impact::case::{
-    Body2Spin, ImpactBody, ImpactCase, ImpactCheck, ImpactReference, Quantity, Sweep, SweepVariable, Variant,
-};
-use crate::impact::closed_form::HertzImpact;
-use crate::impact::run::solver_names;
 use crate::limits;
+
+use super::impact_raw::{RawImpact, RawImpactBody, RawImpactCheck, RawSweep};
 
 /// Default time steps per Hertz contact duration (converged: docs/impact.md).
 const DEFAULT_STEPS: i64 = 2000;
@@ -70,75 +71,6 @@ const MAX_SWEEP_VALUES: usize = 200;
 /// Largest velocity component [m/s] and spin [rad/s].
 const MAX_SPEED: f64 = 1e3;
 const MAX_SPIN: f64 = 1e6;
-
-/// An impact case file as written.
-#[derive(Debug, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    expecting = "an impact case: a table of kind, friction, solvers, body1 …"
-)]
-struct RawImpact {
-    kind: Spanned<String>,
-    name: Option<Spanned<String>>,
-    description: Option<String>,
-    friction: Spanned<f64>,
-    restitution: Option<Spanned<f64>>,
-    solvers: Spanned<Vec<Spanned<String>>>,
-    steps: Option<Spanned<i64>>,
-    springs: Option<Spanned<i64>>,
-    body1: RawImpactBody,
-    body2: Option<RawImpactBody>,
-    sweep: Option<RawSweep>,
-    #[serde(default)]
-    checks: Vec<RawImpactCheck>,
-}
-
-/// A body of an impact as written.
-#[derive(Debug, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    expecting = "a body: radius, young, poisson, density, velocity, spin"
-)]
-struct RawImpactBody {
-    rigid_flat: Option<Spanned<bool>>,
-    radius: Option<Spanned<f64>>,
-    young: Option<Spanned<f64>>,
-    poisson: Option<Spanned<f64>>,
-    density: Option<Spanned<f64>>,
-    velocity: Option<Spanned<Vec<f64>>>,
-    spin: Option<Spanned<f64>>,
-}
-
-/// A sweep as written.
-#[derive(Debug, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    expecting = "a sweep: variable, unit, values, body2_spin"
-)]
-struct RawSweep {
-    variable: Spanned<String>,
-    unit: Option<Spanned<String>>,
-    values: Spanned<Vec<Spanned<f64>>>,
-    body2_spin: Option<Spanned<String>>,
-}
-
-/// A check as written.
-#[derive(Debug, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    expecting = "a check: solver, quantity, variant, reference, tolerance, reason"
-)]
-struct RawImpactCheck {
-    solver: Spanned<String>,
-    quantity: Spanned<String>,
-    variant: Option<Spanned<String>>,
-    reference: Spanned<toml::Value>,
-    error: Option<Spanned<String>>,
-    tolerance: Option<Spanned<f64>>,
-    reason: Spanned<String>,
-    #[serde(default)]
-    informational: bool,
-}
 
 /// True when `text` is an impact case: a TOML table whose `kind` is "impact".
 pub fn is_impact(text: &str) -> bool {

@@ -93,8 +93,10 @@ pub mod case_solvers;
 mod check_rules;
 mod domain;
 mod error;
+pub mod impact;
+pub mod impact_closed_form;
+mod impact_raw;
 mod impact_rules;
-pub mod input;
 pub mod labels;
 mod raw;
 pub mod reads;
@@ -109,6 +111,8 @@ pub use impact_rules::{is_impact, load_impact, parse_impact};
 pub use reads::{CaseTree, ReadRoots};
 
 use std::collections::{BTreeMap, BTreeSet};
+
+use crate::input;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -143,7 +147,7 @@ pub struct Case {
     /// The folders whose files the case may read ([`reads`]).
     pub tree: CaseTree,
     /// The CalculiX solvers' settings (`[calculix]`; the defaults when absent).
-    pub calculix: crate::external::calculix::Settings,
+    pub calculix: crate::calculix_settings::Settings,
     /// What kind of work the case is ([`labels::LABELS`]), in its order.
     pub labels: Vec<String>,
     /// The resolution chosen per solver (`[resolution]`, then `--resolution`), each value

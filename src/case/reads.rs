@@ -16,7 +16,7 @@
 //! A name is resolved to its canonical path (absolute, no `..`, every symbolic link followed)
 //! before it is judged, so that neither `../..`, an absolute path nor a link that leads out
 //! reaches a file outside these roots. The file must then be a regular file of bounded size,
-//! checked on the opened file ([`super::input`]). See docs/security.md, "Files a case may read".
+//! checked on the opened file ([`crate::input`]). See docs/security.md, "Files a case may read".
 
 use std::path::{Path, PathBuf};
 

@@ -52,7 +52,7 @@ pub enum LoadError {
 /// Reads entry `key` of the reference file `path` (a regular file of bounded size), checking
 /// that its value is finite and its quantity and unit are known and agree.
 pub fn load(path: &Path, key: &str) -> Result<StoredValue, LoadError> {
-    let text = super::input::read_text(path).map_err(|source| LoadError::Unreadable {
+    let text = crate::input::read_text(path).map_err(|source| LoadError::Unreadable {
         file: path.to_path_buf(),
         source,
     })?;

@@ -14,8 +14,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::case::input;
 use crate::history::{Quantity, StepResult};
+use crate::input;
 use crate::limits::MAX_STORED_RESULTS_BYTES;
 use crate::path::Step;
 

@@ -21,7 +21,6 @@
 
 pub mod axisym;
 pub mod bounded_log;
-pub mod calculix;
 pub mod command;
 pub mod deck;
 pub mod descendants;
@@ -50,7 +49,6 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
         Box::new(AxisymSolver::new(freefem::FreeFem)),
         Box::new(AxisymSolver::new(fenicsx::Fenicsx)),
         Box::new(fenicsx3d::Solid3dDeck::new(1)),
-        Box::new(calculix::CcxAxisym::default()),
     ]
 }
 

@@ -24,7 +24,7 @@ pub struct RunPlan {
 /// True when `file` holds an impact case (`kind = "impact"`); false when it cannot be read (the
 /// path-case loader then reports why).
 pub fn is_impact_file(file: &Path) -> bool {
-    case::input::read_text(file).is_ok_and(|text| case::is_impact(&text))
+    crate::input::read_text(file).is_ok_and(|text| case::is_impact(&text))
 }
 
 /// Plans a run: the case validated, each solver named once and known, `out` claimed (`force`:
@@ -127,7 +127,7 @@ pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String
         files::write(&dir, &run.case, &run.runs).map_err(|e| format!("--out {}: {e}", dir.display()))?;
         print!("{}", run.block());
     }
-    let document = crate::report::impact::document(&runs).map_err(|e| format!("building the report: {e}"))?;
+    let document = crate::impact::report::document(&runs).map_err(|e| format!("building the report: {e}"))?;
     document
         .write(out)
         .map_err(|e| format!("--out {}: {e}", out.display()))?;

@@ -20,8 +20,8 @@
 //!
 //! docs/impact.md holds the conventions, the damping law and the measured convergence.
 
-pub mod case;
-pub mod closed_form;
+pub use crate::case::impact as case;
+pub use crate::case::impact_closed_form as closed_form;
 pub mod command;
 #[cfg(test)]
 mod cross_check;
@@ -30,6 +30,7 @@ pub mod integrator;
 pub mod judge;
 pub mod law;
 pub mod outcome;
+pub mod report;
 pub mod run;
 
 pub use case::ImpactCase;

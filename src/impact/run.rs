@@ -12,7 +12,7 @@ use crate::analytic;
 use crate::hertz::Hertz;
 
 /// The name of the exact reference: MDR's spring bed as the contact law.
-pub const REFERENCE: &str = "mdr";
+pub use crate::case::impact::REFERENCE;
 
 /// The most steps a contact may take, as a multiple of the steps per Hertz contact duration:
 /// an elastic contact lasts one duration, a damped one less (its rebound is faster).
@@ -25,12 +25,7 @@ const WINDOW_FACTOR: f64 = 1.05;
 /// At most this many samples in the trace of the first sweep point.
 const TRACE_SAMPLES: usize = 2000;
 
-/// The names of the solvers an impact case may run: the exact reference, then the DEM laws.
-pub fn solver_names() -> Vec<&'static str> {
-    std::iter::once(REFERENCE)
-        .chain(analytic::dem_laws().into_iter().map(|law| law.name))
-        .collect()
-}
+pub use crate::case::impact::solver_names;
 
 /// One solver in one variant over the sweep.
 #[derive(Clone, Debug)]

@@ -9,7 +9,6 @@ pub mod document;
 pub mod figures;
 pub mod glance;
 pub mod history_files;
-pub mod impact;
 pub mod junit;
 pub mod paper;
 pub mod plot;

@@ -1,0 +1,378 @@
+//! `verify` and its family (`merge`, `baseline update`, `slurm`): the arguments, the plan (cases
+//! read and selected, outputs claimed, baselines loaded; nothing run) and its execution.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Subcommand;
+use spherecontact::case::{Case, ReadRoots};
+use spherecontact::conclusion::Conclusion;
+use spherecontact::external::permission;
+use spherecontact::impact::{command as impact, ImpactRun};
+use spherecontact::report::junit;
+use spherecontact::runfile::RunFile;
+use spherecontact::{baseline, io, merge, plan, schedule, verify};
+
+use crate::{claim, resolution_options, CommandOptions, InputError};
+
+/// The arguments of `verify`.
+#[derive(clap::Args)]
+pub(crate) struct VerifyArgs {
+    /// Case files or folders (every .toml under them); default: cases/.
+    cases: Vec<PathBuf>,
+    /// Write JUnit XML here.
+    #[arg(long, value_name = "FILE")]
+    junit: Option<PathBuf>,
+    /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
+    #[arg(long)]
+    require_external: bool,
+    /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+    /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+    #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+    resolution: Vec<String>,
+    /// MPI ranks of the solvers that run under MPI (fenicsx-3d); default: each case's `ranks`.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    ranks: Option<u32>,
+    /// Run only the cases with this label (repeatable: any of them).
+    #[arg(long = "label", value_name = "LABEL")]
+    labels: Vec<String>,
+    /// Leave out the cases with this label (repeatable).
+    #[arg(long = "skip-label", value_name = "LABEL")]
+    skip_labels: Vec<String>,
+    /// Cores for concurrent runs (each solver takes the cores it declares); default: the
+    /// machine's.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    jobs: Option<u32>,
+    /// Run only the K-th of N parts of the runs, balanced by their recorded cost (e.g. 2/3);
+    /// `merge` puts the parts' --out folders together.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<String>,
+    /// Write the run file (run.json: every run's history, for `merge`) and the printed
+    /// summary (summary.txt) into this folder.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// The non-regression baselines (<case>.toml) each value is compared with.
+    #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+    baselines: PathBuf,
+    #[command(flatten)]
+    commands: CommandOptions,
+    /// Replace a --junit file that spherecontact did not write, or write --out into a folder
+    /// that holds files it did not write.
+    #[arg(long)]
+    force: bool,
+}
+
+/// The arguments of `slurm`.
+#[derive(clap::Args)]
+pub(crate) struct SlurmArgs {
+    /// Case files or folders; default: every .toml under cases/.
+    cases: Vec<PathBuf>,
+    /// How many shards (array tasks).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    shards: u32,
+    /// Where the scripts go, and the shards' and merged results when they run.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Run only the cases with this label (repeatable: any of them).
+    #[arg(long = "label", value_name = "LABEL")]
+    labels: Vec<String>,
+    /// Leave out the cases with this label (repeatable).
+    #[arg(long = "skip-label", value_name = "LABEL")]
+    skip_labels: Vec<String>,
+    /// Cores per shard (--cpus-per-task and verify --jobs).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    cores: u32,
+    /// The Slurm partition.
+    #[arg(long)]
+    partition: Option<String>,
+    /// Each job's time limit (Slurm's --time, e.g. 1:00:00).
+    #[arg(long)]
+    time: Option<String>,
+    /// Count a check that is N/A as a failure.
+    #[arg(long)]
+    require_external: bool,
+    /// The non-regression baselines.
+    #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+    baselines: PathBuf,
+}
+
+/// What `baseline` does.
+#[derive(Subcommand)]
+pub(crate) enum BaselineAction {
+    /// Run cases and rewrite their baselines.
+    Update {
+        /// Case files or folders; default: every .toml under cases/.
+        cases: Vec<PathBuf>,
+        /// The baselines' folder.
+        #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
+        baselines: PathBuf,
+        /// Cores for concurrent runs; default: the machine's.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: Option<u32>,
+        #[command(flatten)]
+        commands: CommandOptions,
+    },
+}
+
+/// Where `verify` and `merge` write, checked before any work.
+pub(crate) struct Outputs {
+    /// The JUnit file as given, and its canonical path (claimed).
+    junit: Option<(PathBuf, PathBuf)>,
+    /// The output folder, claimed (and locked) for this run.
+    out: Option<io::OutputFolder>,
+    require_external: bool,
+}
+
+impl Outputs {
+    pub(crate) fn checked(
+        junit: Option<PathBuf>,
+        out: Option<PathBuf>,
+        require_external: bool,
+        force: bool,
+    ) -> Result<Self, InputError> {
+        let junit = junit
+            .map(|file| {
+                io::claim_file(&file, force, junit::is_ours)
+                    .map(|canonical| (file.clone(), canonical))
+                    .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))
+            })
+            .transpose()?;
+        let out = out.map(|dir| claim(&dir, force)).transpose()?;
+        Ok(Outputs {
+            junit,
+            out,
+            require_external,
+        })
+    }
+
+    /// Prints the verdicts of `runs` (and the impact cases' `impacts`) and writes the JUnit and
+    /// summary.
+    fn write(&self, runs: &[verify::CaseRun], impacts: &[ImpactRun]) -> Result<ExitCode, InputError> {
+        let conclusion = Conclusion {
+            runs,
+            require_external: self.require_external,
+        };
+        for run in impacts {
+            print!("{}", run.block());
+        }
+        let text = conclusion.text();
+        print!("{text}");
+        if let Some((file, canonical)) = &self.junit {
+            io::write_atomically(canonical, conclusion.junit().as_bytes())
+                .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
+        }
+        if let Some(folder) = &self.out {
+            io::write_atomically(&folder.path().join("summary.txt"), text.as_bytes())
+                .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
+        }
+        Ok(if conclusion.passed() && impacts.iter().all(ImpactRun::passed) {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        })
+    }
+}
+
+/// The cases of `verify`, read and selected, with their baselines; nothing run yet.
+struct VerifyPlan {
+    files: Vec<PathBuf>,
+    /// The impact cases among the files (`kind = "impact"`: run apart, docs/impact.md).
+    impacts: Vec<spherecontact::impact::ImpactCase>,
+    options: plan::CaseOptions,
+    plan: plan::Plan,
+    baselines: std::collections::BTreeMap<String, baseline::Baseline>,
+}
+
+/// `whole`: an unsharded run without a run file (the impact cases join only such a run).
+fn verify_plan(
+    files: Vec<PathBuf>,
+    selection: &plan::Selection,
+    options: &plan::CaseOptions,
+    baselines: &Path,
+    whole: bool,
+) -> Result<VerifyPlan, InputError> {
+    let files = plan::case_files(&if files.is_empty() {
+        vec![PathBuf::from("cases")]
+    } else {
+        files
+    })?;
+    let (impact_files, files): (Vec<PathBuf>, Vec<PathBuf>) =
+        files.into_iter().partition(|f| impact::is_impact_file(f));
+    let impacts = impact_files
+        .iter()
+        .map(|f| spherecontact::case::load_impact(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    // Impact cases run whole in an unsharded verify without a run file: they are no
+    // (case, solver) runs that a shard or a merge could carry.
+    let impacts = if selection.selects_labels(&plan::IMPACT_LABELS) && whole {
+        impacts
+    } else {
+        if !impacts.is_empty() && !whole {
+            eprintln!("note: impact cases are left out of a sharded verify or one with --out (run them with `spherecontact impact`)");
+        }
+        Vec::new()
+    };
+    let (mut selected, mut cases) = (Vec::new(), Vec::new());
+    for file in files {
+        let case = options.load(&file)?;
+        if selection.selects(&case) {
+            selected.push(file);
+            cases.push(case);
+        }
+    }
+    if cases.is_empty() && impacts.is_empty() {
+        return Err(InputError(
+            "no case files to verify (none given, or none selected by label)".into(),
+        ));
+    }
+    let baselines = baseline::load_all(baselines, cases.iter().map(Case::name))?;
+    let commands: Vec<String> = cases.iter().flat_map(Case::command_lines).collect();
+    commands.iter().for_each(|line| println!("{line}"));
+    if !commands.is_empty() && !options.permission.is_allowed() {
+        println!(
+            "verify: the programs cases name will not run: {}",
+            permission::how_to_allow()
+        );
+    }
+    let plan = plan::Plan::new(cases, |case, solver| baselines.get(case.name())?.wall_s(solver));
+    Ok(VerifyPlan {
+        files: selected,
+        impacts,
+        options: options.clone(),
+        plan,
+        baselines,
+    })
+}
+
+/// `verify`: the plan checked and built (nothing written on bad input), then executed.
+pub(crate) fn verify_command(args: VerifyArgs, roots: &ReadRoots) -> Result<ExitCode, InputError> {
+    let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
+    let jobs = args.jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+    let shard = args.shard.map(|s| s.parse::<plan::Shard>()).transpose()?;
+    let options = plan::CaseOptions {
+        ranks: args.ranks,
+        resolutions: resolution_options(&args.resolution)?,
+        roots: roots.clone(),
+        permission: args.commands.permission()?,
+    };
+    let outputs = Outputs::checked(args.junit, args.out, args.require_external, args.force)?;
+    let whole = shard.is_none() && outputs.out.is_none();
+    let plan = verify_plan(args.cases, &selection, &options, &args.baselines, whole)?;
+    verify_cases(plan, shard, jobs, &outputs)
+}
+
+fn verify_cases(
+    verify: VerifyPlan,
+    shard: Option<plan::Shard>,
+    jobs: usize,
+    outputs: &Outputs,
+) -> Result<ExitCode, InputError> {
+    let plan = match shard {
+        Some(shard) => verify.plan.shard(shard),
+        None => verify.plan,
+    };
+    let finished = schedule::execute(&plan, jobs);
+    if let Some(folder) = &outputs.out {
+        RunFile::new(&plan, &finished, verify.files, verify.options, shard)
+            .write(folder.path())
+            .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
+    }
+    let mut runs = schedule::judge(plan, finished);
+    baseline::compare_all(&verify.baselines, &mut runs);
+    let impacts: Vec<ImpactRun> = verify.impacts.into_iter().map(ImpactRun::of).collect();
+    outputs.write(&runs, &impacts)
+}
+
+pub(crate) fn merge_runs(
+    dirs: &[PathBuf],
+    baselines: &Path,
+    outputs: &Outputs,
+    roots: &ReadRoots,
+) -> Result<ExitCode, InputError> {
+    let merged = merge::merge(dirs, roots)?;
+    let baselines = baseline::load_all(baselines, merged.plan.cases.iter().map(Case::name))?;
+    for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
+        let shard = shard.as_deref().unwrap_or("whole");
+        eprintln!(
+            "merge: {} (shard {shard}): runs {wall_s:.2} s wall in all",
+            dir.display()
+        );
+    }
+    let mut runs = schedule::judge(merged.plan, merged.finished);
+    baseline::compare_all(&baselines, &mut runs);
+    outputs.write(&runs, &[])
+}
+
+pub(crate) fn update_baselines(
+    cases: Vec<PathBuf>,
+    dir: &Path,
+    jobs: Option<u32>,
+    roots: &ReadRoots,
+    commands: &CommandOptions,
+) -> Result<ExitCode, InputError> {
+    let options = plan::CaseOptions {
+        roots: roots.clone(),
+        permission: commands.permission()?,
+        ..plan::CaseOptions::default()
+    };
+    let verify = verify_plan(cases, &plan::Selection::default(), &options, dir, false)?;
+    let jobs = jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+    let finished = schedule::execute(&verify.plan, jobs);
+    io::create_folder(dir).map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
+    for run in schedule::judge(verify.plan, finished) {
+        let baseline = baseline::Baseline::of(&run);
+        let file = baseline::file(dir, run.case.name());
+        io::write_atomically(&file, baseline.to_toml().as_bytes())
+            .map_err(|e| InputError(format!("--baselines {}: {e}", file.display())))?;
+        println!(
+            "baseline: {} ({} checks with a value, {} solvers ran)",
+            file.display(),
+            baseline.checks.len(),
+            baseline.solvers.len()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Checks the cases and writes the Slurm scripts of `args` (nothing is submitted).
+pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, InputError> {
+    let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
+    let options = plan::CaseOptions {
+        roots: roots.clone(),
+        ..plan::CaseOptions::default()
+    };
+    verify_plan(args.cases.clone(), &selection, &options, &args.baselines, false)?;
+    let folder = claim(&args.out, false)?;
+    let root = std::env::current_dir()?;
+    let mut merge_args = vec![
+        "--baselines".to_owned(),
+        root.join(&args.baselines).display().to_string(),
+    ];
+    if args.require_external {
+        merge_args.push("--require-external".into());
+    }
+    let mut verify_args: Vec<String> = args.cases.iter().map(|c| c.display().to_string()).collect();
+    for (option, list) in [("--label", &args.labels), ("--skip-label", &args.skip_labels)] {
+        verify_args.extend(list.iter().flat_map(|l| [option.to_owned(), l.clone()]));
+    }
+    verify_args.extend(merge_args.iter().cloned());
+    let job = spherecontact::slurm::SlurmJob {
+        program: std::env::current_exe()?,
+        out: folder.path().to_path_buf(),
+        root,
+        verify_args,
+        merge_args,
+        shards: args.shards as usize,
+        cores: args.cores as usize,
+        partition: args.partition,
+        time: args.time,
+    };
+    job.write()
+        .map_err(|e| InputError(format!("--out {}: {e}", args.out.display())))?;
+    println!(
+        "slurm: scripts in {}: run {}",
+        args.out.display(),
+        job.out.join("submit.sh").display()
+    );
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,238 @@
+//! The real DEM codes (LAMMPS `pair_style granular`, YADE `MindlinPhys`) against the closed forms
+//! of their laws: Hertz's normal force, the no-slip spring's initial stiffness 8G*c, the Coulomb
+//! cap μP; their runs are quasi-static (rate-independent); YADE's MindlinDeresiewitz law gives no
+//! tangential force at all.
+//!
+//! Tests that need LAMMPS or YADE print why they skip where those are absent (install them with
+//! `scripts/setup.sh`). Run: `cargo test --test suite dem_codes::`.
+
+use crate::common;
+
+use spherecontact::dem::lammps::{Lammps, TangentialModel};
+use spherecontact::dem::yade::{Yade, YadeLaw};
+use spherecontact::external::toolchain::{Tool, Toolchain};
+use spherecontact::history::History;
+use spherecontact::path::{LoadingPath, Position};
+use spherecontact::scene::Scene;
+use spherecontact::solver::{self, SolveError, Solver};
+
+/// True when `tool` works; otherwise prints why the calling test skips.
+fn present(tool: Tool, test: &str) -> bool {
+    let probe = Toolchain::default().probe(tool);
+    if !probe.available() {
+        eprintln!("{test}: skipped, {} (run scripts/setup.sh)", probe.line());
+    }
+    probe.available()
+}
+
+/// The paper's spheres pressed to δn = 17 µm in 17 steps, then sheared at constant δn to 6 µm in
+/// 60 steps (past gross sliding at 4.13 µm) and back to 0 in 30.
+fn shear_scene() -> Scene {
+    let mut scene = common::case("cases/cattaneo.toml").scene;
+    let p = |n: f64, t: f64| Position {
+        delta_n: n * 1e-6,
+        delta_t: t * 1e-6,
+    };
+    scene.path = LoadingPath::try_new(
+        vec![p(0.0, 0.0), p(17.0, 0.0), p(17.0, 6.0), p(17.0, 0.0)],
+        vec![17, 60, 30],
+    )
+    .unwrap();
+    scene
+}
+
+/// Every real DEM solver that is installed, with the scene's history.
+fn installed_codes(test: &str) -> Vec<Box<dyn Solver>> {
+    let mut codes: Vec<Box<dyn Solver>> = Vec::new();
+    if present(Tool::Lammps, test) {
+        codes.extend(TangentialModel::ALL.map(|m| Box::new(Lammps::new(m)) as Box<dyn Solver>));
+    }
+    if present(Tool::Yade, test) {
+        codes.push(Box::new(Yade::new(YadeLaw::Mindlin)));
+    }
+    codes
+}
+
+fn solve(solver: &dyn Solver, scene: &Scene) -> History {
+    solver::run(solver, scene).unwrap_or_else(|e| panic!("{}: {e}", solver.name()))
+}
+
+#[test]
+fn the_codes_reproduce_hertz_the_initial_stiffness_8gc_and_the_coulomb_cap() {
+    let scene = shear_scene();
+    let hertz = scene.hertz();
+    let (mu, g_star) = (scene.friction, scene.pair.mindlin_shear_modulus());
+    for code in installed_codes("closed forms") {
+        let history = solve(code.as_ref(), &scene);
+        let name = code.name();
+        // Hertz at every step. Reason: both codes take the overlap as R1 + R2 − |x2 − x1| from
+        // positions of size R1 + R2, which carry a rounding of a few ε(R1 + R2); P ∝ δ^3/2 turns
+        // it into 1.5 · 4ε(R1 + R2)/δ relative (1.8e-10 at δ = 1 µm, 1e-11 at 17 µm), above the
+        // ulps of the product itself; printed with 17 significant digits.
+        let rounding = 4.0 * f64::EPSILON * (scene.pair.body1.radius + scene.pair.body2.radius);
+        for row in history.steps.iter().filter(|r| r.delta_n > 0.0) {
+            let (p, reference) = (row.normal_force.unwrap(), hertz.force(row.delta_n));
+            let tolerance = 1.5 * rounding / row.delta_n + 1e-14;
+            assert!(
+                (p / reference - 1.0).abs() <= tolerance,
+                "{name}: P {p} against Hertz {reference} at step {} (tolerance {tolerance:e})",
+                row.step
+            );
+        }
+        // The first shear increment from Q = 0 at δn = 17 µm: Q1 = 8 G* c Δδt. Reason: c = √(R* δ)
+        // carries half the overlap's rounding, 0.5 · 4ε(R1 + R2)/δ = 2.6e-12, and the slip ω R dt
+        // an ulp.
+        let first = &history.steps[18];
+        let stiffness = first.tangential_force.unwrap() / (first.delta_t - history.steps[17].delta_t);
+        let closed_form = 8.0 * g_star * hertz.contact_radius(17e-6);
+        let tolerance = 0.5 * rounding / 17e-6 + 1e-14;
+        assert!(
+            (stiffness / closed_form - 1.0).abs() <= tolerance,
+            "{name}: k_t {stiffness} against 8G*c {closed_form} (tolerance {tolerance:e})"
+        );
+        // Gross sliding reaches the cap μP and never passes it. Reason: the cap is applied as
+        // Q·(μP/|Q|), exact to an ulp or two.
+        let ratios: Vec<f64> = history
+            .steps
+            .iter()
+            .filter(|r| r.normal_force.unwrap() > 0.0)
+            .map(|r| r.tangential_force.unwrap().abs() / (mu * r.normal_force.unwrap()))
+            .collect();
+        let largest = ratios.iter().cloned().fold(0.0, f64::max);
+        assert!((largest - 1.0).abs() < 1e-14, "{name}: largest |Q|/μP {largest}");
+        let sliding = ratios.iter().filter(|&&r| (r - 1.0).abs() < 1e-14).count();
+        assert!(sliding >= 10, "{name}: only {sliding} steps at the cap");
+    }
+}
+
+#[test]
+fn the_runs_are_quasi_static_the_step_length_changes_nothing() {
+    // A path whose δn varies while it shears, so every law's history matters.
+    let scene = common::case("cases/paper-fig7.toml").scene;
+    let pairs: Vec<(Box<dyn Solver>, Box<dyn Solver>)> = {
+        let mut pairs: Vec<(Box<dyn Solver>, Box<dyn Solver>)> = Vec::new();
+        if present(Tool::Lammps, "quasi-static") {
+            let mut slow = Lammps::new(TangentialModel::MindlinRescale);
+            slow.timestep = 1e3;
+            pairs.push((
+                Box::new(Lammps::new(TangentialModel::MindlinRescale)),
+                Box::new(slow),
+            ));
+        }
+        if present(Tool::Yade, "quasi-static") {
+            let mut slow = Yade::new(YadeLaw::Mindlin);
+            slow.timestep = 1e3;
+            pairs.push((Box::new(Yade::new(YadeLaw::Mindlin)), Box::new(slow)));
+        }
+        pairs
+    };
+    for (fast, slow) in pairs {
+        let (a, b) = (solve(fast.as_ref(), &scene), solve(slow.as_ref(), &scene));
+        let peak = a.peak(spherecontact::history::Quantity::TangentialForce);
+        for (x, y) in a.steps.iter().zip(&b.steps) {
+            // Reason: velocities 1000 times smaller, the same increments: only the rounding of
+            // rate × step differs (an ulp of each increment).
+            let dq = (x.tangential_force.unwrap() - y.tangential_force.unwrap()).abs();
+            assert!(
+                dq <= 1e-12 * peak,
+                "{}: step {} differs by {dq} N",
+                fast.name(),
+                x.step
+            );
+            let (p, q) = (x.normal_force.unwrap(), y.normal_force.unwrap());
+            assert!(
+                (p - q).abs() <= 1e-12 * p.abs(),
+                "{}: step {}: P {p} against {q}",
+                fast.name(),
+                x.step
+            );
+        }
+    }
+}
+
+#[test]
+fn yade_mindlin_deresiewitz_gives_no_tangential_force() {
+    if !present(Tool::Yade, "MindlinDeresiewitz") {
+        return;
+    }
+    let scene = shear_scene();
+    let history = solve(&Yade::new(YadeLaw::MindlinDeresiewitz), &scene);
+    let hertz = scene.hertz();
+    for row in &history.steps {
+        // The documented Mindlin–Deresiewicz law computes Hertz's P and never a Q.
+        assert_eq!(row.tangential_force, Some(0.0), "step {}", row.step);
+        let (p, reference) = (row.normal_force.unwrap(), hertz.force(row.delta_n));
+        // Reason: as for the closed forms above, the overlap's rounding 1.5 · 4ε(R1 + R2)/δ.
+        let rounding = 1.5 * 4.0 * f64::EPSILON * 0.2 / row.delta_n.max(1e-6) + 1e-14;
+        assert!(
+            (p - reference).abs() <= rounding * reference,
+            "step {}: P {p} against {reference}",
+            row.step
+        );
+    }
+}
+
+#[test]
+fn missing_codes_are_not_available_and_a_flat_is_not_applicable() {
+    let scene = shear_scene();
+    let mut lammps = Lammps::new(TangentialModel::Mindlin);
+    lammps.toolchain.lammps = "/nonexistent/lmp".into();
+    let mut yade = Yade::new(YadeLaw::Mindlin);
+    yade.toolchain.yade = "/nonexistent/yade".into();
+    for solver in [&lammps as &dyn Solver, &yade] {
+        let e = solver.solve(&scene).unwrap_err();
+        assert!(matches!(e, SolveError::Unavailable(_)), "{e}");
+        assert!(e.to_string().contains("scripts/setup.sh"), "{e}");
+    }
+    let mut flat = scene.clone();
+    flat.pair.body2.radius = f64::INFINITY;
+    let e = Lammps::new(TangentialModel::Mindlin).solve(&flat).unwrap_err();
+    assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
+}
+
+#[test]
+fn the_scoreboard_measures_what_the_informational_checks_measure() {
+    use spherecontact::check::Reference;
+    use spherecontact::report::dem_scoreboard;
+    let mut case = common::case("cases/paper-fig7.toml");
+    // MDR, the built-in laws and the codes (not available where not installed); no FEM or BEM.
+    let wanted = |name: &str| {
+        name == "mdr"
+            || [
+                "hertz-mindlin-spring",
+                "thornton",
+                "md-incremental",
+                "walton-braun",
+            ]
+            .contains(&name)
+            || name.starts_with("lammps-")
+            || name.starts_with("yade-")
+    };
+    case.solvers.retain(|s| wanted(s));
+    case.checks
+        .retain(|c| wanted(&c.solver) && matches!(&c.reference, Reference::Solver(r) if r == "mdr"));
+    let run = spherecontact::verify::run_case(case);
+    let scores = dem_scoreboard::scores(&run);
+    assert_eq!(scores.len(), 9, "four built-in laws and five code solvers");
+    for outcome in &run.outcomes {
+        let score = scores.iter().find(|s| s.solver == outcome.spec.solver).unwrap();
+        match (&score.distances, outcome.error) {
+            (Ok((worst, at_positions)), Some(error)) => {
+                assert_eq!(*worst, error, "{}", score.solver);
+                assert_eq!(at_positions.len(), 12);
+                assert!(at_positions.iter().all(|d| d <= worst));
+            }
+            (Err(why), None) => assert_eq!(why, "not available", "{}", score.solver),
+            other => panic!("{}: {other:?}", score.solver),
+        }
+    }
+    let section = dem_scoreboard::section(&run);
+    assert_eq!(section.title, dem_scoreboard::TITLE);
+    assert_eq!(section.tables[0].rows.len(), 9);
+    // The spring law is far from MDR (no micro-slip): the board must show it, not hide it.
+    let spring = scores
+        .iter()
+        .find(|s| s.solver == "hertz-mindlin-spring")
+        .unwrap();
+    assert!(spring.distances.as_ref().unwrap().0 > 0.1);
+}

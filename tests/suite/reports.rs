@@ -1,0 +1,142 @@
+//! Requirements of the reports (`compare`, `reproduce-paper`):
+//! - they regenerate identically from the same inputs, apart from timings;
+//! - every SVG is well-formed XML, and the HTML page is self-contained;
+//! - a solver missing from a run is shown as missing, never as a line or a zero.
+//!
+//! How the page reads in a browser (its first screen, its width, its legends, its console) is
+//! tested in `tests/report_browser.rs`.
+
+use crate::common;
+
+use std::path::Path;
+
+use common::root;
+use spherecontact::report::claims::Study;
+use spherecontact::report::{compare, paper};
+use spherecontact::solver::SolveError;
+use spherecontact::verify::{self, CaseRun};
+
+/// The paper's case with the in-crate solvers.
+fn paper_run() -> CaseRun {
+    verify::run_case(common::paper_case_in_crate())
+}
+
+/// Text with the timing cells masked: HTML cells of class "timing", and the last Markdown cell of
+/// a row that holds a wall time ("N ms", "N s", or "N ms (assembly … s, …)").
+fn without_timings(text: &str) -> String {
+    text.lines()
+        .map(|line| {
+            if let Some(start) = line.find("<td class=\"timing\">") {
+                let end = line[start..].find("</td>").map_or(line.len(), |e| start + e);
+                format!("{}TIMING{}", &line[..start], &line[end..])
+            } else if line.starts_with("| ")
+                && (line.ends_with(" ms |") || line.ends_with(" s |") || line.contains(" ms ("))
+            {
+                let cut = line[..line.len() - 2].rfind("| ").unwrap_or(0);
+                format!("{}| TIMING |", &line[..cut])
+            } else {
+                line.to_owned()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn reports_regenerate_identically_apart_from_timings() {
+    let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
+    for dir in &dirs {
+        let run = paper_run();
+        paper::document(&run, &Study::none(), &root().join("reference"))
+            .unwrap()
+            .write(dir.path())
+            .unwrap();
+    }
+    let read = |dir: &Path, file: &str| without_timings(&std::fs::read_to_string(dir.join(file)).unwrap());
+    for file in [
+        "report.html",
+        "report.md",
+        "figures/tangential-force.svg",
+        "data/tangential-force.csv",
+    ] {
+        assert_eq!(
+            read(dirs[0].path(), file),
+            read(dirs[1].path(), file),
+            "{file} differs"
+        );
+    }
+}
+
+#[test]
+fn every_svg_is_well_formed_and_the_page_is_self_contained() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = paper_run();
+    compare::document(&run).unwrap().write(dir.path()).unwrap();
+    let svgs: Vec<_> = std::fs::read_dir(dir.path().join("figures"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert!(svgs.len() >= 6, "figures: {svgs:?}");
+    for svg in &svgs {
+        let text = std::fs::read_to_string(svg).unwrap();
+        roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", svg.display()));
+        assert!(!text.contains("NaN"), "{}", svg.display());
+    }
+    let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
+    assert!(html.contains("<svg") && !html.contains("<script") && !html.contains("src=\"http"));
+    // Every inline SVG of the page parses too.
+    let mut rest = html.as_str();
+    while let Some(start) = rest.find("<svg") {
+        let end = rest[start..].find("</svg>").expect("closed svg") + start + "</svg>".len();
+        roxmltree::Document::parse(&rest[start..end]).expect("inline svg parses");
+        rest = &rest[end..];
+    }
+}
+
+#[test]
+fn a_missing_solver_is_shown_as_missing_not_as_a_line() {
+    let mut run = paper_run();
+    run.histories.insert(
+        "thornton".into(),
+        Err(SolveError::Unavailable("thornton is not installed".into())),
+    );
+    let document = compare::document(&run).unwrap();
+    let figures: Vec<_> = document.sections.iter().flat_map(|s| &s.figures).collect();
+    let tangential = figures.iter().find(|f| f.id == "tangential-force").unwrap();
+    assert!(
+        tangential
+            .caption
+            .contains("Missing: thornton (not available: thornton is not installed)"),
+        "{}",
+        tangential.caption
+    );
+    assert!(
+        tangential.data.rows.iter().all(|row| row[0].text != "thornton"),
+        "no series for a missing solver"
+    );
+    let svg = roxmltree::Document::parse(&tangential.svg).unwrap();
+    let texts: Vec<&str> = svg
+        .descendants()
+        .filter_map(|n| n.text())
+        .map(str::trim)
+        .collect();
+    assert!(
+        texts.contains(&"mdr"),
+        "control: the legend names the solvers that ran: {texts:?}"
+    );
+    assert!(
+        !texts.contains(&"thornton"),
+        "no legend entry for a missing solver"
+    );
+    let solver_table = &document.sections[0].tables[0];
+    let row = solver_table
+        .rows
+        .iter()
+        .find(|r| r[0].text == "thornton")
+        .unwrap();
+    assert_eq!(row[1].text, "missing: not available");
+    assert!(
+        row[2..].iter().all(|c| !c.text.starts_with('0')),
+        "no zeros stand in for a missing solver"
+    );
+}

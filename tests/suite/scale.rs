@@ -1,0 +1,317 @@
+//! Verification at scale, end to end through the command line: labels select cases, concurrent
+//! runs (`--jobs`) and sharded runs merged (`--shard`, `merge`) give what a serial run gives,
+//! and a value that moves from its non-regression baseline is a DRIFT until `baseline update`.
+
+use crate::common;
+
+use std::path::Path;
+
+use common::{root, spherecontact};
+
+/// Runs `spherecontact` in the crate's folder; (exit code, stdout, stderr).
+fn run(args: &[&str]) -> (i32, String, String) {
+    let output = spherecontact(args, &root());
+    (
+        output.status.code().unwrap(),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+fn text(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The cases of a verification's printed blocks (`== name (file)`).
+fn cases_run(stdout: &str) -> Vec<&str> {
+    stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("== ")?.split(' ').next())
+        .collect()
+}
+
+#[test]
+fn labels_select_and_skip_cases() {
+    let empty = tempfile::tempdir().unwrap();
+    let none = path(empty.path());
+    let (code, stdout, stderr) = run(&[
+        "verify",
+        "--label",
+        "hard",
+        "--skip-label",
+        "dem",
+        "--baselines",
+        none,
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    // Of cases/hard/, only the case without a DEM law.
+    assert_eq!(cases_run(&stdout), ["hard-nearly-incompressible"], "{stdout}");
+    let (code, _, stderr) = run(&["verify", "--label", "haevy"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--label haevy: unknown label (allowed: fast, heavy"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = run(&["verify", "--label", "heavy"]);
+    assert_eq!(code, 2, "cases/ has no heavy case: {stderr}");
+    assert!(stderr.contains("none selected by label"), "{stderr}");
+    // A folder given expands to its cases: the heavy one is there, and not run here.
+    let (code, stdout, stderr) = run(&["verify", "cases-heavy", "--skip-label", "heavy"]);
+    assert_eq!((code, stdout.as_str()), (2, ""), "{stderr}");
+}
+
+/// The fast cases without python (command-solver needs it): the hard cases.
+const FAST: [&str; 2] = ["--label", "hard"];
+
+#[test]
+fn concurrent_runs_print_and_write_what_a_serial_run_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let none = dir.path().join("no-baselines");
+    let mut outputs = Vec::new();
+    for jobs in ["1", "2", "3"] {
+        let junit = dir.path().join(format!("junit-{jobs}.xml"));
+        let (code, stdout, stderr) = run(&[
+            &[
+                "verify",
+                "cases/hard",
+                "cases/sphere-on-flat.toml",
+                "--jobs",
+                jobs,
+            ],
+            &FAST[..],
+            &["--junit", path(&junit), "--baselines", path(&none)],
+        ]
+        .concat());
+        assert_eq!(code, 0, "{stdout}{stderr}");
+        outputs.push((stdout, text(&junit)));
+    }
+    // sphere-on-flat has no label `hard`: it is left out, whatever the folder given.
+    assert!(!outputs[0].0.contains("sphere-on-flat"), "{}", outputs[0].0);
+    assert_eq!(cases_run(&outputs[0].0).len(), 8, "{}", outputs[0].0);
+    assert_eq!(outputs[0], outputs[1]);
+    assert_eq!(outputs[0], outputs[2]);
+}
+
+#[test]
+fn three_shards_merged_equal_the_unsharded_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |name: &str| dir.path().join(name);
+    let none = d("no-baselines");
+    let common = [&["verify", "--baselines", path(&none)][..], &FAST[..]].concat();
+    let (code, whole, stderr) = run(&[
+        &common[..],
+        &["--out", path(&d("whole")), "--junit", path(&d("whole.xml"))],
+    ]
+    .concat());
+    assert_eq!(code, 0, "{whole}{stderr}");
+    let mut runs_in_shards = 0;
+    for k in 1..=3 {
+        let shard = format!("{k}/3");
+        let out = d(&format!("shard-{k}"));
+        let (code, stdout, stderr) = run(&[&common[..], &["--shard", &shard, "--out", path(&out)]].concat());
+        assert_eq!(code, 0, "{stdout}{stderr}");
+        let file: serde_json::Value = serde_json::from_str(&text(&out.join("run.json"))).unwrap();
+        assert_eq!(file["shard"], shard);
+        let runs = file["runs"].as_array().unwrap().len();
+        assert!(runs > 0, "shard {shard} has no run");
+        runs_in_shards += runs;
+    }
+    let whole_file: serde_json::Value = serde_json::from_str(&text(&d("whole").join("run.json"))).unwrap();
+    assert_eq!(runs_in_shards, whole_file["runs"].as_array().unwrap().len());
+    let shards: Vec<String> = (1..=3)
+        .map(|k| d(&format!("shard-{k}")).to_str().unwrap().to_owned())
+        .collect();
+    let (code, merged, stderr) = run(&[
+        &["merge"][..],
+        &shards.iter().map(String::as_str).collect::<Vec<_>>(),
+        &[
+            "--junit",
+            path(&d("merged.xml")),
+            "--out",
+            path(&d("merged")),
+            "--baselines",
+            path(&none),
+        ],
+    ]
+    .concat());
+    assert_eq!(code, 0, "{merged}{stderr}");
+    assert!(stderr.contains("(shard 2/3): runs"), "{stderr}");
+    assert_eq!(merged, whole);
+    assert_eq!(text(&d("merged.xml")), text(&d("whole.xml")));
+    assert_eq!(
+        text(&d("merged").join("summary.txt")),
+        text(&d("whole").join("summary.txt"))
+    );
+    // A shard missing is refused, naming a run it lacks; nothing is written.
+    let (code, _, stderr) = run(&[
+        "merge",
+        &shards[0],
+        &shards[2],
+        "--junit",
+        path(&d("partial.xml")),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("is a shard missing?"), "{stderr}");
+    assert!(!d("partial.xml").exists());
+}
+
+/// A case with a command solver (Hertz in Python) whose force is scaled by the number in the
+/// file `factor` beside it.
+fn perturbable_case(dir: &Path) {
+    let script = text(&root().join("examples/hertz_command_solver.py")).replace(
+        "p = 4 / 3 * e_star * math.sqrt(r_star) * d**1.5  # normal force",
+        "p = 4 / 3 * e_star * math.sqrt(r_star) * d**1.5 * float(open(sys.argv[2]).read())",
+    );
+    assert!(script.contains("sys.argv[2]"), "the example's force line moved");
+    std::fs::write(dir.join("solver.py"), script).unwrap();
+    std::fs::write(dir.join("factor"), "1.0").unwrap();
+    let case = format!(
+        "{}{}",
+        common::SMALL_CASE.replace("solvers = [\"hertz\", \"mdr\"]", "solvers = [\"hertz\", \"py\"]"),
+        r#"
+[[command_solvers]]
+name = "py"
+command = ["python3", "{case_dir}/solver.py", "{scene}", "{case_dir}/factor"]
+
+[[checks]]
+solver = "py"
+quantity = "normal_force"
+at = "every-step"
+reference = { solver = "hertz" }
+tolerance = 1e-6
+reason = "the same closed form; loose enough that a 1e-9 change passes the check and only the baseline sees it"
+"#
+    );
+    std::fs::write(dir.join("case.toml"), case).unwrap();
+}
+
+#[test]
+fn a_drift_of_1e_9_fails_verify_until_the_baseline_is_updated() {
+    let dir = tempfile::tempdir().unwrap();
+    perturbable_case(dir.path());
+    let (case, baselines) = (dir.path().join("case.toml"), dir.path().join("baselines"));
+    let verify = || {
+        run(&[
+            "verify",
+            path(&case),
+            "--baselines",
+            path(&baselines),
+            "--allow-commands",
+        ])
+    };
+    let update = || {
+        let (code, stdout, stderr) = run(&[
+            "baseline",
+            "update",
+            path(&case),
+            "--baselines",
+            path(&baselines),
+            "--allow-commands",
+        ]);
+        assert_eq!(code, 0, "{stdout}{stderr}");
+    };
+    update();
+    let stored = text(&baselines.join("cli-test.toml"));
+    assert!(
+        stored.contains("[solvers.\"py\"]") && stored.contains("check = \"py normal_force"),
+        "{stored}"
+    );
+    let (code, stdout, _) = verify();
+    assert_eq!(code, 0, "{stdout}");
+    assert!(
+        stdout.contains("OK    cli-test | py normal_force") && stdout.contains("| drift 0.0000e0"),
+        "{stdout}"
+    );
+    std::fs::write(dir.path().join("factor"), "1.000000001").unwrap();
+    let (code, stdout, _) = verify();
+    assert_eq!(code, 1, "{stdout}");
+    let row = stdout.lines().find(|l| l.contains("py normal_force")).unwrap();
+    // Within the check's own tolerance, beyond the command solver's round-off: DRIFT alone.
+    assert!(
+        row.starts_with("DRIFT cli-test") && row.contains("| drift 1.0000e-9"),
+        "{row}"
+    );
+    assert!(
+        stdout.contains("1 checks drifted from their baselines"),
+        "{stdout}"
+    );
+    update();
+    let (code, stdout, _) = verify();
+    assert_eq!(code, 0, "{stdout}");
+}
+
+#[test]
+fn every_shipped_case_is_labelled_and_the_heavy_one_is_heavy() {
+    let mut files = common::all_case_files();
+    files.push(root().join("cases-heavy/paper-fig7-3d.toml"));
+    for file in &files {
+        let case = spherecontact::case::Case::load(file).unwrap();
+        assert!(!case.labels.is_empty(), "{} has no labels", file.display());
+        let heavy = case.labels.iter().any(|l| l == "heavy");
+        assert_eq!(
+            heavy,
+            file.starts_with(root().join("cases-heavy")),
+            "{}",
+            file.display()
+        );
+    }
+}
+
+#[test]
+fn slurm_writes_a_job_array_of_shards_and_a_merge_after_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("slurm");
+    let (code, stdout, stderr) = run(&[
+        "slurm",
+        "--label",
+        "hard",
+        "--shards",
+        "3",
+        "--cores",
+        "2",
+        "--out",
+        path(&out),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let shards = text(&out.join("shards.sbatch"));
+    assert!(
+        shards.contains("#SBATCH --array=1-3\n") && shards.contains("#SBATCH --cpus-per-task=2\n"),
+        "{shards}"
+    );
+    assert!(
+        shards.contains(" verify '--label' 'hard' '--baselines' "),
+        "{shards}"
+    );
+    assert!(shards.contains("--jobs 2 --shard \"$k/3\""), "{shards}");
+    let merge = text(&out.join("merge.sbatch"));
+    assert!(
+        merge.contains(&format!(
+            "merge '{}/shard-1' '{0}/shard-2' '{0}/shard-3'",
+            out.display()
+        )),
+        "{merge}"
+    );
+    assert!(text(&out.join("submit.sh")).contains("sbatch --parsable --dependency=afterok:\"$array\""));
+    // Bad input writes nothing.
+    let (code, _, stderr) = run(&[
+        "slurm",
+        "--label",
+        "nope",
+        "--shards",
+        "3",
+        "--out",
+        path(&dir.path().join("x")),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(!dir.path().join("x").exists());
+    let (code, _, stderr) = run(&["verify", "--shard", "4/3"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--shard 4/3: not a shard (allowed: K/N with 1 ≤ K ≤ N ≤ 1000"),
+        "{stderr}"
+    );
+}
