@@ -23,6 +23,7 @@
 //! ```
 
 use crate::common;
+mod fuzz_commands;
 mod fuzz_reads;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -532,4 +533,12 @@ fn fuzz_the_files_a_case_names() {
         env_number("FUZZ_READ_ITERATIONS").unwrap_or(10_000),
         &corpus(),
     );
+}
+
+/// The command sections a case may hold, mutated: nothing runs without the opt-in
+/// (`FUZZ_COMMAND_ITERATIONS`, default 400 inputs; one in 40 also through the command line).
+#[test]
+fn fuzz_the_commands_a_case_names() {
+    let seed = env_number("FUZZ_SEED").unwrap_or(1).wrapping_add(0xc0de);
+    fuzz_commands::fuzz(seed, env_number("FUZZ_COMMAND_ITERATIONS").unwrap_or(400));
 }
