@@ -35,6 +35,13 @@ impl Conclusion<'_> {
             self.count(Verdict::Nook),
             self.count(Verdict::Info),
         );
+        let (known, fixed) = (self.count(Verdict::Known), self.count(Verdict::Fixed));
+        if known + fixed > 0 {
+            let _ = writeln!(
+                text,
+                "verify: {known} known failures (KNOWN: a defect of an external code, shown with its evidence), {fixed} known failures that pass (FIXED?: the defect may be fixed, remove the mark)"
+            );
+        }
         let drifted = self.count(Verdict::Drift);
         if drifted > 0 {
             let _ = writeln!(
