@@ -91,23 +91,12 @@ pub fn verify(file: &Path) -> Result<ImpactRun, String> {
     Ok(ImpactRun::of(case))
 }
 
-/// The impact cases shipped under `dir` (`cases/impact`): its `.toml` files, sorted.
-pub fn shipped_cases(dir: &Path) -> Result<Vec<PathBuf>, String> {
-    let entries = std::fs::read_dir(dir).map_err(|e| format!("{}: cannot list cases: {e}", dir.display()))?;
-    let mut files: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    files.sort();
-    Ok(files)
-}
-
 /// `spherecontact impact`: plans (every case valid, `out` claimed), runs every case with its
 /// checks, writes each case's solver files into `out/<case>/` and the report into `out`, prints
 /// the check rows; true when every case passed.
 pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String> {
     let files = if files.is_empty() {
-        shipped_cases(Path::new("cases/impact"))?
+        crate::plan::case_files(&[PathBuf::from("cases/impact")]).map_err(|e| e.to_string())?
     } else {
         files.to_vec()
     };

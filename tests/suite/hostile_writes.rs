@@ -37,17 +37,6 @@ fn assert_refused(output: &Output, fragments: &[&str]) {
     }
 }
 
-/// Asserts success (exit code 0).
-fn assert_ok(output: &Output) {
-    assert_eq!(
-        output.status.code(),
-        Some(0),
-        "{}{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-}
-
 /// The names in `dir`, sorted.
 fn names(dir: &Path) -> Vec<String> {
     let mut names: Vec<_> = std::fs::read_dir(dir)
@@ -139,7 +128,7 @@ fn mesh_writes_its_files_and_gmsh_logs_into_the_folder_through_no_link() {
         assert_eq!(names(&out), [MARKER]);
         return;
     }
-    assert_ok(&run);
+    common::assert_success(&run);
     assert_eq!(
         names(&out),
         [
@@ -204,7 +193,7 @@ fn the_home_folder_itself_is_refused_but_a_folder_in_it_is_not() {
     };
     assert_refused(&run("home"), &["home folder"]);
     assert!(names(&home).is_empty());
-    assert_ok(&run("home/out"));
+    common::assert_success(&run("home/out"));
 }
 
 #[test]
@@ -220,7 +209,7 @@ fn a_foreign_folder_with_a_report_is_refused_without_force_and_taken_over_with_i
         std::fs::read_to_string(out.join("report.md")).unwrap(),
         "my own notes"
     );
-    assert_ok(&spherecontact(
+    common::assert_success(&spherecontact(
         &["compare", "case.toml", "--out", "out", "--force"],
         dir.path(),
     ));
@@ -236,8 +225,8 @@ fn a_foreign_folder_with_a_report_is_refused_without_force_and_taken_over_with_i
 #[test]
 fn an_own_folder_is_reused_without_force_and_a_user_symlink_to_a_folder_is_followed_once() {
     let dir = workspace();
-    assert_ok(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
-    assert_ok(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
+    common::assert_success(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
+    common::assert_success(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
     assert_eq!(
         names(&dir.path().join("out")),
         [
@@ -253,7 +242,7 @@ fn an_own_folder_is_reused_without_force_and_a_user_symlink_to_a_folder_is_follo
     // below its target without following any further link.
     std::fs::create_dir(dir.path().join("real")).unwrap();
     symlink(dir.path().join("real"), dir.path().join("alias")).unwrap();
-    assert_ok(&spherecontact(
+    common::assert_success(&spherecontact(
         &["run", "case.toml", "--out", "alias/new"],
         dir.path(),
     ));
@@ -276,7 +265,7 @@ fn a_second_run_into_a_folder_in_use_is_refused_naming_the_holder() {
     }
     assert_eq!(names(&out), before, "nothing written");
     drop(held);
-    assert_ok(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
+    common::assert_success(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
 }
 
 #[test]
@@ -304,10 +293,10 @@ fn the_lock_of_a_killed_holder_does_not_block_a_later_run() {
     holder.wait().unwrap();
     // Killed: its lock went with it, although the marker (the lock file) stays.
     assert!(out.join(MARKER).exists());
-    assert_ok(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
+    common::assert_success(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
     // A marker naming a process long gone, and no lock: the folder is free.
     std::fs::write(out.join(MARKER), "pid 999999999\n").unwrap();
-    assert_ok(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
+    common::assert_success(&spherecontact(&["run", "case.toml", "--out", "out"], dir.path()));
 }
 
 #[test]
@@ -324,11 +313,11 @@ fn a_junit_file_the_harness_did_not_write_is_not_replaced_without_force() {
         std::fs::read_to_string(dir.path().join("notes.xml")).unwrap(),
         "<mine/>"
     );
-    assert_ok(&verify(&["--force"]));
+    common::assert_success(&verify(&["--force"]));
     assert!(spherecontact::report::junit::is_ours(
         &std::fs::read(dir.path().join("notes.xml")).unwrap()
     ));
-    assert_ok(&verify(&[]));
+    common::assert_success(&verify(&[]));
     symlink(dir.path().join("notes.xml"), dir.path().join("link.xml")).unwrap();
     let linked = spherecontact(
         &["verify", "case.toml", "--junit", "link.xml", "--force"],

@@ -21,14 +21,7 @@ fn shipped(n: u32) -> ImpactCase {
 
 /// Runs `spherecontact` with `args` in `dir` and asserts it succeeds.
 fn succeeds(args: &[&str], dir: &std::path::Path) {
-    let output = spherecontact(args, dir);
-    assert_eq!(
-        output.status.code(),
-        Some(0),
-        "{}{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
+    common::assert_success(&spherecontact(args, dir));
 }
 
 #[test]

@@ -43,6 +43,17 @@ pub fn spherecontact(args: &[&str], cwd: &Path) -> std::process::Output {
         .unwrap()
 }
 
+/// Asserts that a run of the program succeeded (exit code 0), showing its output otherwise.
+pub fn assert_success(output: &std::process::Output) {
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
 /// The crate's folder (where cases/ and reference/ live).
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
