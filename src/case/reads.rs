@@ -87,6 +87,11 @@ impl ReadRoots {
         Ok(Self { allowed })
     }
 
+    /// The folders of `--allow-read`, canonical (to give the same roots to another process).
+    pub fn folders(&self) -> &[PathBuf] {
+        &self.allowed
+    }
+
     /// What the case file at `case_file` may read.
     pub fn tree(&self, case_file: &Path) -> CaseTree {
         let folder = match case_file.parent() {

@@ -94,6 +94,9 @@ pub(crate) struct SlurmArgs {
     /// The non-regression baselines.
     #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
     baselines: PathBuf,
+    /// Written into the shards' command line: the jobs run what is allowed now.
+    #[command(flatten)]
+    commands: CommandOptions,
 }
 
 /// What `baseline` does.
@@ -334,31 +337,42 @@ pub(crate) fn update_baselines(
     Ok(ExitCode::SUCCESS)
 }
 
-/// Checks the cases and writes the Slurm scripts of `args` (nothing is submitted).
+/// Checks the cases and writes the Slurm scripts of `args` (nothing is submitted). The jobs get
+/// the folders `--allow-read` gives and the permission to run command solvers in force now.
 pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, InputError> {
     let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
+    let permission = args.commands.permission()?;
     let options = plan::CaseOptions {
         roots: roots.clone(),
         ..plan::CaseOptions::default()
     };
     verify_plan(args.cases.clone(), &selection, &options, &args.baselines, false)?;
-    let folder = claim(&args.out, false)?;
     let root = std::env::current_dir()?;
-    let mut merge_args = vec![
-        "--baselines".to_owned(),
-        root.join(&args.baselines).display().to_string(),
-    ];
+    let mut merge_args = vec!["--baselines".to_owned(), text(&root.join(&args.baselines))?];
+    for folder in roots.folders() {
+        merge_args.extend(["--allow-read".to_owned(), text(folder)?]);
+    }
     if args.require_external {
         merge_args.push("--require-external".into());
     }
-    let mut verify_args: Vec<String> = args.cases.iter().map(|c| c.display().to_string()).collect();
+    let mut verify_args = args
+        .cases
+        .iter()
+        .map(|c| text(c))
+        .collect::<Result<Vec<_>, _>>()?;
     for (option, list) in [("--label", &args.labels), ("--skip-label", &args.skip_labels)] {
         verify_args.extend(list.iter().flat_map(|l| [option.to_owned(), l.clone()]));
     }
     verify_args.extend(merge_args.iter().cloned());
-    let job = spherecontact::slurm::SlurmJob {
+    if permission.is_allowed() {
+        verify_args.push("--allow-commands".into());
+    }
+    for name in &args.commands.pass_env {
+        verify_args.extend(["--pass-env".to_owned(), name.clone()]);
+    }
+    let mut job = spherecontact::slurm::SlurmJob {
         program: std::env::current_exe()?,
-        out: folder.path().to_path_buf(),
+        out: root.join(&args.out),
         root,
         verify_args,
         merge_args,
@@ -367,6 +381,9 @@ pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, Inpu
         partition: args.partition,
         time: args.time,
     };
+    job.check()?;
+    let folder = claim(&args.out, false)?;
+    job.out = folder.path().to_path_buf();
     job.write()
         .map_err(|e| InputError(format!("--out {}: {e}", args.out.display())))?;
     println!(
@@ -375,4 +392,14 @@ pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, Inpu
         job.out.join("submit.sh").display()
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// `path` as the text of a script's argument: a path that is not UTF-8 is refused.
+fn text(path: &Path) -> Result<String, InputError> {
+    path.to_str().map(str::to_owned).ok_or_else(|| {
+        InputError(format!(
+            "`{}`: not UTF-8 (a batch script is text)",
+            path.display()
+        ))
+    })
 }

@@ -44,5 +44,6 @@ mod report_browser;
 mod reports;
 mod resolution;
 mod scale;
+mod slurm_cluster;
 mod solid_common;
 mod tangential_laws;
