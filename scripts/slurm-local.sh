@@ -77,7 +77,7 @@ write_conf() {
   cat >"$conf" <<EOF
 # Written by scripts/slurm-local.sh: a single-node Slurm on localhost, everything under $dir.
 ClusterName=local
-SlurmctldHost=$(hostname -s)(127.0.0.1)
+SlurmctldHost=localhost
 SlurmctldPort=$port
 SlurmdPort=$((port + 1))
 SlurmUser=root
@@ -108,7 +108,7 @@ SchedulerType=sched/backfill
 SchedulerParameters=sched_interval=1
 # Finished jobs stay in slurmctld's memory (scontrol show job) for 10 min.
 MinJobAge=600
-NodeName=localhost NodeHostname=$(hostname -s) NodeAddr=127.0.0.1 $node State=UNKNOWN
+NodeName=localhost NodeAddr=127.0.0.1 $node State=UNKNOWN
 PartitionName=local Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 EOF
 }

@@ -52,9 +52,13 @@ impl Cluster {
         let cluster = Cluster {
             dir: tempfile::tempdir().unwrap(),
         };
+        let clock = Instant::now();
         let started = cluster.script("start");
         match started.status.code() {
-            Some(0) => Some(cluster),
+            Some(0) => {
+                eprintln!("cluster idle after {:.1} s", clock.elapsed().as_secs_f64());
+                Some(cluster)
+            }
             Some(3) => skip(String::from_utf8_lossy(&started.stderr).into_owned()),
             _ => panic!(
                 "scripts/slurm-local.sh start failed:\n{}{}",
@@ -312,6 +316,12 @@ fn slurm_runs_the_shards_and_the_merge_gives_the_local_junit() {
     // Exit 1 of a shard (a check drifted) is a finished shard: the merge runs and fails.
     let drift_array: Vec<_> = (1..=2).map(|k| ok(k, &drift.array)).collect();
     assert_eq!(cluster.finished(&drift.array), drift_array, "{}", outputs());
+    let drifted = |k: usize| text(&drift.out.join(format!("shard-{k}.xml"))).contains("DRIFT");
+    assert!(
+        drifted(1) != drifted(2),
+        "the drifting check is in one shard: {}",
+        outputs()
+    );
     let drift_merge = vec![(drift.merge.clone(), "FAILED".into(), "1:0".into())];
     assert_eq!(cluster.finished(&drift.merge), drift_merge, "{}", outputs());
     verify_locally(&drifting, &w("local-drift"), 1);
