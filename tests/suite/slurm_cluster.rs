@@ -86,13 +86,18 @@ impl Cluster {
 
     /// `squeue`'s lines: job, name, state, reason.
     fn queue(&self) -> String {
-        stdout(
-            &self
-                .client("squeue")
-                .args(["-h", "-o", "%i %j %T %r"])
-                .output()
-                .unwrap(),
-        )
+        let output = self
+            .client("squeue")
+            .args(["-h", "-o", "%i %j %T %r"])
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "squeue: {}\n{}",
+            String::from_utf8_lossy(&output.stderr),
+            self.logs()
+        );
+        stdout(&output)
     }
 
     /// Each job of `id` (an array's tasks, or one job) as `(id, state, exit code)`, from
@@ -196,12 +201,18 @@ struct Submitted {
     merge: String,
 }
 
-/// `spherecontact slurm ARGS --out OUT` in the crate's folder, then `prepare` (what changes
-/// between writing and running), then `OUT/submit.sh`.
-fn submit(cluster: &Cluster, out: &Path, args: &[&str], prepare: impl FnOnce()) -> Submitted {
+/// `spherecontact slurm SELECTION --shards N --cores 1 --out OUT` in the crate's folder, then
+/// `prepare` (what changes between writing and running), then `OUT/submit.sh`.
+fn submit(
+    cluster: &Cluster,
+    out: &Path,
+    selection: &[&str],
+    shards: &str,
+    prepare: impl FnOnce(),
+) -> Submitted {
     let mut all = vec!["slurm"];
-    all.extend(args);
-    all.extend(["--out", out.to_str().unwrap()]);
+    all.extend(selection);
+    all.extend(["--shards", shards, "--cores", "1", "--out", out.to_str().unwrap()]);
     let written = common::spherecontact(&all, &root());
     common::assert_success(&written);
     prepare();
@@ -260,16 +271,15 @@ fn slurm_runs_the_shards_and_the_merge_gives_the_local_junit() {
     };
     let work = tempfile::tempdir().unwrap();
     let w = |name: &str| work.path().join(name);
+    let folder = |name: &str| {
+        std::fs::create_dir(w(name)).unwrap();
+        w(name).to_str().unwrap().to_owned()
+    };
     // A blank and a `%` in the output folder: sbatch's own parsing of #SBATCH lines meets them.
     let passing = ["--label", "fast", "--require-external", "--allow-commands"];
-    let pass = submit(
-        &cluster,
-        &w("all pass %1"),
-        &[&passing[..], &["--shards", "3", "--cores", "1"]].concat(),
-        || {},
-    );
+    let pass = submit(&cluster, &w("all pass %1"), &passing, "3", || {});
     // A baseline one check of hard-single-substep drifts from (4e-11 relative, over 1e-12).
-    std::fs::create_dir(w("drifting")).unwrap();
+    let drifting_baselines = folder("drifting");
     let baseline = text(&root().join("reference/baselines/hard-single-substep.toml"));
     assert!(baseline.contains("value = 1.0256410104368015e3\n"), "{baseline}");
     std::fs::write(
@@ -277,29 +287,15 @@ fn slurm_runs_the_shards_and_the_merge_gives_the_local_junit() {
         baseline.replace("value = 1.0256410104368015e3\n", "value = 1.0256410104e3\n"),
     )
     .unwrap();
-    let drifting = ["--label", "hard", "--baselines", w("drifting").to_str().unwrap()].map(str::to_owned);
-    let drifting: Vec<&str> = drifting.iter().map(String::as_str).collect();
-    let drift = submit(
-        &cluster,
-        &w("drift"),
-        &[&drifting[..], &["--shards", "2", "--cores", "1"]].concat(),
-        || {},
-    );
+    let drifting = ["--label", "hard", "--baselines", &drifting_baselines];
+    let drift = submit(&cluster, &w("drift"), &drifting, "2", || {});
     // Baselines that become unreadable between writing the scripts and running them.
-    std::fs::create_dir(w("broken")).unwrap();
+    let broken_baselines = folder("broken");
     let broken = submit(
         &cluster,
         &w("bad input"),
-        &[
-            "--label",
-            "hard",
-            "--shards",
-            "2",
-            "--cores",
-            "1",
-            "--baselines",
-            w("broken").to_str().unwrap(),
-        ],
+        &["--label", "hard", "--baselines", &broken_baselines],
+        "2",
         || std::fs::write(w("broken/hard-grazing.toml"), "garbage = \n").unwrap(),
     );
     cluster.wait_until_idle(&[&pass.out, &drift.out, &broken.out]);
