@@ -20,30 +20,35 @@ usage() {
 }
 [ $# -eq 2 ] || usage
 action=$1
-mkdir -p "$2"
+if [ "$action" = start ]; then mkdir -p "$2"; fi
+[ -d "$2" ] || exit 0 # stop: nothing was started there
 dir=$(cd "$2" && pwd)
 conf=$dir/slurm.conf
 export SLURM_CONF=$conf
 
-# Kills the daemon whose pid file is $1 and waits (at most 10 s) until it is gone.
-stop_daemon() {
+# The pid in pid file $1 if that process is still $2 (a stale file's pid may belong to another
+# process by now).
+daemon_pid() {
   [ -s "$1" ] || return 0
   local pid
   pid=$(cat "$1")
-  if kill "$pid" 2>/dev/null; then
+  if [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$2" ]; then echo "$pid"; fi
+}
+
+# Stops the three daemons together (each takes about 2 s to leave after SIGTERM), SIGKILL after 10 s.
+stop() {
+  local pids
+  pids="$(daemon_pid "$dir/run/slurmd.pid" slurmd) $(daemon_pid "$dir/run/slurmctld.pid" slurmctld) \
+    $(daemon_pid "$dir/munge/munged.pid" munged)"
+  for pid in $pids; do kill "$pid" 2>/dev/null || true; done
+  for pid in $pids; do
     for _ in $(seq 100); do
-      kill -0 "$pid" 2>/dev/null || break
+      kill -0 "$pid" 2>/dev/null || continue 2
       sleep 0.1
     done
     kill -9 "$pid" 2>/dev/null || true
-  fi
-  rm -f "$1"
-}
-
-stop() {
-  stop_daemon "$dir/run/slurmd.pid"
-  stop_daemon "$dir/run/slurmctld.pid"
-  stop_daemon "$dir/munge/munged.pid"
+  done
+  rm -f "$dir/run/slurmd.pid" "$dir/run/slurmctld.pid" "$dir/munge/munged.pid"
 }
 
 install() {
