@@ -1,0 +1,374 @@
+//! Impact cases as full members of the verification job (issue 31, docs/verification-at-scale.md):
+//! their checks are JUnit test cases like a path case's; they run in shards and come back
+//! through `run.json` so that `merge` gives the unsharded result; their values have
+//! non-regression baselines whose drift fails the run; their labels come from the case file;
+//! bad labels exit 2 through `verify` too (`tests/hostile/impact/labels-*.toml`).
+//!
+//! Run: `cargo test --test suite impact_verify::`.
+
+use crate::common;
+
+use std::path::Path;
+
+use common::{root, spherecontact};
+
+/// Runs `spherecontact` in the crate's folder; (exit code, stdout, stderr).
+fn run(args: &[&str]) -> (i32, String, String) {
+    let output = spherecontact(args, &root());
+    (
+        output.status.code().unwrap(),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+fn text(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The normal impact on a flat: one sweep point, five solvers, 20 checks (fast).
+const NORMAL: &str = "cases/impact/chung-ooi-2.toml";
+/// The restitution sweep: five points, two variants (fast).
+const DAMPED: &str = "cases/impact/chung-ooi-3.toml";
+/// A path case of laws only (fast).
+const PATH_CASE: &str = "cases/hard/dissimilar.toml";
+
+#[test]
+fn junit_lists_each_impact_check_as_a_test_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let junit = dir.path().join("verify.xml");
+    let none = dir.path().join("no-baselines");
+    let (code, stdout, stderr) = run(&[
+        "verify",
+        NORMAL,
+        PATH_CASE,
+        "--junit",
+        path(&junit),
+        "--baselines",
+        path(&none),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let xml = text(&junit);
+    let checks = spherecontact::case::load_impact(&root().join(NORMAL))
+        .unwrap()
+        .checks
+        .len();
+    assert_eq!(checks, 20);
+    let impact_cases = xml.matches("<testcase classname=\"chung-ooi-2\"").count();
+    assert_eq!(impact_cases, checks, "{xml}");
+    assert!(
+        xml.contains(&format!(
+            "<testsuite name=\"chung-ooi-2\" tests=\"{checks}\" failures=\"0\">"
+        )),
+        "{xml}"
+    );
+    assert!(
+        xml.contains("name=\"00 mdr contact_duration (prescribed) vs hertz closed form (relative)\""),
+        "{xml}"
+    );
+    // The path case's checks sit beside them in the same document, and the totals count both.
+    let path_cases = xml.matches("<testcase classname=\"hard-dissimilar\"").count();
+    assert!(path_cases > 0, "{xml}");
+    assert!(
+        xml.contains(&format!("tests=\"{}\" failures=\"0\"", checks + path_cases)),
+        "{xml}"
+    );
+    // The printed table has the same rows, and the counts include them.
+    assert!(
+        stdout.contains("OK    chung-ooi-2 | mdr contact_duration (prescribed)"),
+        "{stdout}"
+    );
+    let passed = stdout.lines().find(|l| l.starts_with("verify: ")).unwrap();
+    let ok_rows = stdout.lines().filter(|l| l.starts_with("OK    ")).count();
+    assert_eq!(
+        passed,
+        format!("verify: {ok_rows} passed, 0 failed, 0 informational, 0 not available")
+    );
+}
+
+#[test]
+fn three_shards_with_impact_cases_merge_to_the_unsharded_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |name: &str| dir.path().join(name);
+    let none = d("no-baselines");
+    let cases = [
+        "verify",
+        NORMAL,
+        DAMPED,
+        PATH_CASE,
+        "--baselines",
+        path(&none),
+        "--jobs",
+        "1",
+    ];
+    let (code, whole, stderr) = run(&[
+        &cases[..],
+        &["--out", path(&d("whole")), "--junit", path(&d("whole.xml"))],
+    ]
+    .concat());
+    assert_eq!(code, 0, "{whole}{stderr}");
+    assert!(whole.contains("== chung-ooi-3"), "{whole}");
+    let mut impact_runs = 0;
+    for k in 1..=3 {
+        let shard = format!("{k}/3");
+        let out = d(&format!("shard-{k}"));
+        let (code, stdout, stderr) = run(&[&cases[..], &["--shard", &shard, "--out", path(&out)]].concat());
+        assert_eq!(code, 0, "{stdout}{stderr}");
+        let file: serde_json::Value = serde_json::from_str(&text(&out.join("run.json"))).unwrap();
+        impact_runs += file["runs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r["result"].get("impact").is_some())
+            .count();
+    }
+    // Five solvers in each impact case, one run each, every one in exactly one shard.
+    assert_eq!(impact_runs, 10);
+    let shards: Vec<String> = (1..=3)
+        .map(|k| path(&d(&format!("shard-{k}"))).to_owned())
+        .collect();
+    let (code, merged, stderr) = run(&[
+        &["merge"][..],
+        &shards.iter().map(String::as_str).collect::<Vec<_>>(),
+        &[
+            "--junit",
+            path(&d("merged.xml")),
+            "--out",
+            path(&d("merged")),
+            "--baselines",
+            path(&none),
+        ],
+    ]
+    .concat());
+    assert_eq!(code, 0, "{merged}{stderr}");
+    assert_eq!(merged, whole);
+    assert_eq!(text(&d("merged.xml")), text(&d("whole.xml")));
+    assert!(text(&d("whole.xml")).contains("classname=\"chung-ooi-3\""));
+    assert_eq!(
+        text(&d("merged").join("summary.txt")),
+        text(&d("whole").join("summary.txt"))
+    );
+    // The impact report beside the summary, the same from the merge.
+    let report = text(&d("whole").join("impact/report.html"));
+    assert!(report.contains("How far is your DEM code from exact Mindlin–Deresiewicz in impact?"));
+    assert!(report.contains("chung-ooi-3"), "{report}");
+    assert_eq!(text(&d("merged").join("impact/report.html")), report);
+}
+
+#[test]
+fn the_impact_report_draws_force_and_overlap_against_time_for_every_solver() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = run(&["impact", NORMAL, "--out", path(&out)]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    for figure in ["normal-force-time", "overlap-time"] {
+        assert!(
+            out.join(format!("figures/chung-ooi-2-{figure}.svg")).exists(),
+            "{figure}"
+        );
+        let data = text(&out.join(format!("data/chung-ooi-2-{figure}.csv")));
+        for solver in [
+            "mdr",
+            "hertz-mindlin-spring",
+            "thornton",
+            "md-incremental",
+            "walton-braun",
+        ] {
+            assert!(data.contains(solver), "{figure}: no {solver} in\n{data}");
+        }
+    }
+}
+
+#[test]
+fn a_run_file_whose_impact_case_became_a_path_case_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    std::fs::copy(root().join(NORMAL), &case).unwrap();
+    let (out, none) = (dir.path().join("out"), dir.path().join("none"));
+    let (code, stdout, stderr) = run(&[
+        "verify",
+        path(&case),
+        "--out",
+        path(&out),
+        "--baselines",
+        path(&none),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    std::fs::write(
+        &case,
+        common::SMALL_CASE.replace("solvers = [\"hertz\", \"mdr\"]", "solvers = [\"mdr\"]"),
+    )
+    .unwrap();
+    let junit = dir.path().join("merged.xml");
+    let (code, _, stderr) = run(&["merge", path(&out), "--junit", path(&junit)]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("holds an impact run but the case is a path case"),
+        "{stderr}"
+    );
+    assert!(!junit.exists());
+}
+
+/// `value = X` of the first check entry of a baseline file, scaled by `1 + change`.
+fn perturb_first_value(file: &Path, change: f64) {
+    let stored = text(file);
+    let line = stored.lines().find(|l| l.starts_with("value = ")).unwrap();
+    let value: f64 = line["value = ".len()..].parse().unwrap();
+    let perturbed = stored.replacen(line, &format!("value = {:e}", value * (1.0 + change)), 1);
+    assert_ne!(perturbed, stored);
+    std::fs::write(file, perturbed).unwrap();
+}
+
+#[test]
+fn an_impact_value_that_drifts_from_its_baseline_fails_verify() {
+    let dir = tempfile::tempdir().unwrap();
+    let baselines = dir.path().join("baselines");
+    let junit = dir.path().join("verify.xml");
+    let verify = || {
+        run(&[
+            "verify",
+            NORMAL,
+            "--baselines",
+            path(&baselines),
+            "--junit",
+            path(&junit),
+            "--force",
+        ])
+    };
+    let (code, stdout, stderr) = run(&["baseline", "update", NORMAL, "--baselines", path(&baselines)]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let file = baselines.join("chung-ooi-2.toml");
+    let stored = text(&file);
+    assert!(
+        stored.contains("[solvers.\"mdr\"]")
+            && stored.contains("resolution = \"2000 steps per Hertz contact duration, 4000 springs\"")
+            && stored
+                .contains("check = \"mdr contact_duration (prescribed) vs hertz closed form (relative)\""),
+        "{stored}"
+    );
+    assert_eq!(stored.matches("[[checks]]").count(), 20, "{stored}");
+    // The integrator is deterministic: the same bits again.
+    let (code, stdout, _) = verify();
+    assert_eq!(code, 0, "{stdout}");
+    assert_eq!(
+        stdout.matches("| drift 0.0000e0 (baseline").count(),
+        20,
+        "{stdout}"
+    );
+    // Below the round-off tolerance (1e-12): no drift verdict.
+    perturb_first_value(&file, 1e-14);
+    let (code, stdout, _) = verify();
+    assert_eq!(code, 0, "{stdout}");
+    // Beyond it, well inside the check's own tolerance (1e-6): DRIFT alone fails the run.
+    std::fs::write(&file, &stored).unwrap();
+    perturb_first_value(&file, 1e-9);
+    let (code, stdout, _) = verify();
+    assert_eq!(code, 1, "{stdout}");
+    let row = stdout
+        .lines()
+        .find(|l| l.contains("mdr contact_duration (prescribed)"))
+        .unwrap();
+    assert!(row.starts_with("DRIFT chung-ooi-2"), "{row}");
+    assert!(
+        row.contains("| drift 1.0000e-9") && row.contains("tol 1.0000e-12"),
+        "{row}"
+    );
+    assert!(
+        stdout.contains("1 checks drifted from their baselines"),
+        "{stdout}"
+    );
+    let xml = text(&junit);
+    assert!(
+        xml.contains("failures=\"1\"") && xml.contains("<failure message=\"DRIFT\">"),
+        "{xml}"
+    );
+}
+
+#[test]
+fn impact_labels_come_from_the_case_file_and_select() {
+    let case = spherecontact::case::load_impact(&root().join(NORMAL)).unwrap();
+    assert_eq!(case.labels, ["impact", "dem", "fast"]);
+    let dir = tempfile::tempdir().unwrap();
+    let none = dir.path().join("none");
+    let cases_run = |stdout: &str| -> Vec<String> {
+        stdout
+            .lines()
+            .filter_map(|l| Some(l.strip_prefix("== ")?.split(' ').next()?.to_owned()))
+            .collect()
+    };
+    let (code, stdout, stderr) = run(&[
+        "verify",
+        NORMAL,
+        PATH_CASE,
+        "--label",
+        "impact",
+        "--baselines",
+        path(&none),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(cases_run(&stdout), ["chung-ooi-2"]);
+    let (code, stdout, stderr) = run(&[
+        "verify",
+        NORMAL,
+        PATH_CASE,
+        "--skip-label",
+        "impact",
+        "--baselines",
+        path(&none),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(cases_run(&stdout), ["hard-dissimilar"]);
+    // A file of its own labels: the label it lacks leaves it out.
+    let relabelled = dir.path().join("case.toml");
+    std::fs::write(
+        &relabelled,
+        text(&root().join(NORMAL)).replace("labels = [\"impact\", \"dem\", \"fast\"]", "labels = [\"dem\"]"),
+    )
+    .unwrap();
+    let (code, _, stderr) = run(&["verify", path(&relabelled), "--label", "impact"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("none selected by label"), "{stderr}");
+}
+
+/// The header line `# key: value` of a hostile file.
+fn header(text: &str, key: &str) -> String {
+    text.lines()
+        .find_map(|l| l.strip_prefix(&format!("# {key}: ")))
+        .unwrap_or_else(|| panic!("no `# {key}:` line"))
+        .to_owned()
+}
+
+#[test]
+fn bad_labels_exit_2_through_verify_writing_nothing() {
+    let files: Vec<_> = std::fs::read_dir(root().join("tests/hostile/impact"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("labels-"))
+        .collect();
+    assert_eq!(files.len(), 3);
+    for file in files {
+        let text = text(&file);
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("case.toml"), &text).unwrap();
+        let output = spherecontact(
+            &["verify", "case.toml", "--junit", "verify.xml", "--out", "out"],
+            dir.path(),
+        );
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let name = file.file_name().unwrap().to_string_lossy();
+        assert_eq!(output.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains("case.toml"), "{name}: {stderr}");
+        assert!(stderr.contains(&header(&text, "field")), "{name}: {stderr}");
+        assert!(stderr.contains(&header(&text, "says")), "{name}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+        assert!(!dir.path().join("verify.xml").exists(), "{name}: wrote the JUnit");
+        assert!(
+            !dir.path().join("out").join("run.json").exists(),
+            "{name}: wrote a run file"
+        );
+    }
+}
