@@ -8,7 +8,7 @@
 
 use crate::common;
 
-use common::{root, spherecontact};
+use common::{header, root, spherecontact};
 use spherecontact::impact::case::{Quantity, Variant};
 use spherecontact::impact::integrator::{self, Stepping};
 use spherecontact::impact::law::MdrLaw;
@@ -179,14 +179,6 @@ fn the_damping_returns_a_restitution_that_grows_with_the_prescribed_one() {
     let (last_prescribed, last) = measured[measured.len() - 1];
     assert_eq!(last_prescribed, 1.0);
     assert!((last - 1.0).abs() < 1e-8, "{last}");
-}
-
-/// What a hostile impact file's header says its message must hold.
-fn header(text: &str, key: &str) -> String {
-    text.lines()
-        .find_map(|l| l.strip_prefix(&format!("# {key}: ")))
-        .unwrap_or_else(|| panic!("no `# {key}:` header"))
-        .to_owned()
 }
 
 #[test]

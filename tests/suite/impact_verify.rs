@@ -10,25 +10,7 @@ use crate::common;
 
 use std::path::Path;
 
-use common::{root, spherecontact};
-
-/// Runs `spherecontact` in the crate's folder; (exit code, stdout, stderr).
-fn run(args: &[&str]) -> (i32, String, String) {
-    let output = spherecontact(args, &root());
-    (
-        output.status.code().unwrap(),
-        String::from_utf8_lossy(&output.stdout).into_owned(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
-
-fn text(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn path(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use common::{arg as path, header, root, run_in_root as run, spherecontact, text};
 
 /// The normal impact on a flat: one sweep point, five solvers, 20 checks (fast).
 const NORMAL: &str = "cases/impact/chung-ooi-2.toml";
@@ -332,14 +314,6 @@ fn impact_labels_come_from_the_case_file_and_select() {
     let (code, _, stderr) = run(&["verify", path(&relabelled), "--label", "impact"]);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("none selected by label"), "{stderr}");
-}
-
-/// The header line `# key: value` of a hostile file.
-fn header(text: &str, key: &str) -> String {
-    text.lines()
-        .find_map(|l| l.strip_prefix(&format!("# {key}: ")))
-        .unwrap_or_else(|| panic!("no `# {key}:` line"))
-        .to_owned()
 }
 
 #[test]

@@ -6,25 +6,7 @@ use crate::common;
 
 use std::path::Path;
 
-use common::{root, spherecontact};
-
-/// Runs `spherecontact` in the crate's folder; (exit code, stdout, stderr).
-fn run(args: &[&str]) -> (i32, String, String) {
-    let output = spherecontact(args, &root());
-    (
-        output.status.code().unwrap(),
-        String::from_utf8_lossy(&output.stdout).into_owned(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
-
-fn text(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn path(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use common::{arg as path, root, run_in_root as run, text};
 
 /// The cases of a verification's printed blocks (`== name (file)`).
 fn cases_run(stdout: &str) -> Vec<&str> {
