@@ -1,6 +1,7 @@
 //! Impact cases as full members of the verification job (issue 31, docs/verification-at-scale.md):
 //! their checks are JUnit test cases like a path case's; they run in shards and come back
-//! through `run.json` so that `merge` gives the unsharded result; their values have
+//! through `run.json` so that `merge` gives the unsharded result (`scale::three_shards_…`
+//! merges two impact cases with the hard path cases), a run of the wrong kind refused; their values have
 //! non-regression baselines whose drift fails the run; their labels come from the case file;
 //! bad labels exit 2 through `verify` too (`tests/hostile/impact/labels-*.toml`).
 //!
@@ -14,8 +15,6 @@ use common::{arg as path, header, root, run_in_root as run, spherecontact, text}
 
 /// The normal impact on a flat: one sweep point, five solvers, 20 checks (fast).
 const NORMAL: &str = "cases/impact/chung-ooi-2.toml";
-/// The restitution sweep: five points, two variants (fast).
-const DAMPED: &str = "cases/impact/chung-ooi-3.toml";
 /// A path case of laws only (fast).
 const PATH_CASE: &str = "cases/hard/dissimilar.toml";
 
@@ -70,75 +69,6 @@ fn junit_lists_each_impact_check_as_a_test_case() {
         passed,
         format!("verify: {ok_rows} passed, 0 failed, 0 informational, 0 not available")
     );
-}
-
-#[test]
-fn three_shards_with_impact_cases_merge_to_the_unsharded_result() {
-    let dir = tempfile::tempdir().unwrap();
-    let d = |name: &str| dir.path().join(name);
-    let none = d("no-baselines");
-    let cases = [
-        "verify",
-        NORMAL,
-        DAMPED,
-        PATH_CASE,
-        "--baselines",
-        path(&none),
-        "--jobs",
-        "1",
-    ];
-    let (code, whole, stderr) = run(&[
-        &cases[..],
-        &["--out", path(&d("whole")), "--junit", path(&d("whole.xml"))],
-    ]
-    .concat());
-    assert_eq!(code, 0, "{whole}{stderr}");
-    assert!(whole.contains("== chung-ooi-3"), "{whole}");
-    let mut impact_runs = 0;
-    for k in 1..=3 {
-        let shard = format!("{k}/3");
-        let out = d(&format!("shard-{k}"));
-        let (code, stdout, stderr) = run(&[&cases[..], &["--shard", &shard, "--out", path(&out)]].concat());
-        assert_eq!(code, 0, "{stdout}{stderr}");
-        let file: serde_json::Value = serde_json::from_str(&text(&out.join("run.json"))).unwrap();
-        impact_runs += file["runs"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .filter(|r| r["result"].get("impact").is_some())
-            .count();
-    }
-    // Five solvers in each impact case, one run each, every one in exactly one shard.
-    assert_eq!(impact_runs, 10);
-    let shards: Vec<String> = (1..=3)
-        .map(|k| path(&d(&format!("shard-{k}"))).to_owned())
-        .collect();
-    let (code, merged, stderr) = run(&[
-        &["merge"][..],
-        &shards.iter().map(String::as_str).collect::<Vec<_>>(),
-        &[
-            "--junit",
-            path(&d("merged.xml")),
-            "--out",
-            path(&d("merged")),
-            "--baselines",
-            path(&none),
-        ],
-    ]
-    .concat());
-    assert_eq!(code, 0, "{merged}{stderr}");
-    assert_eq!(merged, whole);
-    assert_eq!(text(&d("merged.xml")), text(&d("whole.xml")));
-    assert!(text(&d("whole.xml")).contains("classname=\"chung-ooi-3\""));
-    assert_eq!(
-        text(&d("merged").join("summary.txt")),
-        text(&d("whole").join("summary.txt"))
-    );
-    // The impact report beside the summary, the same from the merge.
-    let report = text(&d("whole").join("impact/report.html"));
-    assert!(report.contains("How far is your DEM code from exact Mindlin–Deresiewicz in impact?"));
-    assert!(report.contains("chung-ooi-3"), "{report}");
-    assert_eq!(text(&d("merged").join("impact/report.html")), report);
 }
 
 #[test]
