@@ -30,8 +30,9 @@ fn every_shipped_impact_case_loads_and_names_its_sources() {
         .into_iter()
         .filter(|f| f.starts_with(root().join("cases/impact")))
         .collect();
-    // Tests 1–8, and the second materials of tests 1–3 (limestone, magnesium alloy, cast iron).
-    assert_eq!(files.len(), 11, "chung-ooi-1 … 8 and three second materials");
+    // Tests 1–8, and the second materials of tests 1–4 (limestone, magnesium alloy, cast iron,
+    // aluminium alloy).
+    assert_eq!(files.len(), 12, "chung-ooi-1 … 8 and four second materials");
     for file in files {
         let case = spherecontact::case::load_impact(&file).unwrap_or_else(|e| panic!("{e}"));
         let text = std::fs::read_to_string(&file).unwrap();
