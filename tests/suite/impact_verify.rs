@@ -1,9 +1,11 @@
 //! Impact cases as full members of the verification job (issue 31, docs/verification-at-scale.md):
 //! their checks are JUnit test cases like a path case's; they run in shards and come back
 //! through `run.json` so that `merge` gives the unsharded result (`scale::three_shards_…`
-//! merges two impact cases with the hard path cases), a run of the wrong kind refused; their values have
-//! non-regression baselines whose drift fails the run; their labels come from the case file;
-//! bad labels exit 2 through `verify` too (`tests/hostile/impact/labels-*.toml`).
+//! merges two impact cases with the hard path cases), and a run file holding a run of the wrong
+//! kind or a tampered impact outcome is refused (exit 2); their values have non-regression
+//! baselines whose drift fails the run; their labels come from the case file; bad labels exit 2
+//! through `verify` too (`tests/hostile/impact/labels-*.toml`); the impact report draws force
+//! and overlap against time.
 //!
 //! Run: `cargo test --test suite impact_verify::`.
 
@@ -123,6 +125,40 @@ fn a_run_file_whose_impact_case_became_a_path_case_is_refused() {
         "{stderr}"
     );
     assert!(!junit.exists());
+}
+
+#[test]
+fn a_tampered_impact_run_in_a_run_file_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, none) = (dir.path().join("out"), dir.path().join("none"));
+    let (code, stdout, stderr) = run(&["verify", NORMAL, "--out", path(&out), "--baselines", path(&none)]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let file = out.join("run.json");
+    let stored = text(&file);
+    assert!(stored.contains("\"impact\":[{\"solver\":\"mdr\""), "{stored}");
+    // An outcome value beyond f64, a quantity that is text, an outcome of six quantities.
+    let seven = r#"{"values":["#;
+    let start = stored.find(seven).unwrap() + seven.len();
+    let end = start + stored[start..].find(']').unwrap();
+    let values: Vec<&str> = stored[start..end].split(',').collect();
+    assert_eq!(values.len(), 7, "{}", &stored[start..end]);
+    let tampered = [
+        format!("{}1e400{}", &stored[..start], &stored[start + values[0].len()..]),
+        format!("{}\"x\"{}", &stored[..start], &stored[start + values[0].len()..]),
+        format!("{}{}", &stored[..start], &stored[start + values[0].len() + 1..]),
+    ];
+    for text in tampered {
+        std::fs::write(&file, &text).unwrap();
+        let junit = dir.path().join("merged.xml");
+        let (code, _, stderr) = run(&["merge", path(&out), "--junit", path(&junit)]);
+        assert_eq!(code, 2, "{stderr}");
+        assert!(
+            stderr.contains("run.json: not a run file of format 1"),
+            "{stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(!junit.exists());
+    }
 }
 
 /// `value = X` of the first check entry of a baseline file, scaled by `1 + change`.
