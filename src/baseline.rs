@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::check::{CheckSpec, Drift, Histories, Outcome, Verdict};
+use crate::check::{Drift, Histories, Verdict};
 use crate::verify::CaseRun;
 
 /// The baselines' folder, relative to the current folder (as `cases/` is).
@@ -80,8 +80,112 @@ pub fn tolerance(solver: &str) -> (f64, &'static str) {
 }
 
 /// The largest change accepted for a check: the loosest of its solvers' tolerances.
-fn check_tolerance(spec: &CheckSpec) -> f64 {
-    spec.solvers().map(|s| tolerance(s).0).fold(0.0, f64::max)
+fn check_tolerance(solvers: &[String]) -> f64 {
+    solvers.iter().map(|s| tolerance(s).0).fold(0.0, f64::max)
+}
+
+/// A judged check as a baseline sees it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Judgement {
+    /// The check's index in its case.
+    pub index: usize,
+    /// The check in words: an entry applies only to the same check at the same index.
+    pub key: String,
+    /// The solvers it needs.
+    pub solvers: Vec<String>,
+    /// Where its value was taken: a path's step, an impact's sweep point (its worst).
+    pub step: Option<usize>,
+    /// Its value there.
+    pub value: Option<f64>,
+    /// The reference's value there.
+    pub reference: Option<f64>,
+    /// Its verdict.
+    pub verdict: Verdict,
+}
+
+/// A judged case whose check values a baseline records and compares: path cases
+/// ([`CaseRun`]) and impact cases ([`crate::impact::ImpactRun`]) alike.
+pub trait Baselined {
+    /// The case's name.
+    fn case_name(&self) -> &str;
+    /// Each solver that ran: version, resolution and wall time.
+    fn solver_records(&self) -> BTreeMap<String, SolverRecord>;
+    /// The resolution `solver` ran at now, if it ran.
+    fn resolution(&self, solver: &str) -> Option<String>;
+    /// The judged checks, in order.
+    fn judgements(&self) -> Vec<Judgement>;
+    /// The value of the `check`-th judged check at `step` (a baseline's step may not be the
+    /// worst one now).
+    fn value_at(&self, check: usize, step: usize) -> Option<f64>;
+    /// Records the `check`-th judged check's drift and its verdict.
+    fn mark(&mut self, check: usize, drift: Drift, verdict: Verdict);
+}
+
+impl Baselined for CaseRun {
+    fn case_name(&self) -> &str {
+        self.case.name()
+    }
+
+    fn solver_records(&self) -> BTreeMap<String, SolverRecord> {
+        self.histories
+            .iter()
+            .filter_map(|(name, result)| {
+                let meta = &result.as_ref().ok()?.metadata;
+                Some((
+                    name.clone(),
+                    SolverRecord {
+                        version: meta.version.clone(),
+                        resolution: meta.resolution.clone(),
+                        wall_s: two_digits(meta.wall_time_s),
+                    },
+                ))
+            })
+            .collect()
+    }
+
+    fn resolution(&self, solver: &str) -> Option<String> {
+        Some(
+            self.histories
+                .get(solver)?
+                .as_ref()
+                .ok()?
+                .metadata
+                .resolution
+                .clone(),
+        )
+    }
+
+    fn judgements(&self) -> Vec<Judgement> {
+        self.outcomes
+            .iter()
+            .filter_map(|o| {
+                Some(Judgement {
+                    index: self.case.checks.iter().position(|c| *c == o.spec)?,
+                    key: key(&o.spec),
+                    solvers: o.spec.solvers().cloned().collect(),
+                    step: o.worst_step,
+                    value: o.value,
+                    reference: o.reference,
+                    verdict: o.verdict,
+                })
+            })
+            .collect()
+    }
+
+    fn value_at(&self, check: usize, step: usize) -> Option<f64> {
+        let outcome = self.outcomes.get(check)?;
+        if outcome.worst_step == Some(step) {
+            return outcome.value;
+        }
+        current(&outcome.spec, step, &self.histories)
+    }
+
+    fn mark(&mut self, check: usize, drift: Drift, verdict: Verdict) {
+        if let Some(outcome) = self.outcomes.get_mut(check) {
+            outcome.drift = Some(drift);
+            outcome.verdict = verdict;
+        }
+    }
 }
 
 /// A solver's entry.
@@ -125,7 +229,7 @@ pub struct Baseline {
 }
 
 /// A check in words: solver, quantity, where, reference and measure.
-pub fn key(spec: &CheckSpec) -> String {
+pub fn key(spec: &crate::check::CheckSpec) -> String {
     format!(
         "{} {} at {} vs {} ({})",
         spec.solver,
@@ -143,37 +247,22 @@ pub fn file(dir: &Path, name: &str) -> PathBuf {
 
 impl Baseline {
     /// The baseline of a judged case: every check's value, every solver that ran.
-    pub fn of(run: &CaseRun) -> Self {
-        let solvers = run
-            .histories
-            .iter()
-            .filter_map(|(name, result)| {
-                let meta = &result.as_ref().ok()?.metadata;
-                Some((
-                    name.clone(),
-                    SolverRecord {
-                        version: meta.version.clone(),
-                        resolution: meta.resolution.clone(),
-                        wall_s: two_digits(meta.wall_time_s),
-                    },
-                ))
-            })
-            .collect();
+    pub fn of(run: &(impl Baselined + ?Sized)) -> Self {
         let checks = run
-            .outcomes
-            .iter()
-            .filter_map(|outcome| {
+            .judgements()
+            .into_iter()
+            .filter_map(|j| {
                 Some(CheckRecord {
-                    index: run.case.checks.iter().position(|c| *c == outcome.spec)?,
-                    check: key(&outcome.spec),
-                    step: outcome.worst_step?,
-                    value: outcome.value?,
+                    index: j.index,
+                    check: j.key,
+                    step: j.step?,
+                    value: j.value?,
                 })
             })
             .collect();
         Baseline {
-            case: run.case.name().to_owned(),
-            solvers,
+            case: run.case_name().to_owned(),
+            solvers: run.solver_records(),
             checks,
         }
     }
@@ -208,24 +297,24 @@ impl Baseline {
 
     /// Compares every check of `run` that has an entry: sets its drift, and its verdict to
     /// DRIFT when the change exceeds the tolerance (a NOOK stays NOOK).
-    pub fn compare(&self, run: &mut CaseRun) {
-        for outcome in &mut run.outcomes {
-            let Some(index) = run.case.checks.iter().position(|c| *c == outcome.spec) else {
+    pub fn compare(&self, run: &mut (impl Baselined + ?Sized)) {
+        for (check, judgement) in run.judgements().into_iter().enumerate() {
+            let Some(record) = self
+                .checks
+                .iter()
+                .find(|r| r.index == judgement.index && r.check == judgement.key)
+            else {
                 continue;
             };
-            let key = key(&outcome.spec);
-            let Some(record) = self.checks.iter().find(|r| r.index == index && r.check == key) else {
-                continue;
-            };
-            let Some(value) = current(outcome, record.step, &run.histories) else {
+            let Some(value) = run.value_at(check, record.step) else {
                 continue;
             };
             let same_resolution =
-                outcome
-                    .spec
-                    .solvers()
-                    .all(|name| match (self.solvers.get(name), run.histories.get(name)) {
-                        (Some(stored), Some(Ok(history))) => stored.resolution == history.metadata.resolution,
+                judgement
+                    .solvers
+                    .iter()
+                    .all(|name| match (self.solvers.get(name), run.resolution(name)) {
+                        (Some(stored), Some(now)) => stored.resolution == now,
                         _ => false,
                     });
             if !same_resolution {
@@ -235,7 +324,7 @@ impl Baseline {
             // difference, some 1e-4 of its reference's peak, and scaling by it would amplify the
             // external decks' last-bit noise by that cancellation (measured: FreeFEM's profile
             // RMS moved 4.4e-9 of itself run to run, 1.5e-13 of the peak).
-            let reference = outcome.reference.map_or(0.0, f64::abs);
+            let reference = judgement.reference.map_or(0.0, f64::abs);
             let (difference, scale) = (
                 (value - record.value).abs(),
                 record.value.abs().max(value.abs()).max(reference),
@@ -245,15 +334,18 @@ impl Baseline {
             } else {
                 difference / scale
             };
-            let tolerance = check_tolerance(&outcome.spec);
-            if change > tolerance && outcome.verdict != Verdict::Nook {
-                outcome.verdict = Verdict::Drift;
-            }
-            outcome.drift = Some(Drift {
+            let tolerance = check_tolerance(&judgement.solvers);
+            let verdict = if change > tolerance && judgement.verdict != Verdict::Nook {
+                Verdict::Drift
+            } else {
+                judgement.verdict
+            };
+            let drift = Drift {
                 baseline: record.value,
                 change,
                 tolerance,
-            });
+            };
+            run.mark(check, drift, verdict);
         }
     }
 
@@ -292,13 +384,9 @@ impl Baseline {
     }
 }
 
-/// The check's value at `step`: its outcome's when that is its worst step, else the subject's
-/// quantity there (a profile's value exists at its position's step only).
-fn current(outcome: &Outcome, step: usize, histories: &Histories) -> Option<f64> {
-    if outcome.worst_step == Some(step) {
-        return outcome.value;
-    }
-    let spec = &outcome.spec;
+/// A path check's value at `step` other than its worst: the subject's quantity there (a
+/// profile's value exists at its position's step only).
+fn current(spec: &crate::check::CheckSpec, step: usize, histories: &Histories) -> Option<f64> {
     if crate::profile::Field::of(spec.quantity).is_some() {
         return None;
     }
@@ -308,7 +396,7 @@ fn current(outcome: &Outcome, step: usize, histories: &Histories) -> Option<f64>
 
 /// `x` to two significant digits: a wall time is a cost estimate, and its noise would make every
 /// `baseline update` a diff.
-fn two_digits(x: f64) -> f64 {
+pub fn two_digits(x: f64) -> f64 {
     if x > 0.0 {
         let scale = 10_f64.powi(1 - x.log10().floor() as i32);
         (x * scale).round() / scale
@@ -332,9 +420,12 @@ pub fn load_all<'a>(
 }
 
 /// Compares every run with its case's baseline, if any.
-pub fn compare_all(baselines: &BTreeMap<String, Baseline>, runs: &mut [CaseRun]) {
+pub fn compare_all<'a>(
+    baselines: &BTreeMap<String, Baseline>,
+    runs: impl IntoIterator<Item = &'a mut dyn Baselined>,
+) {
     for run in runs {
-        if let Some(baseline) = baselines.get(run.case.name()) {
+        if let Some(baseline) = baselines.get(run.case_name()) {
             baseline.compare(run);
         }
     }

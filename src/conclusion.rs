@@ -4,29 +4,25 @@
 use std::fmt::Write;
 
 use crate::check::Verdict;
-use crate::report::{junit, table};
-use crate::verify::CaseRun;
+use crate::judged::{self, Suite};
+use crate::report::junit;
 
 /// The verdicts of a verification run.
 pub struct Conclusion<'a> {
-    /// The cases judged, in the plan's order.
-    pub runs: &'a [CaseRun],
+    /// The cases judged (path and impact cases), in the plan's order.
+    pub suites: &'a [Suite],
     /// A check that is N/A (a solver not installed) counts as a failure (`--require-external`).
     pub require_external: bool,
 }
 
 impl Conclusion<'_> {
     fn count(&self, verdict: Verdict) -> usize {
-        self.runs
-            .iter()
-            .flat_map(|r| &r.outcomes)
-            .filter(|o| o.verdict == verdict)
-            .count()
+        judged::count(self.suites, verdict)
     }
 
     /// The text printed: each case's block of checks, then the counts.
     pub fn text(&self) -> String {
-        let mut text: String = self.runs.iter().map(table::case_block).collect();
+        let mut text: String = self.suites.iter().map(|s| s.block.as_str()).collect();
         let na = self.count(Verdict::Unavailable);
         let _ = writeln!(
             text,
@@ -60,13 +56,13 @@ impl Conclusion<'_> {
 
     /// The JUnit XML document.
     pub fn junit(&self) -> String {
-        junit::document(self.runs)
+        junit::document(self.suites)
     }
 
-    /// True when every case passed ([`CaseRun::passed`]) and, with `require_external`, no
+    /// True when every case passed ([`Suite::passed`]) and, with `require_external`, no
     /// check is N/A.
     pub fn passed(&self) -> bool {
-        self.runs.iter().all(CaseRun::passed)
+        self.suites.iter().all(|s| s.passed)
             && !(self.require_external && self.count(Verdict::Unavailable) > 0)
     }
 }

@@ -50,6 +50,7 @@ pub mod history;
 pub mod impact;
 pub mod input;
 pub mod io;
+pub mod judged;
 pub mod limits;
 pub mod map_measure;
 pub mod memory;

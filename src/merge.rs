@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::case::ReadRoots;
-use crate::plan::{CaseOptions, Plan, PlanError};
+use crate::plan::{CaseOptions, Member, Plan, PlanError};
 use crate::runfile::{RunFile, FILE, FORMAT};
 use crate::schedule::Finished;
 
@@ -30,6 +30,15 @@ pub enum MergeError {
     /// A run that no file holds.
     #[error("merge: no run of solver `{solver}` for case {} (is a shard missing?)", case.display())]
     Missing { case: PathBuf, solver: String },
+    /// A run whose result is of the other kind than its case (an impact case's run for a path
+    /// case, or the reverse: the case file changed since the shard ran).
+    #[error("{}: run of solver `{solver}` for case {} holds {held} (allowed: the case's kind of run; was the case file changed?)", file.display(), case.display())]
+    Kind {
+        file: PathBuf,
+        case: PathBuf,
+        solver: String,
+        held: &'static str,
+    },
     /// A run that two files hold, or that the plan does not have.
     #[error("{}: run of solver `{solver}` for case {} {problem}", file.display(), case.display())]
     Extra {
@@ -102,7 +111,7 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
     };
     let cases = case_files
         .iter()
-        .map(|f| options.load(f))
+        .map(|f| options.load_member(f))
         .collect::<Result<Vec<_>, _>>()?;
     let plan = Plan::new(cases, |_, _| None);
     let mut slots: Vec<Option<Finished>> = plan.runs.iter().map(|_| None).collect();
@@ -123,9 +132,23 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
             match slot {
                 None => return Err(extra("is not a run of the cases")),
                 Some(i) if slots[i].is_some() => return Err(extra("is held by another run file too")),
+                Some(_)
+                    if record.result.is_impact() != matches!(plan.cases[record.case], Member::Impact(_)) =>
+                {
+                    return Err(MergeError::Kind {
+                        file: dir.join(FILE),
+                        case: case_files[record.case].clone(),
+                        solver: record.solver.clone(),
+                        held: if record.result.is_impact() {
+                            "an impact run but the case is a path case"
+                        } else {
+                            "a path run but the case is an impact case"
+                        },
+                    })
+                }
                 Some(i) => {
                     slots[i] = Some(Finished {
-                        result: record.result.into_result(),
+                        result: record.result.into_output(),
                         wall_s: record.wall_s,
                         cores: record.cores,
                     })

@@ -9,6 +9,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
+use crate::case::impact::ImpactCase;
 use crate::case::labels;
 use crate::case::{Case, ReadRoots};
 use crate::external::permission::CommandPermission;
@@ -65,7 +66,17 @@ pub struct CaseOptions {
 }
 
 impl CaseOptions {
-    /// Loads the case at `file` with these options over its own.
+    /// Loads the case at `file`, a path case with these options over its own or an impact case
+    /// (whose steps and springs are its own: `--ranks` and `--resolution` do not apply).
+    pub fn load_member(&self, file: &Path) -> Result<Member, PlanError> {
+        if crate::case::is_impact_file(file) {
+            Ok(Member::Impact(crate::case::load_impact(file)?))
+        } else {
+            self.load(file).map(Member::Path)
+        }
+    }
+
+    /// Loads the path case at `file` with these options over its own.
     pub fn load(&self, file: &Path) -> Result<Case, PlanError> {
         let mut case = Case::load_with(file, &self.roots)?;
         case.permit_commands(&self.permission);
@@ -83,8 +94,67 @@ impl CaseOptions {
     }
 }
 
-/// The labels every impact case carries (its file has no `labels`: docs/impact.md).
-pub const IMPACT_LABELS: [&str; 2] = ["dem", "fast"];
+/// A case of a plan: a path case (a prescribed loading path) or an impact case (rigid-body
+/// dynamics with a contact law, [`crate::impact`]). Both are verified alike: runs of (case,
+/// solver), checks judged on the finished runs, baselines, shards and merge.
+#[derive(Clone, Debug)]
+pub enum Member {
+    /// A path case.
+    Path(Case),
+    /// An impact case.
+    Impact(ImpactCase),
+}
+
+impl Member {
+    /// The case's name.
+    pub fn name(&self) -> &str {
+        match self {
+            Member::Path(case) => case.name(),
+            Member::Impact(case) => &case.name,
+        }
+    }
+
+    /// The case's labels.
+    pub fn labels(&self) -> &[String] {
+        match self {
+            Member::Path(case) => &case.labels,
+            Member::Impact(case) => &case.labels,
+        }
+    }
+
+    /// Every solver the case needs, in its order: a run each.
+    pub fn required_solvers(&self) -> Vec<String> {
+        match self {
+            Member::Path(case) => case.required_solvers(),
+            Member::Impact(case) => case.required_solvers(),
+        }
+    }
+
+    /// The cores `solver` keeps busy: an impact run takes one.
+    fn cores(&self, solver: &str) -> usize {
+        match self {
+            Member::Path(case) => case.solver(solver).map_or(1, |s| s.cores().max(1)),
+            Member::Impact(_) => 1,
+        }
+    }
+
+    /// The expected wall time of `solver` with nothing recorded [s].
+    fn default_cost(&self, solver: &str) -> f64 {
+        match self {
+            Member::Path(_) => default_cost(solver),
+            // Measured (release, 17 sweep points, docs/impact.md): MDR's bed about 0.3 s a
+            // variant, a DEM law's spring about ten times less.
+            Member::Impact(case) => {
+                let per_variant = if solver == crate::case::impact::REFERENCE {
+                    0.3
+                } else {
+                    0.03
+                };
+                per_variant * case.variants().len() as f64
+            }
+        }
+    }
+}
 
 /// Which cases run: those with any of `labels` (all when empty) and none of `skip`.
 #[derive(Clone, Debug, Default)]
@@ -111,13 +181,9 @@ impl Selection {
     }
 
     /// True when the case is selected.
-    pub fn selects(&self, case: &Case) -> bool {
-        self.selects_labels(&case.labels)
-    }
-
-    /// Whether a case labelled `labels` runs.
-    pub fn selects_labels<S: AsRef<str>>(&self, labels: &[S]) -> bool {
-        let has = |label: &String| labels.iter().any(|l| l.as_ref() == label);
+    pub fn selects(&self, case: &Member) -> bool {
+        let labels = case.labels();
+        let has = |label: &String| labels.contains(label);
         (self.labels.is_empty() || self.labels.iter().any(has)) && !self.skip.iter().any(has)
     }
 }
@@ -174,14 +240,14 @@ pub struct Run {
 #[derive(Clone, Debug)]
 pub struct Plan {
     /// The cases, in the order given.
-    pub cases: Vec<Case>,
+    pub cases: Vec<Member>,
     /// The runs of this plan (all, or one shard's), case by case.
     pub runs: Vec<Run>,
 }
 
 impl Plan {
     /// Every run of `cases`, each costed by `recorded(case, solver)` where known.
-    pub fn new(cases: Vec<Case>, recorded: impl Fn(&Case, &str) -> Option<f64>) -> Self {
+    pub fn new(cases: Vec<Member>, recorded: impl Fn(&Member, &str) -> Option<f64>) -> Self {
         let runs = cases
             .iter()
             .enumerate()
@@ -189,8 +255,8 @@ impl Plan {
                 let recorded = &recorded;
                 case.required_solvers().into_iter().map(move |solver| Run {
                     case: index,
-                    cores: case.solver(&solver).map_or(1, |s| s.cores().max(1)),
-                    cost_s: recorded(case, &solver).unwrap_or_else(|| default_cost(&solver)),
+                    cores: case.cores(&solver),
+                    cost_s: recorded(case, &solver).unwrap_or_else(|| case.default_cost(&solver)),
                     solver,
                 })
             })
@@ -325,6 +391,30 @@ mod tests {
                 "{error}"
             );
         }
+    }
+
+    #[test]
+    fn impact_cases_are_runs_of_the_plan_selected_by_their_labels() {
+        let case = crate::case::load_impact(Path::new("cases/impact/chung-ooi-6.toml")).unwrap();
+        let member = Member::Impact(case);
+        assert!(Selection::new(&["impact".into()], &[]).unwrap().selects(&member));
+        assert!(!Selection::new(&[], &["dem".into()]).unwrap().selects(&member));
+        let plan = Plan::new(vec![member], |_, solver| (solver == "thornton").then_some(7.0));
+        let solvers: Vec<&str> = plan.runs.iter().map(|r| r.solver.as_str()).collect();
+        assert_eq!(
+            solvers,
+            [
+                "mdr",
+                "hertz-mindlin-spring",
+                "thornton",
+                "md-incremental",
+                "walton-braun"
+            ]
+        );
+        assert!(plan.runs.iter().all(|r| r.cores == 1));
+        // e = 0.5: two variants, each costed; a recorded cost wins.
+        assert_eq!(plan.runs[0].cost_s, 0.6);
+        assert_eq!(plan.runs[2].cost_s, 7.0);
     }
 
     #[test]

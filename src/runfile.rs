@@ -8,7 +8,9 @@
 //!  "options": {"ranks": null, "resolutions": [["bem", "128"]]},
 //!  "runs": [{"case": 0, "solver": "bem", "cores": 2, "cost_s": 3.0, "wall_s": 2.41,
 //!            "result": {"history": {…}}}, {"case": 0, "solver": "yade-mindlin", …,
-//!            "result": {"unavailable": "yade not found"}}]}
+//!            "result": {"unavailable": "yade not found"}},
+//!           {"case": 5, "solver": "mdr", …, "result": {"impact": [{"solver": "mdr",
+//!            "variant": "prescribed", "points": [[0.0873, {"Ok": {"values": […]}}], …], …}]}}]}
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -16,8 +18,9 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::history::History;
+use crate::impact::run::SolverRun;
 use crate::plan::{CaseOptions, Plan, Shard};
-use crate::schedule::Finished;
+use crate::schedule::{Finished, Output};
 use crate::solver::SolveError;
 
 /// The run file's name in its folder.
@@ -58,7 +61,8 @@ pub struct RunRecord {
     pub result: RunResult,
 }
 
-/// A run's result as stored: a [`SolveError`] kept by kind and message.
+/// A run's result as stored: a [`SolveError`] kept by kind and message; an impact case's run
+/// as its sweep in each variant (without the trace).
 #[derive(Debug, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RunResult {
@@ -70,25 +74,34 @@ pub enum RunResult {
     Unavailable(String),
     /// [`SolveError::Failed`].
     Failed(String),
+    /// An impact case's run ([`Output::Impact`]).
+    Impact(Vec<SolverRun>),
 }
 
 impl RunResult {
-    fn of(result: &Result<History, SolveError>) -> Self {
+    fn of(result: &Output) -> Self {
         match result {
-            Ok(history) => RunResult::History(history.clone()),
-            Err(SolveError::NotApplicable(m)) => RunResult::NotApplicable(m.clone()),
-            Err(SolveError::Unavailable(m)) => RunResult::Unavailable(m.clone()),
-            Err(SolveError::Failed(m)) => RunResult::Failed(m.clone()),
+            Output::Path(Ok(history)) => RunResult::History(history.clone()),
+            Output::Path(Err(SolveError::NotApplicable(m))) => RunResult::NotApplicable(m.clone()),
+            Output::Path(Err(SolveError::Unavailable(m))) => RunResult::Unavailable(m.clone()),
+            Output::Path(Err(SolveError::Failed(m))) => RunResult::Failed(m.clone()),
+            Output::Impact(runs) => RunResult::Impact(runs.clone()),
         }
     }
 
-    /// The result it stores.
-    pub fn into_result(self) -> Result<History, SolveError> {
+    /// True for an impact case's run.
+    pub fn is_impact(&self) -> bool {
+        matches!(self, RunResult::Impact(_))
+    }
+
+    /// The output it stores.
+    pub fn into_output(self) -> Output {
         match self {
-            RunResult::History(history) => Ok(history),
-            RunResult::NotApplicable(m) => Err(SolveError::NotApplicable(m)),
-            RunResult::Unavailable(m) => Err(SolveError::Unavailable(m)),
-            RunResult::Failed(m) => Err(SolveError::Failed(m)),
+            RunResult::History(history) => Output::Path(Ok(history)),
+            RunResult::NotApplicable(m) => Output::Path(Err(SolveError::NotApplicable(m))),
+            RunResult::Unavailable(m) => Output::Path(Err(SolveError::Unavailable(m))),
+            RunResult::Failed(m) => Output::Path(Err(SolveError::Failed(m))),
+            RunResult::Impact(runs) => Output::Impact(runs),
         }
     }
 }

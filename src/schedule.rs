@@ -11,17 +11,44 @@
 use std::sync::mpsc;
 use std::time::Instant;
 
+use crate::baseline::Baselined;
 use crate::history::History;
-use crate::plan::{longest_first, Plan};
+use crate::impact::run::SolverRun;
+use crate::impact::ImpactRun;
+use crate::judged::Suite;
+use crate::plan::{longest_first, Member, Plan};
 use crate::solver::SolveError;
 use crate::team;
 use crate::verify::{self, CaseRun};
 
+/// What a run gives: a path case's solver history (or why it has none), or an impact case's
+/// solver over the sweep in each variant (a failed sweep point says why within).
+#[derive(Debug)]
+pub enum Output {
+    /// A path case's run.
+    Path(Result<History, SolveError>),
+    /// An impact case's run: one per variant (prescribed, and elastic when e < 1).
+    Impact(Vec<SolverRun>),
+}
+
+impl Output {
+    /// Runs `solver` of `case`.
+    pub fn of(case: &Member, solver: &str) -> Self {
+        match case {
+            Member::Path(case) => Output::Path(verify::run_solver(case, solver)),
+            Member::Impact(case) => Output::Impact(crate::impact::run::run_case(
+                case,
+                std::slice::from_ref(&solver.to_owned()),
+            )),
+        }
+    }
+}
+
 /// A finished run.
 #[derive(Debug)]
 pub struct Finished {
-    /// The solver's history, or why it has none.
-    pub result: Result<History, SolveError>,
+    /// What the solver gave.
+    pub result: Output,
     /// The run's wall time [s], set-up and read-back included.
     pub wall_s: f64,
     /// The cores it was given.
@@ -54,7 +81,7 @@ pub fn execute(plan: &Plan, cores: usize) -> Vec<Finished> {
                 let case = &plan.cases[run.case];
                 scope.spawn(move || {
                     let start = Instant::now();
-                    let result = team::with_threads(given, || verify::run_solver(case, &run.solver));
+                    let result = team::with_threads(given, || Output::of(case, &run.solver));
                     let wall_s = start.elapsed().as_secs_f64();
                     // The receiver lives until every run has reported.
                     let _ = sender.send((
@@ -82,8 +109,44 @@ pub fn execute(plan: &Plan, cores: usize) -> Vec<Finished> {
         .collect()
 }
 
-/// The cases of `plan` that have runs, each judged on its finished runs (in plan order).
-pub fn judge(plan: Plan, finished: Vec<Finished>) -> Vec<CaseRun> {
+/// A case judged on its finished runs.
+#[derive(Debug)]
+pub enum Judged {
+    /// A path case.
+    Path(CaseRun),
+    /// An impact case.
+    Impact(ImpactRun),
+}
+
+impl Judged {
+    /// The case as its baseline sees it.
+    pub fn baselined(&self) -> &dyn Baselined {
+        match self {
+            Judged::Path(run) => run,
+            Judged::Impact(run) => run,
+        }
+    }
+
+    /// The case as its baseline compares it.
+    pub fn baselined_mut(&mut self) -> &mut dyn Baselined {
+        match self {
+            Judged::Path(run) => run,
+            Judged::Impact(run) => run,
+        }
+    }
+
+    /// Its checks as the verification job lists them ([`crate::judged`]).
+    pub fn suite(&self) -> Suite {
+        match self {
+            Judged::Path(run) => crate::report::table::suite(run),
+            Judged::Impact(run) => run.suite(),
+        }
+    }
+}
+
+/// The cases of `plan` that have runs, each judged on its finished runs (in plan order). A
+/// run's output of the other kind than its case's (which a merge refuses before) is no run.
+pub fn judge(plan: Plan, finished: Vec<Finished>) -> Vec<Judged> {
     let mut results: Vec<Vec<_>> = plan.cases.iter().map(|_| Vec::new()).collect();
     for (run, done) in plan.runs.into_iter().zip(finished) {
         results[run.case].push((run.solver, done.result));
@@ -92,6 +155,27 @@ pub fn judge(plan: Plan, finished: Vec<Finished>) -> Vec<CaseRun> {
         .into_iter()
         .zip(results)
         .filter(|(_, results)| !results.is_empty())
-        .map(|(case, results)| verify::judge(case, results))
+        .map(|(case, results)| match case {
+            Member::Path(case) => {
+                let histories = results
+                    .into_iter()
+                    .filter_map(|(solver, output)| match output {
+                        Output::Path(result) => Some((solver, result)),
+                        Output::Impact(_) => None,
+                    })
+                    .collect();
+                Judged::Path(verify::judge(case, histories))
+            }
+            Member::Impact(case) => {
+                let runs = results
+                    .into_iter()
+                    .flat_map(|(_, output)| match output {
+                        Output::Impact(runs) => runs,
+                        Output::Path(_) => Vec::new(),
+                    })
+                    .collect();
+                Judged::Impact(ImpactRun::judged(case, runs))
+            }
+        })
         .collect()
 }

@@ -184,7 +184,8 @@ impl Quantity {
 }
 
 /// Which run of a case a check judges.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Variant {
     /// With the case's prescribed restitution (the only run of an elastic case).
     Prescribed,
@@ -230,6 +231,16 @@ pub struct ImpactCheck {
     pub reason: String,
 }
 
+impl ImpactCheck {
+    /// The solvers the check needs: its subject, then its reference solver if any.
+    pub fn solvers(&self) -> impl Iterator<Item = &String> {
+        std::iter::once(&self.solver).chain(match &self.reference {
+            ImpactReference::Solver(name) => Some(name),
+            ImpactReference::Hertz => None,
+        })
+    }
+}
+
 /// A validated impact case.
 #[derive(Clone, Debug)]
 pub struct ImpactCase {
@@ -239,6 +250,9 @@ pub struct ImpactCase {
     pub name: String,
     /// A one-paragraph description.
     pub description: String,
+    /// What kind of work it is ([`crate::case::labels::LABELS`]): the file's `labels`, else
+    /// [`DEFAULT_LABELS`].
+    pub labels: Vec<String>,
     /// Coulomb friction μ.
     pub friction: f64,
     /// The prescribed normal restitution (1: elastic).
@@ -272,11 +286,7 @@ impl ImpactCase {
     pub fn required_solvers(&self) -> Vec<String> {
         let mut names = self.solvers.clone();
         for check in &self.checks {
-            let reference = match &check.reference {
-                ImpactReference::Solver(name) => Some(name),
-                ImpactReference::Hertz => None,
-            };
-            for name in std::iter::once(&check.solver).chain(reference) {
+            for name in check.solvers() {
                 if !names.contains(name) {
                     names.push(name.clone());
                 }
@@ -377,6 +387,9 @@ impl Point {
         self
     }
 }
+
+/// The labels of an impact case whose file has no `labels`.
+pub const DEFAULT_LABELS: [&str; 3] = ["impact", "dem", "fast"];
 
 /// The exact reference of an impact: rigid-body dynamics with MDR as the contact law.
 pub const REFERENCE: &str = "mdr";

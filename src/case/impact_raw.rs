@@ -14,6 +14,7 @@ pub(super) struct RawImpact {
     pub(super) kind: Spanned<String>,
     pub(super) name: Option<Spanned<String>>,
     pub(super) description: Option<String>,
+    pub(super) labels: Option<Spanned<Vec<Spanned<String>>>>,
     pub(super) friction: Spanned<f64>,
     pub(super) restitution: Option<Spanned<f64>>,
     pub(super) solvers: Spanned<Vec<Spanned<String>>>,

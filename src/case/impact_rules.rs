@@ -6,6 +6,8 @@
 //! kind = "impact"
 //! name = "chung-ooi-4"                  # optional, defaults to the file stem
 //! description = "…"
+//! labels = ["impact", "dem", "fast"]    # optional, as a path case's (`verify --label`); default
+//!                                       # these three
 //! friction = 0.092                      # Coulomb 0 ≤ μ ≤ 10
 //! restitution = 0.98                    # optional, 0.01 ≤ e ≤ 1 (default 1: elastic); e < 1
 //!                                       # also runs the elastic variant
@@ -80,6 +82,12 @@ pub fn is_impact(text: &str) -> bool {
         .unwrap_or(false)
 }
 
+/// True when `file` holds an impact case (`kind = "impact"`); false when it cannot be read (the
+/// path-case loader then reports why).
+pub fn is_impact_file(file: &std::path::Path) -> bool {
+    input::read_text(file).is_ok_and(|text| is_impact(&text))
+}
+
 /// Reads and validates the impact case at `file`.
 pub fn load_impact(file: &std::path::Path) -> Result<ImpactCase, CaseError> {
     let text = input::read_text(file)
@@ -114,6 +122,10 @@ impl Validator<'_> {
             return Err(self.error(&raw.kind, "kind", "allowed: \"impact\" (absent for a path case)"));
         }
         let name = self.name(raw.name.as_ref())?;
+        let labels = match &raw.labels {
+            Some(labels) => self.labels(Some(labels))?,
+            None => super::impact::DEFAULT_LABELS.map(String::from).to_vec(),
+        };
         let friction = self.friction(&raw.friction)?;
         let restitution = match &raw.restitution {
             Some(e) => self.number(e, "restitution", |e| (0.01..=1.0).contains(&e), "0.01 ≤ e ≤ 1")?,
@@ -152,6 +164,7 @@ impl Validator<'_> {
             file: self.file.to_path_buf(),
             name,
             description: raw.description.clone().unwrap_or_default(),
+            labels,
             friction,
             restitution,
             body1,

@@ -31,6 +31,10 @@ pub const LABELS: &[(&str, &str)] = &[
     ("hard", "a hard case for the in-crate solvers (cases/hard/)"),
     ("fem", "finite elements, in-crate or external"),
     ("bem", "the half-space boundary elements"),
+    (
+        "impact",
+        "a dynamic impact case (cases/impact/): rigid-body dynamics with a contact law",
+    ),
 ];
 
 /// True when `label` is one of [`LABELS`].

@@ -107,7 +107,7 @@ mod scene_rules;
 pub use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
-pub use impact_rules::{is_impact, load_impact, parse_impact};
+pub use impact_rules::{is_impact, is_impact_file, load_impact, parse_impact};
 pub use reads::{CaseTree, ReadRoots};
 
 use std::collections::{BTreeMap, BTreeSet};

@@ -5,13 +5,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Subcommand;
-use spherecontact::case::{Case, ReadRoots};
+use spherecontact::case::ReadRoots;
 use spherecontact::conclusion::Conclusion;
 use spherecontact::external::permission;
-use spherecontact::impact::{command as impact, ImpactRun};
+use spherecontact::judged::Suite;
 use spherecontact::report::junit;
 use spherecontact::runfile::RunFile;
-use spherecontact::{baseline, io, merge, plan, schedule, verify};
+use spherecontact::schedule::Judged;
+use spherecontact::{baseline, io, merge, plan, schedule};
 
 use crate::{claim, resolution_options, CommandOptions, InputError};
 
@@ -148,16 +149,14 @@ impl Outputs {
         })
     }
 
-    /// Prints the verdicts of `runs` (and the impact cases' `impacts`) and writes the JUnit and
+    /// Prints the verdicts of the judged cases (path and impact) and writes the JUnit and
     /// summary.
-    fn write(&self, runs: &[verify::CaseRun], impacts: &[ImpactRun]) -> Result<ExitCode, InputError> {
+    fn write(&self, judged: &[Judged]) -> Result<ExitCode, InputError> {
+        let suites: Vec<Suite> = judged.iter().map(Judged::suite).collect();
         let conclusion = Conclusion {
-            runs,
+            suites: &suites,
             require_external: self.require_external,
         };
-        for run in impacts {
-            print!("{}", run.block());
-        }
         let text = conclusion.text();
         print!("{text}");
         if let Some((file, canonical)) = &self.junit {
@@ -167,8 +166,9 @@ impl Outputs {
         if let Some(folder) = &self.out {
             io::write_atomically(&folder.path().join("summary.txt"), text.as_bytes())
                 .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
+            write_impact_report(judged, &folder.path().join("impact"))?;
         }
-        Ok(if conclusion.passed() && impacts.iter().all(ImpactRun::passed) {
+        Ok(if conclusion.passed() {
             ExitCode::SUCCESS
         } else {
             ExitCode::FAILURE
@@ -176,60 +176,66 @@ impl Outputs {
     }
 }
 
-/// The cases of `verify`, read and selected, with their baselines; nothing run yet.
+/// The impact cases' report *How far is your DEM code from exact Mindlin–Deresiewicz in
+/// impact?* into `dir` (`DIR/impact/` of `verify --out DIR` and `merge --out DIR`, beside
+/// `summary.txt`), when impact cases were judged.
+fn write_impact_report(judged: &[Judged], dir: &Path) -> Result<(), InputError> {
+    let impacts: Vec<_> = judged
+        .iter()
+        .filter_map(|j| match j {
+            Judged::Impact(run) => Some(run),
+            Judged::Path(_) => None,
+        })
+        .collect();
+    if impacts.is_empty() {
+        return Ok(());
+    }
+    spherecontact::impact::report::document(impacts, false)
+        .and_then(|document| document.write(dir))
+        .map_err(|e| InputError(format!("--out {}: {e}", dir.display())))
+}
+
+/// The cases of `verify` (path and impact cases), read and selected, with their baselines;
+/// nothing run yet.
 struct VerifyPlan {
     files: Vec<PathBuf>,
-    /// The impact cases among the files (`kind = "impact"`: run apart, docs/impact.md).
-    impacts: Vec<spherecontact::impact::ImpactCase>,
     options: plan::CaseOptions,
     plan: plan::Plan,
     baselines: std::collections::BTreeMap<String, baseline::Baseline>,
 }
 
-/// `whole`: an unsharded run without a run file (the impact cases join only such a run).
 fn verify_plan(
     files: Vec<PathBuf>,
     selection: &plan::Selection,
     options: &plan::CaseOptions,
     baselines: &Path,
-    whole: bool,
 ) -> Result<VerifyPlan, InputError> {
     let files = plan::case_files(&if files.is_empty() {
         vec![PathBuf::from("cases")]
     } else {
         files
     })?;
-    let (impact_files, files): (Vec<PathBuf>, Vec<PathBuf>) =
-        files.into_iter().partition(|f| impact::is_impact_file(f));
-    let impacts = impact_files
-        .iter()
-        .map(|f| spherecontact::case::load_impact(f))
-        .collect::<Result<Vec<_>, _>>()?;
-    // Impact cases run whole in an unsharded verify without a run file: they are no
-    // (case, solver) runs that a shard or a merge could carry.
-    let impacts = if selection.selects_labels(&plan::IMPACT_LABELS) && whole {
-        impacts
-    } else {
-        if !impacts.is_empty() && !whole {
-            eprintln!("note: impact cases are left out of a sharded verify or one with --out (run them with `spherecontact impact`)");
-        }
-        Vec::new()
-    };
     let (mut selected, mut cases) = (Vec::new(), Vec::new());
     for file in files {
-        let case = options.load(&file)?;
+        let case = options.load_member(&file)?;
         if selection.selects(&case) {
             selected.push(file);
             cases.push(case);
         }
     }
-    if cases.is_empty() && impacts.is_empty() {
+    if cases.is_empty() {
         return Err(InputError(
             "no case files to verify (none given, or none selected by label)".into(),
         ));
     }
-    let baselines = baseline::load_all(baselines, cases.iter().map(Case::name))?;
-    let commands: Vec<String> = cases.iter().flat_map(Case::command_lines).collect();
+    let baselines = baseline::load_all(baselines, cases.iter().map(plan::Member::name))?;
+    let commands: Vec<String> = cases
+        .iter()
+        .flat_map(|case| match case {
+            plan::Member::Path(case) => case.command_lines(),
+            plan::Member::Impact(_) => Vec::new(),
+        })
+        .collect();
     commands.iter().for_each(|line| println!("{line}"));
     if !commands.is_empty() && !options.permission.is_allowed() {
         println!(
@@ -240,7 +246,6 @@ fn verify_plan(
     let plan = plan::Plan::new(cases, |case, solver| baselines.get(case.name())?.wall_s(solver));
     Ok(VerifyPlan {
         files: selected,
-        impacts,
         options: options.clone(),
         plan,
         baselines,
@@ -259,8 +264,7 @@ pub(crate) fn verify_command(args: VerifyArgs, roots: &ReadRoots) -> Result<Exit
         permission: args.commands.permission()?,
     };
     let outputs = Outputs::checked(args.junit, args.out, args.require_external, args.force)?;
-    let whole = shard.is_none() && outputs.out.is_none();
-    let plan = verify_plan(args.cases, &selection, &options, &args.baselines, whole)?;
+    let plan = verify_plan(args.cases, &selection, &options, &args.baselines)?;
     verify_cases(plan, shard, jobs, &outputs)
 }
 
@@ -280,10 +284,9 @@ fn verify_cases(
             .write(folder.path())
             .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
     }
-    let mut runs = schedule::judge(plan, finished);
-    baseline::compare_all(&verify.baselines, &mut runs);
-    let impacts: Vec<ImpactRun> = verify.impacts.into_iter().map(ImpactRun::of).collect();
-    outputs.write(&runs, &impacts)
+    let mut judged = schedule::judge(plan, finished);
+    baseline::compare_all(&verify.baselines, judged.iter_mut().map(Judged::baselined_mut));
+    outputs.write(&judged)
 }
 
 pub(crate) fn merge_runs(
@@ -293,7 +296,7 @@ pub(crate) fn merge_runs(
     roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
     let merged = merge::merge(dirs, roots)?;
-    let baselines = baseline::load_all(baselines, merged.plan.cases.iter().map(Case::name))?;
+    let baselines = baseline::load_all(baselines, merged.plan.cases.iter().map(plan::Member::name))?;
     for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
         let shard = shard.as_deref().unwrap_or("whole");
         eprintln!(
@@ -301,9 +304,9 @@ pub(crate) fn merge_runs(
             dir.display()
         );
     }
-    let mut runs = schedule::judge(merged.plan, merged.finished);
-    baseline::compare_all(&baselines, &mut runs);
-    outputs.write(&runs, &[])
+    let mut judged = schedule::judge(merged.plan, merged.finished);
+    baseline::compare_all(&baselines, judged.iter_mut().map(Judged::baselined_mut));
+    outputs.write(&judged)
 }
 
 pub(crate) fn update_baselines(
@@ -318,13 +321,14 @@ pub(crate) fn update_baselines(
         permission: commands.permission()?,
         ..plan::CaseOptions::default()
     };
-    let verify = verify_plan(cases, &plan::Selection::default(), &options, dir, false)?;
+    let verify = verify_plan(cases, &plan::Selection::default(), &options, dir)?;
     let jobs = jobs.map_or_else(schedule::machine_cores, |n| n as usize);
     let finished = schedule::execute(&verify.plan, jobs);
     io::create_folder(dir).map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
-    for run in schedule::judge(verify.plan, finished) {
-        let baseline = baseline::Baseline::of(&run);
-        let file = baseline::file(dir, run.case.name());
+    for judged in schedule::judge(verify.plan, finished) {
+        let run = judged.baselined();
+        let baseline = baseline::Baseline::of(run);
+        let file = baseline::file(dir, run.case_name());
         io::write_atomically(&file, baseline.to_toml().as_bytes())
             .map_err(|e| InputError(format!("--baselines {}: {e}", file.display())))?;
         println!(
@@ -346,7 +350,7 @@ pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, Inpu
         roots: roots.clone(),
         ..plan::CaseOptions::default()
     };
-    verify_plan(args.cases.clone(), &selection, &options, &args.baselines, false)?;
+    verify_plan(args.cases.clone(), &selection, &options, &args.baselines)?;
     let root = std::env::current_dir()?;
     let mut merge_args = vec!["--baselines".to_owned(), text(&root.join(&args.baselines))?];
     for folder in roots.folders() {

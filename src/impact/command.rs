@@ -21,11 +21,7 @@ pub struct RunPlan {
     pub out: OutputFolder,
 }
 
-/// True when `file` holds an impact case (`kind = "impact"`); false when it cannot be read (the
-/// path-case loader then reports why).
-pub fn is_impact_file(file: &Path) -> bool {
-    crate::input::read_text(file).is_ok_and(|text| case::is_impact(&text))
-}
+pub use crate::case::is_impact_file;
 
 /// Plans a run: the case validated, each solver named once and known, `out` claimed (`force`:
 /// also a folder holding files the harness did not write).
@@ -116,7 +112,8 @@ pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String
         files::write(&dir, &run.case, &run.runs).map_err(|e| format!("--out {}: {e}", dir.display()))?;
         print!("{}", run.block());
     }
-    let document = crate::impact::report::document(&runs).map_err(|e| format!("building the report: {e}"))?;
+    let document =
+        crate::impact::report::document(&runs, true).map_err(|e| format!("building the report: {e}"))?;
     document
         .write(out)
         .map_err(|e| format!("--out {}: {e}", out.display()))?;

@@ -8,7 +8,7 @@ use super::case::{ImpactCase, ImpactCheck, ImpactReference, Point, Quantity, Var
 use super::closed_form::HertzImpact;
 use super::outcome::Outcome;
 use super::run::SolverRun;
-use crate::check::Verdict;
+use crate::check::{Drift, Verdict};
 use crate::hertz::Hertz;
 use crate::report::format_value;
 
@@ -23,11 +23,16 @@ pub struct CheckOutcome {
     pub worst: Option<Worst>,
     /// Why there is no error (a solver failed, a value is missing).
     pub message: Option<String>,
+    /// The value against its non-regression baseline, when the case has one for this check
+    /// ([`crate::baseline`]).
+    pub drift: Option<Drift>,
 }
 
 /// The worst sweep point of a check.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Worst {
+    /// The sweep point's index (0 without a sweep).
+    pub index: usize,
     /// The sweep value there (SI), if the case sweeps.
     pub at: Option<f64>,
     /// The solver's value.
@@ -55,10 +60,14 @@ fn find<'a>(runs: &'a [SolverRun], solver: &str, variant: Variant) -> Option<&'a
     runs.iter().find(|r| r.solver == solver && r.variant == variant)
 }
 
-/// Judges every check of `case` on `runs`.
+/// Judges the checks of `case` on `runs`. A check that needs a solver not among them is left
+/// out: a shard judges only the checks whose solvers it ran (`verify --shard`), the merge of all
+/// shards (and an unsharded run, which runs every solver the checks name) judges every check.
 pub fn judge(case: &ImpactCase, runs: &[SolverRun]) -> Vec<CheckOutcome> {
+    let ran = |name: &String| runs.iter().any(|r| &r.solver == name);
     case.checks
         .iter()
+        .filter(|check| check.solvers().all(ran))
         .map(|check| judge_one(case, check, runs))
         .collect()
 }
@@ -73,6 +82,7 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
         },
         worst: None,
         message: Some(message),
+        drift: None,
     };
     let Some(subject) = find(runs, &check.solver, check.variant) else {
         return failed(format!("`{}` did not run", check.solver));
@@ -127,6 +137,7 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
         let error = if error.is_nan() { 0.0 } else { error };
         if worst.is_none_or(|w| error > w.error) {
             worst = Some(Worst {
+                index,
                 at: *at,
                 value,
                 reference,
@@ -147,6 +158,7 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
         message: worst
             .is_none()
             .then(|| "no sweep point defines the quantity".to_owned()),
+        drift: None,
     }
 }
 
@@ -182,11 +194,36 @@ pub fn outcome_row(case: &str, outcome: &CheckOutcome) -> String {
         }
         None => row.push_str(" | informational"),
     }
+    if let Some(drift) = &outcome.drift {
+        row.push_str(&crate::report::table::drift_cell(drift));
+    }
     if let Some(message) = &outcome.message {
         let _ = write!(row, " | {message}");
     }
     let _ = write!(row, " | {}", check.reason);
-    row
+    crate::text::one_line(&row).into_owned()
+}
+
+/// The check in words: solver, quantity, variant, reference and measure (a baseline's key, a
+/// JUnit test case's name).
+pub fn key(check: &ImpactCheck) -> String {
+    let reference = match &check.reference {
+        ImpactReference::Hertz => "hertz closed form",
+        ImpactReference::Solver(name) => name,
+    };
+    format!(
+        "{} {} ({}) vs {reference} ({})",
+        check.solver,
+        check.quantity.name(),
+        check.variant.name(),
+        if check.relative { "relative" } else { "absolute" }
+    )
+}
+
+/// The value `check`'s subject gives at sweep point `index`, if it ran and defines it there.
+pub fn value_at(runs: &[SolverRun], check: &ImpactCheck, index: usize) -> Option<f64> {
+    let run = find(runs, &check.solver, check.variant)?;
+    run.points.get(index)?.1.as_ref().ok()?.get(check.quantity)
 }
 
 /// An outcome per sweep point of a solver's run, for tests and reports.

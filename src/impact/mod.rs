@@ -22,6 +22,7 @@
 
 pub use crate::case::impact as case;
 pub use crate::case::impact_closed_form as closed_form;
+mod baselined;
 pub mod command;
 #[cfg(test)]
 mod cross_check;
@@ -50,31 +51,34 @@ impl ImpactRun {
     /// Runs every solver the case and its checks need, and judges the checks.
     pub fn of(case: ImpactCase) -> Self {
         let runs = run::run_case(&case, &case.required_solvers());
+        Self::judged(case, runs)
+    }
+
+    /// The case judged on `runs` (a shard's: the checks whose solvers all ran).
+    pub fn judged(case: ImpactCase, runs: Vec<run::SolverRun>) -> Self {
         let outcomes = judge::judge(&case, &runs);
         Self { case, runs, outcomes }
     }
 
-    /// True when no check is NOOK and every solver ran at every sweep point.
+    /// True when no check fails the run (NOOK, DRIFT) and every solver ran at every sweep point.
     pub fn passed(&self) -> bool {
         let solved = self.runs.iter().all(|r| r.points.iter().all(|(_, o)| o.is_ok()));
-        solved
-            && self
-                .outcomes
-                .iter()
-                .all(|o| o.verdict != crate::check::Verdict::Nook)
+        solved && !self.outcomes.iter().any(|o| o.verdict.fails_run())
     }
 
     /// The block `verify` prints: a row per check, and each failed sweep point.
     pub fn block(&self) -> String {
-        let mut text = format!("== {} ({})\n", self.case.name, self.case.file.display());
+        let file = self.case.file.display().to_string();
+        let mut text = format!("== {} ({})\n", self.case.name, crate::text::one_line(&file));
         for run in &self.runs {
             for (at, result) in &run.points {
                 if let Err(e) = result {
                     text.push_str(&format!(
-                        "SOLVER {} ({}) at {}: {e}\n",
+                        "SOLVER {} ({}) at {}: {}\n",
                         run.solver,
                         run.variant.name(),
-                        crate::report::format_value(*at)
+                        crate::report::format_value(*at),
+                        crate::text::one_line(e)
                     ));
                 }
             }
@@ -84,5 +88,25 @@ impl ImpactRun {
             text.push('\n');
         }
         text
+    }
+
+    /// The case's judged checks as the verification job lists them ([`crate::judged`]).
+    pub fn suite(&self) -> crate::judged::Suite {
+        let rows = self
+            .outcomes
+            .iter()
+            .enumerate()
+            .map(|(i, outcome)| crate::judged::Row {
+                title: format!("{i:02} {}", judge::key(&outcome.check)),
+                verdict: outcome.verdict,
+                text: judge::outcome_row(&self.case.name, outcome),
+            })
+            .collect();
+        crate::judged::Suite {
+            name: self.case.name.clone(),
+            block: self.block(),
+            rows,
+            passed: self.passed(),
+        }
     }
 }

@@ -20,7 +20,7 @@ use super::integrator::Integration;
 const NO_SLIP: f64 = 1e-12;
 
 /// The outcome of one impact: a value (or none) per quantity.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Outcome {
     values: [Option<f64>; 7],
 }

@@ -135,6 +135,42 @@ fn check_table(run: &ImpactRun) -> Table {
     }
 }
 
+/// A figure of one series per run, the reference dashed and drawn last; none when no run has a
+/// point.
+fn runs_figure(
+    id: String,
+    plot: [String; 4],
+    caption: String,
+    series: Vec<(&SolverRun, Vec<(f64, f64)>)>,
+) -> Result<Option<crate::report::document::Figure>> {
+    let mut series: Vec<Series> = series
+        .into_iter()
+        .filter(|(_, points)| !points.is_empty())
+        .map(|(r, points)| {
+            let style = if r.solver == REFERENCE {
+                Style::Reference
+            } else {
+                Style::Line
+            };
+            Series::joined(&r.solver, points, style)
+        })
+        .collect();
+    if series.is_empty() {
+        return Ok(None);
+    }
+    series.sort_by_key(|s| s.style == Style::Reference);
+    // Title, axis labels, and the name of the y column of the figure's data file.
+    let [title, x_label, y_label, y_name] = plot;
+    let plot = LinePlot {
+        title,
+        x_label: x_label.clone(),
+        y_label,
+        series,
+        axes: Axes::Linear,
+    };
+    figure(&id, plot, caption, &x_label, &y_name).map(Some)
+}
+
 /// One figure: `quantity` against the sweep, every solver of `variant`, the reference dashed.
 fn sweep_figure(
     run: &ImpactRun,
@@ -143,27 +179,18 @@ fn sweep_figure(
 ) -> Result<Option<crate::report::document::Figure>> {
     let variable = run.case.sweep.as_ref().map(|s| s.variable);
     let (scale, x_label) = axis(variable);
-    let mut series: Vec<Series> = run
+    let series = run
         .runs
         .iter()
         .filter(|r| r.variant == variant)
-        .filter_map(|r| {
-            let points: Vec<(f64, f64)> = values(r, quantity)
+        .map(|r| {
+            let points = values(r, quantity)
                 .into_iter()
                 .filter_map(|(at, v)| Some((at? * scale, v?)))
                 .collect();
-            let style = if r.solver == REFERENCE {
-                Style::Reference
-            } else {
-                Style::Line
-            };
-            (!points.is_empty()).then(|| Series::joined(&r.solver, points, style))
+            (r, points)
         })
         .collect();
-    if series.is_empty() {
-        return Ok(None);
-    }
-    series.sort_by_key(|s| s.style == Style::Reference);
     let id = format!(
         "{}-{}-{}",
         run.case.name,
@@ -171,26 +198,78 @@ fn sweep_figure(
         variant.name()
     );
     let title = format!("{}: {} ({})", run.case.name, quantity.name(), variant.name());
-    let plot = LinePlot {
-        title,
-        x_label: x_label.clone(),
-        y_label: format!("{} [{}]", quantity.name(), quantity.unit()),
-        series,
-        axes: Axes::Linear,
-    };
+    let y_label = format!("{} [{}]", quantity.name(), quantity.unit());
     let caption = format!(
         "{} of the {} run against the swept variable: the exact reference (mdr: MDR's springs in \
          the same rigid-body integrator) dashed, each DEM law beside it.",
         quantity.name(),
         variant.name()
     );
-    figure(&id, plot, caption, &x_label, quantity.name()).map(Some)
+    runs_figure(
+        id,
+        [title, x_label, y_label, quantity.name().into()],
+        caption,
+        series,
+    )
 }
 
-/// The section of one case.
-fn case_section(run: &ImpactRun) -> Result<Section> {
+/// The first sweep point's normal force or overlap against time (Chung & Ooi's figures of tests
+/// 1 and 2), every solver of the prescribed run; none without traces (a run read back from a
+/// run file carries none).
+fn trace_figure(run: &ImpactRun, force: bool) -> Result<Option<crate::report::document::Figure>> {
+    let (name, unit, scale) = if force {
+        ("normal force", "N", 1.0)
+    } else {
+        ("overlap", "µm", 1e6)
+    };
+    let series = run
+        .runs
+        .iter()
+        .filter(|r| r.variant == Variant::Prescribed)
+        .map(|r| {
+            let points = r
+                .trace
+                .iter()
+                .map(|s| {
+                    (
+                        s.time * 1e6,
+                        if force { s.normal_force } else { s.overlap } * scale,
+                    )
+                })
+                .collect();
+            (r, points)
+        })
+        .collect();
+    let id = format!("{}-{}-time", run.case.name, name.replace(' ', "-"));
+    let title = format!("{}: {name} against time", run.case.name);
+    let caption = format!(
+        "{name} against time from first touch, first sweep point, prescribed run: the exact reference \
+         (mdr) dashed, each DEM law beside it (in normal impact they coincide with it to the bed's \
+         discretisation)."
+    );
+    runs_figure(
+        id,
+        [
+            title,
+            "time [µs]".into(),
+            format!("{name} [{unit}]"),
+            name.replace(' ', "_"),
+        ],
+        caption,
+        series,
+    )
+}
+
+/// The section of one case (with the first point's force and overlap against time when
+/// `traces`).
+fn case_section(run: &ImpactRun, traces: bool) -> Result<Section> {
     let case = &run.case;
     let mut figures = Vec::new();
+    if traces {
+        for force in [true, false] {
+            figures.extend(trace_figure(run, force)?);
+        }
+    }
     if case.sweep.is_some() {
         let quantities: &[Quantity] = if case.friction > 0.0
             && case
@@ -230,8 +309,10 @@ fn case_section(run: &ImpactRun) -> Result<Section> {
     })
 }
 
-/// The report of `runs`.
-pub fn document(runs: &[ImpactRun]) -> Result<Document> {
+/// The report of `runs`; `traces`: with the force and overlap against time of each case's first
+/// sweep point (`spherecontact impact`; a verification's report has none, as a run file carries
+/// no trace, so that `verify --out` and `merge` write the same report).
+pub fn document<'a>(runs: impl IntoIterator<Item = &'a ImpactRun>, traces: bool) -> Result<Document> {
     let mut sections = vec![Section {
         title: TITLE.into(),
         paragraphs: vec![
@@ -249,7 +330,7 @@ pub fn document(runs: &[ImpactRun]) -> Result<Document> {
         folded: false,
     }];
     for run in runs {
-        sections.push(case_section(run)?);
+        sections.push(case_section(run, traces)?);
     }
     Ok(Document {
         title: TITLE.into(),

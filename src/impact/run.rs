@@ -27,8 +27,9 @@ const TRACE_SAMPLES: usize = 2000;
 
 pub use crate::case::impact::solver_names;
 
-/// One solver in one variant over the sweep.
-#[derive(Clone, Debug)]
+/// One solver in one variant over the sweep. A run file ([`crate::runfile`]) carries it without
+/// its trace (the sweep's outcomes are what the checks judge; the trace is `run`'s file).
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct SolverRun {
     /// The solver.
     pub solver: String,
@@ -37,6 +38,7 @@ pub struct SolverRun {
     /// Each sweep point's value and outcome, or why it has none.
     pub points: Vec<(Option<f64>, Result<Outcome, String>)>,
     /// The trace of the first sweep point.
+    #[serde(skip)]
     pub trace: Vec<Sample>,
     /// Wall time of the sweep [s].
     pub wall_time_s: f64,

@@ -3,9 +3,8 @@
 
 use std::fmt::Write;
 
-use super::table::outcome_row;
 use crate::check::Verdict;
-use crate::verify::CaseRun;
+use crate::judged::{count, Suite};
 
 /// Escapes text for an XML attribute or element, control characters first ([`crate::text`]:
 /// XML 1.0 cannot hold most of them, and a CI log shows the rest raw).
@@ -33,60 +32,48 @@ pub fn is_ours(head: &[u8]) -> bool {
     head.starts_with(OPENING.as_bytes())
 }
 
-/// The JUnit XML document of a verification run.
-pub fn document(runs: &[CaseRun]) -> String {
-    let count = |v: Verdict| {
-        runs.iter()
-            .flat_map(|r| &r.outcomes)
-            .filter(|o| o.verdict == v)
-            .count()
-    };
-    let total: usize = runs.iter().map(|r| r.outcomes.len()).sum();
+/// The JUnit XML document of a verification run: a test suite per case, a test case per check
+/// (path and impact cases alike, [`crate::judged`]).
+pub fn document(suites: &[Suite]) -> String {
+    let total: usize = suites.iter().map(|s| s.rows.len()).sum();
     let mut xml = String::from(OPENING);
     let _ = writeln!(
         xml,
         " tests=\"{total}\" failures=\"{}\" skipped=\"{}\">",
-        count(Verdict::Nook) + count(Verdict::Fixed) + count(Verdict::Drift),
-        count(Verdict::Unavailable)
+        count(suites, Verdict::Nook) + count(suites, Verdict::Fixed) + count(suites, Verdict::Drift),
+        count(suites, Verdict::Unavailable)
     );
-    for run in runs {
-        let name = run.case.name();
-        let failures = run.outcomes.iter().filter(|o| o.verdict.fails_run()).count();
+    for suite in suites {
+        let name = escape(&suite.name);
+        let failures = suite.rows.iter().filter(|r| r.verdict.fails_run()).count();
         let _ = writeln!(
             xml,
-            "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{failures}\">",
-            escape(name),
-            run.outcomes.len()
+            "  <testsuite name=\"{name}\" tests=\"{}\" failures=\"{failures}\">",
+            suite.rows.len()
         );
-        for (i, outcome) in run.outcomes.iter().enumerate() {
-            let spec = &outcome.spec;
-            let title = format!(
-                "{i:02} {} {} at {} vs {}",
-                spec.solver, spec.quantity, spec.at, spec.reference
-            );
+        for row in &suite.rows {
             let _ = write!(
                 xml,
-                "    <testcase classname=\"{}\" name=\"{}\">",
-                escape(name),
-                escape(&title)
+                "    <testcase classname=\"{name}\" name=\"{}\">",
+                escape(&row.title)
             );
-            let row = escape(&outcome_row(name, outcome));
-            match outcome.verdict {
+            let text = escape(&row.text);
+            match row.verdict {
                 Verdict::Nook | Verdict::Drift => {
-                    let label = outcome.verdict.label();
-                    let _ = write!(xml, "<failure message=\"{label}\">{row}</failure>");
+                    let label = row.verdict.label();
+                    let _ = write!(xml, "<failure message=\"{label}\">{text}</failure>");
                 }
                 Verdict::Unavailable => {
-                    let _ = write!(xml, "<skipped message=\"{row}\"/>");
+                    let _ = write!(xml, "<skipped message=\"{text}\"/>");
                 }
                 Verdict::Fixed => {
                     let _ = write!(
                         xml,
-                        "<failure message=\"FIXED? a known failure passes: remove its mark\">{row}</failure>"
+                        "<failure message=\"FIXED? a known failure passes: remove its mark\">{text}</failure>"
                     );
                 }
                 Verdict::Ok | Verdict::Info | Verdict::Known => {
-                    let _ = write!(xml, "<system-out>{row}</system-out>");
+                    let _ = write!(xml, "<system-out>{text}</system-out>");
                 }
             }
             xml.push_str("</testcase>\n");

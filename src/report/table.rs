@@ -6,6 +6,7 @@ use std::fmt::Write;
 
 use super::format_value;
 use crate::check::Outcome;
+use crate::judged::{Row, Suite};
 use crate::text::one_line;
 use crate::verify::CaseRun;
 
@@ -39,13 +40,7 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
         None => row.push_str(" | informational"),
     }
     if let Some(drift) = &outcome.drift {
-        let _ = write!(
-            row,
-            " | drift {} (baseline {}, tol {})",
-            format_value(Some(drift.change)),
-            format_value(Some(drift.baseline)),
-            format_value(Some(drift.tolerance))
-        );
+        row.push_str(&drift_cell(drift));
     }
     if let Some(message) = &outcome.message {
         let _ = write!(row, " | {message}");
@@ -61,6 +56,16 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
     }
     // One line, whatever the case's texts hold: a reason cannot start or redraw another row.
     one_line(&row).into_owned()
+}
+
+/// A check's drift from its baseline as its row shows it (path and impact checks alike).
+pub fn drift_cell(drift: &crate::check::Drift) -> String {
+    format!(
+        " | drift {} (baseline {}, tol {})",
+        format_value(Some(drift.change)),
+        format_value(Some(drift.baseline)),
+        format_value(Some(drift.tolerance))
+    )
 }
 
 /// The whole block printed for one case: warnings, then a row per check.
@@ -79,4 +84,31 @@ pub fn case_block(run: &CaseRun) -> String {
         let _ = writeln!(text, "{}", outcome_row(run.case.name(), outcome));
     }
     text
+}
+
+/// The case's judged checks as the verification job lists them ([`crate::judged`]).
+pub fn suite(run: &CaseRun) -> Suite {
+    let name = run.case.name();
+    let rows = run
+        .outcomes
+        .iter()
+        .enumerate()
+        .map(|(i, outcome)| {
+            let spec = &outcome.spec;
+            Row {
+                title: format!(
+                    "{i:02} {} {} at {} vs {}",
+                    spec.solver, spec.quantity, spec.at, spec.reference
+                ),
+                verdict: outcome.verdict,
+                text: outcome_row(name, outcome),
+            }
+        })
+        .collect();
+    Suite {
+        name: name.to_owned(),
+        block: case_block(run),
+        rows,
+        passed: run.passed(),
+    }
 }

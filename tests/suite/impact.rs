@@ -8,7 +8,7 @@
 
 use crate::common;
 
-use common::{root, spherecontact};
+use common::{header, root, spherecontact};
 use spherecontact::impact::case::{Quantity, Variant};
 use spherecontact::impact::integrator::{self, Stepping};
 use spherecontact::impact::law::MdrLaw;
@@ -30,7 +30,9 @@ fn every_shipped_impact_case_loads_and_names_its_sources() {
         .into_iter()
         .filter(|f| f.starts_with(root().join("cases/impact")))
         .collect();
-    assert_eq!(files.len(), 8, "chung-ooi-1 … 8");
+    // Tests 1–8, and the second materials of tests 1–4 (limestone, magnesium alloy, cast iron,
+    // aluminium alloy).
+    assert_eq!(files.len(), 12, "chung-ooi-1 … 8 and four second materials");
     for file in files {
         let case = spherecontact::case::load_impact(&file).unwrap_or_else(|e| panic!("{e}"));
         let text = std::fs::read_to_string(&file).unwrap();
@@ -178,14 +180,6 @@ fn the_damping_returns_a_restitution_that_grows_with_the_prescribed_one() {
     let (last_prescribed, last) = measured[measured.len() - 1];
     assert_eq!(last_prescribed, 1.0);
     assert!((last - 1.0).abs() < 1e-8, "{last}");
-}
-
-/// What a hostile impact file's header says its message must hold.
-fn header(text: &str, key: &str) -> String {
-    text.lines()
-        .find_map(|l| l.strip_prefix(&format!("# {key}: ")))
-        .unwrap_or_else(|| panic!("no `# {key}:` header"))
-        .to_owned()
 }
 
 #[test]

@@ -6,25 +6,7 @@ use crate::common;
 
 use std::path::Path;
 
-use common::{root, spherecontact};
-
-/// Runs `spherecontact` in the crate's folder; (exit code, stdout, stderr).
-fn run(args: &[&str]) -> (i32, String, String) {
-    let output = spherecontact(args, &root());
-    (
-        output.status.code().unwrap(),
-        String::from_utf8_lossy(&output.stdout).into_owned(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
-
-fn text(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn path(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use common::{arg as path, root, run_in_root as run, text};
 
 /// The cases of a verification's printed blocks (`== name (file)`).
 fn cases_run(stdout: &str) -> Vec<&str> {
@@ -96,19 +78,37 @@ fn concurrent_runs_print_and_write_what_a_serial_run_does() {
     assert_eq!(outputs[0], outputs[2]);
 }
 
+/// Two impact cases (a normal impact and a restitution sweep: fast), verified beside the hard
+/// path cases when their label is selected too (docs/impact.md).
+const IMPACT: [&str; 4] = [
+    "cases/impact/chung-ooi-2.toml",
+    "cases/impact/chung-ooi-3.toml",
+    "--label",
+    "impact",
+];
+
 #[test]
 fn three_shards_merged_equal_the_unsharded_run() {
     let dir = tempfile::tempdir().unwrap();
     let d = |name: &str| dir.path().join(name);
     let none = d("no-baselines");
-    let common = [&["verify", "--baselines", path(&none)][..], &FAST[..]].concat();
+    let common = [
+        &["verify", "cases/hard", "--baselines", path(&none)][..],
+        &FAST[..],
+        &IMPACT[..],
+    ]
+    .concat();
     let (code, whole, stderr) = run(&[
         &common[..],
         &["--out", path(&d("whole")), "--junit", path(&d("whole.xml"))],
     ]
     .concat());
     assert_eq!(code, 0, "{whole}{stderr}");
-    let mut runs_in_shards = 0;
+    assert!(
+        whole.contains("== chung-ooi-3") && whole.contains("== hard-"),
+        "{whole}"
+    );
+    let (mut runs_in_shards, mut impact_runs) = (0, 0);
     for k in 1..=3 {
         let shard = format!("{k}/3");
         let out = d(&format!("shard-{k}"));
@@ -116,12 +116,18 @@ fn three_shards_merged_equal_the_unsharded_run() {
         assert_eq!(code, 0, "{stdout}{stderr}");
         let file: serde_json::Value = serde_json::from_str(&text(&out.join("run.json"))).unwrap();
         assert_eq!(file["shard"], shard);
-        let runs = file["runs"].as_array().unwrap().len();
-        assert!(runs > 0, "shard {shard} has no run");
-        runs_in_shards += runs;
+        let runs = file["runs"].as_array().unwrap();
+        assert!(!runs.is_empty(), "shard {shard} has no run");
+        runs_in_shards += runs.len();
+        impact_runs += runs
+            .iter()
+            .filter(|r| r["result"].get("impact").is_some())
+            .count();
     }
     let whole_file: serde_json::Value = serde_json::from_str(&text(&d("whole").join("run.json"))).unwrap();
     assert_eq!(runs_in_shards, whole_file["runs"].as_array().unwrap().len());
+    // Five solvers in each impact case, one run each, every one in exactly one shard.
+    assert_eq!(impact_runs, 10);
     let shards: Vec<String> = (1..=3)
         .map(|k| d(&format!("shard-{k}")).to_str().unwrap().to_owned())
         .collect();
@@ -146,6 +152,11 @@ fn three_shards_merged_equal_the_unsharded_run() {
         text(&d("merged").join("summary.txt")),
         text(&d("whole").join("summary.txt"))
     );
+    assert!(text(&d("whole.xml")).contains("classname=\"chung-ooi-3\""));
+    // The impact report beside the summary, the same from the merge.
+    let report = text(&d("whole").join("impact/report.html"));
+    assert!(report.contains("How far is your DEM code from exact Mindlin–Deresiewicz in impact?"));
+    assert_eq!(text(&d("merged").join("impact/report.html")), report);
     // A shard missing is refused, naming a run it lacks; nothing is written.
     let (code, _, stderr) = run(&[
         "merge",

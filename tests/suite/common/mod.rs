@@ -54,6 +54,35 @@ pub fn assert_success(output: &std::process::Output) {
     );
 }
 
+/// Runs the `spherecontact` command with `args` in the crate's folder: (exit code, stdout,
+/// stderr).
+pub fn run_in_root(args: &[&str]) -> (i32, String, String) {
+    let output = spherecontact(args, &root());
+    (
+        output.status.code().unwrap(),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+/// The text of the file at `path`.
+pub fn text(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// `p` as a command-line argument.
+pub fn arg(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// What a hostile file's header line `# key: value` says (its message must hold the value).
+pub fn header(text: &str, key: &str) -> String {
+    text.lines()
+        .find_map(|l| l.strip_prefix(&format!("# {key}: ")))
+        .unwrap_or_else(|| panic!("no `# {key}:` header"))
+        .to_owned()
+}
+
 /// The crate's folder (where cases/ and reference/ live).
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -253,7 +253,7 @@ fn verified(case: Case, report: bool) -> Option<String> {
     let mut shown = vec![
         ("verify", table::case_block(&run)),
         ("the summary", summary::screen(&run)),
-        ("JUnit", junit::document(std::slice::from_ref(&run))),
+        ("JUnit", junit::document(&[table::suite(&run)])),
     ];
     if report {
         match compare::document(&run) {
