@@ -183,17 +183,15 @@ fn read(plan: &Plan, out: &Path, force: bool) -> Result<ExitCode, InputError> {
             dir.display()
         )));
     }
-    // The manifest before OUT is claimed: the wrong folder is refused with nothing written.
-    split::read_manifest(dir)
-        .and_then(|found| plan.manifest.check_found(&found, dir))
-        .map_err(folder_error)?;
-    let folder = claim(out, force)?;
+    // The folder is read whole before OUT is claimed: a wrong folder or a failed read leaves
+    // nothing written.
     let name = &plan.manifest.solver;
     let history = match split::read_folder(plan.deck(), &plan.case.scene, &plan.manifest, dir) {
         Ok(history) => history,
         Err(FolderError::Run(e)) => return failure(name, &format!("reading {}", dir.display()), e),
-        Err(e) => return Err(folder_error(e)),
+        Err(e) => return Err(InputError(e.to_string())),
     };
+    let folder = claim(out, force)?;
     history_files::write(folder.path(), &history)
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     for warning in &history.metadata.warnings {
@@ -206,11 +204,6 @@ fn read(plan: &Plan, out: &Path, force: bool) -> Result<ExitCode, InputError> {
         out.join(format!("{name}.csv")).display()
     );
     Ok(ExitCode::SUCCESS)
-}
-
-/// A folder that cannot be read back as bad input (exit 2).
-fn folder_error(e: FolderError) -> InputError {
-    InputError(e.to_string())
 }
 
 /// A deck that cannot be written or read: bad input when the deck does not model the case

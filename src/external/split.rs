@@ -104,6 +104,20 @@ pub enum FolderError {
         /// The value of this read.
         expected: String,
     },
+    /// The case's scene is not the one the folder was written for.
+    #[error(
+        "{}: the deck was written for case `{case}` with another scene (its `{key}` differs): the \
+         case changed since; write the deck again",
+        file.display()
+    )]
+    SceneChanged {
+        /// The manifest's path.
+        file: PathBuf,
+        /// The case.
+        case: String,
+        /// The first part of the scene that differs.
+        key: String,
+    },
     /// The run's files are missing or garbage (or the deck does not model the scene).
     #[error("{0}")]
     Run(SolveError),
@@ -158,12 +172,11 @@ impl Manifest {
             ));
         }
         if let Some(key) = first_difference(&found.scene, &self.scene) {
-            return Err(differs(
-                "the scene's",
-                format!("`{key}` of case `{}` as it was then", found.case),
-                "the case file's as it is now (the case changed since the deck was written: write it again)"
-                    .into(),
-            ));
+            return Err(FolderError::SceneChanged {
+                file,
+                case: found.case.clone(),
+                key,
+            });
         }
         Ok((found.spherecontact != self.spherecontact)
             .then(|| {
