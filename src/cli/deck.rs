@@ -88,16 +88,8 @@ impl Plan {
         let solver = case
             .solver(name)
             .filter(|s| s.split_deck().is_some())
-            .ok_or_else(|| {
-                InputError(format!(
-                    "--solver: `{}` is not a deck (allowed: {})",
-                    text::one_line(name),
-                    decks().join(", ")
-                ))
-            })?;
-        let deck = solver
-            .split_deck()
-            .ok_or_else(|| InputError(format!("--solver: `{name}`")))?;
+            .ok_or_else(|| not_a_deck(name))?;
+        let deck = solver.split_deck().ok_or_else(|| not_a_deck(name))?;
         let chosen = case.resolution.get(name).map(String::as_str);
         let manifest = Manifest::new(&options.case, name, chosen, deck, &case.scene);
         Ok(Plan {
@@ -108,12 +100,21 @@ impl Plan {
         })
     }
 
-    /// The deck.
-    fn deck(&self) -> &dyn SplitDeck {
+    /// The deck (the solver is one: [`Plan::new`]).
+    fn deck(&self) -> Result<&dyn SplitDeck, InputError> {
         self.solver
             .split_deck()
-            .expect("a plan's solver is a deck (Plan::new)")
+            .ok_or_else(|| not_a_deck(&self.manifest.solver))
     }
+}
+
+/// The error for a solver `name` that is not a deck.
+fn not_a_deck(name: &str) -> InputError {
+    InputError(format!(
+        "--solver: `{}` is not a deck (allowed: {})",
+        text::one_line(name),
+        decks().join(", ")
+    ))
 }
 
 /// The solvers of this build that are decks.
@@ -150,7 +151,7 @@ fn write(plan: &Plan, force: bool) -> Result<ExitCode, InputError> {
     }
     let folder = claim(dir, force)?;
     let name = &plan.manifest.solver;
-    match split::write_folder(plan.deck(), &plan.case.scene, &plan.manifest, folder.path()) {
+    match split::write_folder(plan.deck()?, &plan.case.scene, &plan.manifest, folder.path()) {
         Ok(files) => {
             println!(
                 "{name} deck of case {} written to {}: {}",
@@ -186,7 +187,7 @@ fn read(plan: &Plan, out: &Path, force: bool) -> Result<ExitCode, InputError> {
     // The folder is read whole before OUT is claimed: a wrong folder or a failed read leaves
     // nothing written.
     let name = &plan.manifest.solver;
-    let history = match split::read_folder(plan.deck(), &plan.case.scene, &plan.manifest, dir) {
+    let history = match split::read_folder(plan.deck()?, &plan.case.scene, &plan.manifest, dir) {
         Ok(history) => history,
         Err(FolderError::Run(e)) => return failure(name, &format!("reading {}", dir.display()), e),
         Err(e) => return Err(InputError(e.to_string())),
