@@ -23,7 +23,7 @@ use crate::external::geo::{self, QuadraticMesh};
 use crate::external::process::Job;
 use crate::external::readback::read_output;
 use crate::external::record::FINITE_BODY;
-use crate::external::split::{LOG_STEM, RUN_ELSEWHERE};
+use crate::external::split::{self, LOG_STEM, RUN_ELSEWHERE};
 use crate::external::surface::{Node, Surface};
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, Metadata, StepResult};
@@ -157,10 +157,7 @@ impl SplitDeck for CcxAxisym {
     }
 
     fn command(&self) -> DeckCommand {
-        let deck = Path::new(CcxAxisymDeck::KIND.file_name);
-        CcxAxisymDeck
-            .job(&self.options.toolchain, deck, Duration::ZERO)
-            .into()
+        split::deck_command(&CcxAxisymDeck, &self.options.toolchain)
     }
 
     fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {

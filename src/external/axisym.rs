@@ -259,10 +259,7 @@ impl<D: Deck<Mesh = MeshFiles> + 'static> SplitDeck for AxisymSolver<D> {
     }
 
     fn command(&self) -> DeckCommand {
-        let deck = Path::new(self.deck.file_name());
-        self.deck
-            .job(&self.options.toolchain, deck, Duration::ZERO)
-            .into()
+        split::deck_command(&self.deck, &self.options.toolchain)
     }
 
     fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {

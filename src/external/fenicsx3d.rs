@@ -367,10 +367,7 @@ impl SplitDeck for Solid3dDeck {
 
     /// `python3 deck3d.py` on one rank, `mpirun -np N python3 deck3d.py` on the case's N.
     fn command(&self) -> DeckCommand {
-        let deck = Path::new(self.deck.file_name());
-        self.deck
-            .job(&self.options.toolchain, deck, Duration::ZERO)
-            .into()
+        split::deck_command(&self.deck, &self.options.toolchain)
     }
 
     fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {

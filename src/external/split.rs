@@ -14,11 +14,13 @@
 //! the solver's own run ([`crate::solver::run`]: rows against the path, finite values).
 
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use super::process::Job;
+use super::deck::Deck;
+use super::toolchain::Toolchain;
 use crate::history::History;
 use crate::scene::Scene;
 use crate::solver::split::{DeckCommand, SplitDeck};
@@ -43,13 +45,14 @@ pub const LOG_STEM: &str = "deck";
 /// The manifest's `format`: what kind of file it is, and its layout's version.
 const FORMAT: &str = "spherecontact deck folder 1";
 
-impl From<Job> for DeckCommand {
-    fn from(job: Job) -> Self {
-        DeckCommand {
-            program: job.program,
-            args: job.args,
-            env: job.env,
-        }
+/// The command that runs `deck`, written into its folder, there: the job of the solver's own run
+/// (`toolchain`'s program, the deck file by its name, the environment), without its time limit.
+pub fn deck_command(deck: &impl Deck, toolchain: &Toolchain) -> DeckCommand {
+    let job = deck.job(toolchain, Path::new(deck.file_name()), Duration::ZERO);
+    DeckCommand {
+        program: job.program,
+        args: job.args,
+        env: job.env,
     }
 }
 

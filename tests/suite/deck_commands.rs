@@ -11,61 +11,17 @@
 
 use std::path::Path;
 
-use spherecontact::external::toolchain::{Tool, Toolchain};
+use spherecontact::external::toolchain::Tool;
 
-use crate::common::{assert_success, spherecontact};
+use crate::common::decks::these_tools_present as present;
+use crate::common::{assert_success, spherecontact, SMALL_CASE};
 
-/// A short frictional path of the paper's spheres: pressed to 17 µm (4 increments), shifted by
-/// 2 µm (4): two contact positions and partial slip, seconds for each axisymmetric deck.
-const CASE: &str = r#"
-name = "deck-commands"
-friction = 0.2
-solvers = ["freefem-axisym"]
-
-[body1]
-radius = 0.1
-young = 70e9
-poisson = 0.3
-
-[path]
-unit = "um"
-delta_n = [0, 17, 17]
-delta_t = [0, 0, 2]
-substeps = [4, 4]
-"#;
-
-/// The normal half of [`CASE`] (ccx-axisym solves the normal contact, one `*STEP` a position:
-/// one position in contact keeps its two runs near 20 s).
-const NORMAL_CASE: &str = r#"
-name = "deck-commands-normal"
-friction = 0.2
-solvers = ["ccx-axisym"]
-
-[body1]
-radius = 0.1
-young = 70e9
-poisson = 0.3
-
-[path]
-unit = "um"
-delta_n = [0, 17]
-delta_t = [0, 0]
-substeps = 4
-"#;
-
-/// True when `tools` all run; otherwise prints why the calling test skips.
-fn present(test: &str, tools: &[Tool]) -> bool {
-    let chain = Toolchain::default();
-    let missing: Vec<String> = tools
-        .iter()
-        .map(|&t| chain.probe(t))
-        .filter(|p| !p.available())
-        .map(|p| p.line())
-        .collect();
-    if !missing.is_empty() {
-        eprintln!("{test}: skipped (run scripts/setup.sh):\n{}", missing.join("\n"));
-    }
-    missing.is_empty()
+/// The normal half of the small case (ccx-axisym solves the normal contact, one `*STEP` a
+/// position).
+fn normal_case() -> String {
+    let frictional = "delta_n = [0, 10, 10]\ndelta_t = [0, 0, 1]";
+    assert!(SMALL_CASE.contains(frictional));
+    SMALL_CASE.replace(frictional, "delta_n = [0, 10]\ndelta_t = [0, 0]")
 }
 
 /// The text of a file.
@@ -197,14 +153,14 @@ fn stored_results_are_read(work: &Path, case_text: &str, solver: &str) {
 #[test]
 fn freefem_axisym_written_run_and_read_back_equals_its_own_run() {
     if present("freefem", &[Tool::Gmsh, Tool::FreeFem, Tool::Meshio]) {
-        round_trip(CASE, "freefem-axisym", "c/10");
+        round_trip(SMALL_CASE, "freefem-axisym", "c/10");
     }
 }
 
 #[test]
 fn fenicsx_axisym_written_run_and_read_back_equals_its_own_run() {
     if present("fenicsx", &[Tool::Gmsh, Tool::Dolfinx, Tool::Meshio]) {
-        round_trip(CASE, "fenicsx-axisym", "c/10");
+        round_trip(SMALL_CASE, "fenicsx-axisym", "c/10");
     }
 }
 
@@ -212,7 +168,7 @@ fn fenicsx_axisym_written_run_and_read_back_equals_its_own_run() {
 #[ignore] // heavy: ccx twice (13 s CPU, 50 s wall on a shared machine); `cargo test --test suite deck_commands:: -- --ignored`
 fn ccx_axisym_written_run_and_read_back_equals_its_own_run() {
     if present("ccx", &[Tool::Gmsh, Tool::Ccx]) {
-        round_trip(NORMAL_CASE, "ccx-axisym", "c/10");
+        round_trip(&normal_case(), "ccx-axisym", "c/10");
     }
 }
 
@@ -220,7 +176,7 @@ fn ccx_axisym_written_run_and_read_back_equals_its_own_run() {
 #[ignore] // heavy: the 3D deck twice on its coarsest mesh (minutes); `cargo test --test suite deck_commands:: -- --ignored`
 fn fenicsx_3d_written_run_and_read_back_equals_its_own_run() {
     if present("fenicsx-3d", &[Tool::Gmsh, Tool::Dolfinx]) {
-        round_trip(NORMAL_CASE, "fenicsx-3d", "c/5");
+        round_trip(&normal_case(), "fenicsx-3d", "c/5");
     }
 }
 
@@ -235,7 +191,7 @@ fn failed(output: &std::process::Output) -> (Option<i32>, String) {
 #[test]
 fn a_solver_that_is_not_a_deck_exits_2_naming_the_decks_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
+    std::fs::write(dir.path().join("case.toml"), SMALL_CASE).unwrap();
     for name in ["bem", "no-such-solver"] {
         for action in ["write", "read"] {
             let output = spherecontact(
@@ -253,13 +209,13 @@ fn a_solver_that_is_not_a_deck_exits_2_naming_the_decks_and_writes_nothing() {
     }
 }
 
-/// A folder written by `deck write` for [`CASE`], freefem-axisym at c/10 (gmsh only).
+/// A folder written by `deck write` for [`SMALL_CASE`], freefem-axisym at c/10 (gmsh only).
 fn written_folder(work: &Path) -> bool {
     if !present("deck write", &[Tool::Gmsh]) {
         return false;
     }
     std::fs::create_dir_all(work).unwrap();
-    std::fs::write(work.join("case.toml"), CASE).unwrap();
+    std::fs::write(work.join("case.toml"), SMALL_CASE).unwrap();
     let output = spherecontact(
         &[
             "deck",
@@ -286,7 +242,7 @@ fn a_folder_written_for_another_solver_resolution_or_scene_is_refused_with_nothi
     }
     std::fs::write(
         work.join("changed.toml"),
-        CASE.replace("friction = 0.2", "friction = 0.3"),
+        SMALL_CASE.replace("friction = 0.2", "friction = 0.3"),
     )
     .unwrap();
     let reads: [(&[&str], &str); 4] = [
@@ -374,7 +330,7 @@ fn a_folder_written_for_another_solver_resolution_or_scene_is_refused_with_nothi
 fn deck_write_refuses_a_folder_that_is_not_empty_and_leaves_it_as_it_was() {
     let dir = tempfile::tempdir().unwrap();
     let work = dir.path();
-    std::fs::write(work.join("case.toml"), CASE).unwrap();
+    std::fs::write(work.join("case.toml"), SMALL_CASE).unwrap();
     std::fs::create_dir(work.join("deck")).unwrap();
     std::fs::write(work.join("deck/steps.csv"), "an earlier run's results").unwrap();
     let output = spherecontact(
