@@ -209,6 +209,15 @@ fn a_solver_that_is_not_a_deck_exits_2_naming_the_decks_and_writes_nothing() {
     }
 }
 
+/// The case, the deck and its resolution of [`written_folder`].
+const WRITTEN: [&str; 5] = [
+    "case.toml",
+    "--solver",
+    "freefem-axisym",
+    "--resolution",
+    "freefem-axisym=c/10",
+];
+
 /// A folder written by `deck write` for [`SMALL_CASE`], freefem-axisym at c/10 (gmsh only).
 fn written_folder(work: &Path) -> bool {
     if !present("deck write", &[Tool::Gmsh]) {
@@ -216,19 +225,7 @@ fn written_folder(work: &Path) -> bool {
     }
     std::fs::create_dir_all(work).unwrap();
     std::fs::write(work.join("case.toml"), SMALL_CASE).unwrap();
-    let output = spherecontact(
-        &[
-            "deck",
-            "write",
-            "case.toml",
-            "--solver",
-            "freefem-axisym",
-            "deck",
-            "--resolution",
-            "freefem-axisym=c/10",
-        ],
-        work,
-    );
+    let output = spherecontact(&[&["deck", "write"], &WRITTEN[..], &["deck"]].concat(), work);
     assert_success(&output);
     true
 }
@@ -294,15 +291,7 @@ fn a_folder_written_for_another_solver_resolution_or_scene_is_refused_with_nothi
         );
         assert!(!work.join("out").exists(), "{stderr}");
     }
-    let args = [
-        "deck",
-        "read",
-        "case.toml",
-        "--solver",
-        "freefem-axisym",
-        "--resolution",
-        "freefem-axisym=c/10",
-    ];
+    let args = [&["deck", "read"], &WRITTEN[..]].concat();
     for (manifest, expected) in [
         ("{\"format\": 1", "not a deck manifest"),
         ("{}", "not a deck manifest"),
@@ -362,18 +351,7 @@ fn a_truncated_or_missing_result_file_fails_naming_it_with_nothing_written() {
     if !present("truncated", &[Tool::FreeFem, Tool::Meshio]) || !written_folder(work) {
         return;
     }
-    let args = [
-        "deck",
-        "read",
-        "case.toml",
-        "--solver",
-        "freefem-axisym",
-        "--resolution",
-        "freefem-axisym=c/10",
-        "deck",
-        "--out",
-        "out",
-    ];
+    let args = [&["deck", "read"], &WRITTEN[..], &["deck", "--out", "out"]].concat();
     // Not run yet: no steps.csv.
     let (code, stderr) = failed(&spherecontact(&args, work));
     assert_eq!(code, Some(1), "{stderr}");
