@@ -10,6 +10,7 @@ use std::process::ExitCode;
 mod cli;
 
 use clap::{Parser, Subcommand};
+use cli::deck::{deck, DeckAction};
 use cli::report::{bench, report, Report};
 use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
@@ -121,6 +122,12 @@ enum Command {
     Baseline {
         #[command(subcommand)]
         action: BaselineAction,
+    },
+    /// An external deck run elsewhere (a cluster): `deck write` writes it into a folder,
+    /// `deck read` reads its finished run back (docs/external-decks.md, "On a cluster").
+    Deck {
+        #[command(subcommand)]
+        action: DeckAction,
     },
     /// Write the gmsh geometry of a case's scene and mesh it (MSH 4.1 and FreeFEM's MSH 2.2).
     Mesh {
@@ -279,6 +286,7 @@ fn main() -> ExitCode {
                 },
         } => update_baselines(cases, &baselines, jobs, roots, &commands),
         Command::Slurm(args) => slurm(args, roots),
+        Command::Deck { action } => deck(action, roots),
         Command::Mesh {
             case,
             resolution,

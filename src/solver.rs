@@ -4,6 +4,8 @@
 //! Every solver — closed form, incremental law, boundary elements, finite elements, or an
 //! external program — takes a [`Scene`] and returns a [`History`] with one row per path step.
 
+pub mod split;
+
 use std::time::Instant;
 
 use crate::history::{History, Quantity};
@@ -77,6 +79,12 @@ pub trait Solver: Send + Sync {
     /// The same solver writing its volume or surface fields as VTU files (for ParaView) into
     /// `dir`; `None` for solvers without such fields.
     fn writing_fields_to(&self, _dir: &std::path::Path) -> Option<Box<dyn Solver>> {
+        None
+    }
+
+    /// The solver as a deck that can be written into a folder, run elsewhere and read back
+    /// (`spherecontact deck write|read`, [`split`]); `None` for the others.
+    fn split_deck(&self) -> Option<&dyn split::SplitDeck> {
         None
     }
 
@@ -212,6 +220,10 @@ impl Solver for Resolved {
 
     fn cores(&self) -> usize {
         self.inner.cores()
+    }
+
+    fn split_deck(&self) -> Option<&dyn split::SplitDeck> {
+        self.inner.split_deck()
     }
 
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {

@@ -23,12 +23,14 @@ use crate::external::geo::{self, QuadraticMesh};
 use crate::external::process::Job;
 use crate::external::readback::read_output;
 use crate::external::record::FINITE_BODY;
+use crate::external::split::{self, LOG_STEM, RUN_ELSEWHERE};
 use crate::external::surface::{Node, Surface};
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, Metadata, StepResult};
 use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
+use crate::solver::split::{DeckCommand, SplitDeck};
 use crate::solver::{SolveError, Solver};
 use inp::{DeckSpec, PositionStep};
 
@@ -117,6 +119,63 @@ struct Run {
     wall_s: [f64; 3],
 }
 
+/// The meridian mesh a deck is written on, and the path positions it computes.
+struct Meshed {
+    meridian: crate::fem::mesh::meridian::Mesh,
+    positions: Vec<PositionStep>,
+    /// gmsh's wall time [s] (0 for a mesh read from a folder).
+    wall_s: f64,
+}
+
+impl Meshed {
+    /// The mesh of `mesh` (gmsh's files) and the positions of `plan`.
+    fn read(mesh: &QuadraticMesh, plan: &Plan) -> Result<Self, SolveError> {
+        let meridian = crate::fem::mesh::msh::read(&mesh.msh41)
+            .map_err(|e| SolveError::Failed(format!("reading gmsh's mesh {}: {e}", mesh.msh41.display())))?;
+        let positions = plan
+            .steps
+            .iter()
+            .filter_map(|s| {
+                s.position.map(|position| PositionStep {
+                    position,
+                    step: s.step,
+                    d: s.d,
+                })
+            })
+            .collect();
+        Ok(Self {
+            meridian,
+            positions,
+            wall_s: mesh.wall_s,
+        })
+    }
+}
+
+impl SplitDeck for CcxAxisym {
+    fn settings(&self, scene: &Scene) -> serde_json::Value {
+        json!({ "pole_element_m": self.pole_size(scene), "calculix": self.settings.describe() })
+    }
+
+    fn command(&self) -> DeckCommand {
+        split::deck_command(&CcxAxisymDeck, &self.options.toolchain)
+    }
+
+    fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
+        axisym::applicable(scene)?;
+        let h = self.pole_size(scene);
+        self.write_in(scene, h, &Plan::of(scene, h), dir).map(drop)
+    }
+
+    fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
+        axisym::applicable(scene)?;
+        let h = self.pole_size(scene);
+        let plan = Plan::of(scene, h);
+        let meshed = Meshed::read(&QuadraticMesh::in_folder(dir)?, &plan)?;
+        let run = self.read_in(scene, h, &plan, &meshed, dir)?;
+        Ok(self.history(scene, RUN_ELSEWHERE, &plan, h, &run))
+    }
+}
+
 impl Solver for CcxAxisym {
     fn name(&self) -> &str {
         NAME
@@ -144,6 +203,10 @@ impl Solver for CcxAxisym {
             .collect()
     }
 
+    fn split_deck(&self) -> Option<&dyn SplitDeck> {
+        Some(self)
+    }
+
     fn with_calculix(&self, settings: &Settings) -> Option<Box<dyn Solver>> {
         Some(Box::new(Self {
             settings: *settings,
@@ -155,10 +218,7 @@ impl Solver for CcxAxisym {
         axisym::applicable(scene)?;
         let toolchain = &self.options.toolchain;
         let version = toolchain.require(Tool::Ccx).map_err(SolveError::Unavailable)?;
-        let resolution = self
-            .options
-            .resolution
-            .unwrap_or_else(|| geo::default_resolution(scene));
+        let resolution = self.pole_size(scene);
         let plan = Plan::of(scene, resolution);
         let run = deck::in_run_dir("spherecontact-ccx-axisym-", |dir| {
             self.run_in(scene, resolution, &plan, dir)
@@ -168,52 +228,81 @@ impl Solver for CcxAxisym {
 }
 
 impl CcxAxisym {
-    /// Meshes, writes and runs the deck, and reads back, in `dir`.
+    /// The pole element size [m]: the option's, or [`geo::default_resolution`].
+    fn pole_size(&self, scene: &Scene) -> f64 {
+        self.options
+            .resolution
+            .unwrap_or_else(|| geo::default_resolution(scene))
+    }
+
+    /// Writes, runs the deck and reads back, in `dir`: the one path of the in-process run and of
+    /// a deck written and read apart ([`SplitDeck`]).
     fn run_in(&self, scene: &Scene, h: f64, plan: &Plan, dir: &RunDir) -> Result<Run, SolveError> {
-        let toolchain = &self.options.toolchain;
-        let mesh = geo::mesh_quadratic(scene, h, dir.path(), toolchain)?;
-        let meridian = crate::fem::mesh::msh::read(&mesh.msh41)
-            .map_err(|e| SolveError::Failed(format!("reading gmsh's mesh: {e}")))?;
-        let positions: Vec<PositionStep> = plan
-            .steps
-            .iter()
-            .filter_map(|s| {
-                s.position.map(|position| PositionStep {
-                    position,
-                    step: s.step,
-                    d: s.d,
-                })
-            })
-            .collect();
-        let spec = DeckSpec {
-            scene: &scene.name,
-            domain: scene.domain.describe(),
-            mesh: &meridian,
-            young: scene.pair.body1.material.young,
-            poisson: scene.pair.body1.material.poisson,
-            h,
-            grip: plan.grip,
-            candidate_radius: plan.candidate_radius,
-            settings: self.settings,
-            positions: &positions,
-        };
+        let meshed = self.write_in(scene, h, plan, dir.path())?;
+        let timeout = self
+            .options
+            .timeout
+            .unwrap_or(BUDGET.limit(meshed.positions.len()));
+        let run = deck::run_written(&CcxAxisymDeck, &self.options.toolchain, dir.path(), timeout)?;
+        let mut read = self.read_in(scene, h, plan, &meshed, dir.path())?;
+        read.wall_s[..2].copy_from_slice(&[meshed.wall_s, run.wall_s]);
+        Ok(read)
+    }
+
+    /// Meshes the scene into `dir` and writes the deck and its list of steps there.
+    fn write_in(&self, scene: &Scene, h: f64, plan: &Plan, dir: &Path) -> Result<Meshed, SolveError> {
+        let mesh = geo::mesh_quadratic(scene, h, dir, &self.options.toolchain)?;
+        let meshed = Meshed::read(&mesh, plan)?;
         let text = match &self.options.deck_text {
             Some(text) => text.clone(),
-            None => spec.text().map_err(SolveError::Failed)?,
+            None => self
+                .spec(scene, h, plan, &meshed)
+                .text()
+                .map_err(SolveError::Failed)?,
         };
-        let timeout = self.options.timeout.unwrap_or(BUDGET.limit(positions.len()));
-        let run = deck::launch(&CcxAxisymDeck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
-        if let Some(error) = run.stdout.lines().position(|l| l.contains("*ERROR")) {
-            let lines: Vec<&str> = run.stdout.lines().skip(error).take(6).collect();
+        deck::write_deck(&CcxAxisymDeck, dir, &text, &plan.steps)?;
+        Ok(meshed)
+    }
+
+    /// Reads back the run the deck finished in `dir` on `meshed` (its reading time; meshing and
+    /// solving left at zero); writes nothing into `dir`. ccx exits with code 0 after some
+    /// errors: its stdout (`deck.stdout`, where the run logged it) is searched for `*ERROR`.
+    fn read_in(
+        &self,
+        scene: &Scene,
+        h: f64,
+        plan: &Plan,
+        meshed: &Meshed,
+        dir: &Path,
+    ) -> Result<Run, SolveError> {
+        let stdout = read_output(dir, &format!("{LOG_STEM}.stdout")).map_err(SolveError::Failed)?;
+        if let Some(error) = stdout.lines().position(|l| l.contains("*ERROR")) {
+            let lines: Vec<&str> = stdout.lines().skip(error).take(6).collect();
             return Err(SolveError::Failed(format!(
                 "ccx reported an error and exited with code 0: {}",
                 lines.join("\n")
             )));
         }
         let start = Instant::now();
-        let mut read = read_back(dir.path(), &spec).map_err(SolveError::Failed)?;
-        read.wall_s = [mesh.wall_s, run.wall_s, start.elapsed().as_secs_f64()];
+        let mut read = read_back(dir, &self.spec(scene, h, plan, meshed)).map_err(SolveError::Failed)?;
+        read.wall_s[2] = start.elapsed().as_secs_f64();
         Ok(read)
+    }
+
+    /// The deck of `scene` at pole size `h` on the mesh `meshed`.
+    fn spec<'a>(&self, scene: &'a Scene, h: f64, plan: &Plan, meshed: &'a Meshed) -> DeckSpec<'a> {
+        DeckSpec {
+            scene: &scene.name,
+            domain: scene.domain.describe(),
+            mesh: &meshed.meridian,
+            young: scene.pair.body1.material.young,
+            poisson: scene.pair.body1.material.poisson,
+            h,
+            grip: plan.grip,
+            candidate_radius: plan.candidate_radius,
+            settings: self.settings,
+            positions: &meshed.positions,
+        }
     }
 
     /// One row per path step (values at the positions), the fields, the metadata.

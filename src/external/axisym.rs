@@ -10,12 +10,16 @@
 //! step of the path with history. Different spheres, or a sphere on a flat, are not modelled
 //! (`NotApplicable`).
 
+use std::path::Path;
 use std::time::{Duration, Instant};
+
+use serde_json::json;
 
 use super::deck::{self, ComputedStep, Deck, DeckInput, RunDir, TimeBudget};
 use super::geo::{self, MeshFiles};
 use super::readback::{self, DeckRow};
 use super::record::{self, Run};
+use super::split;
 use super::surface::{self, Surface};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
@@ -23,6 +27,7 @@ use crate::history::History;
 use crate::limits::MERIDIAN_POLE;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
+use crate::solver::split::{DeckCommand, SplitDeck};
 use crate::solver::{SolveError, Solver};
 
 /// Penalty factor: k = KFAC · E / h, normal and tangential. Reason: at 1e3 the penetration at the
@@ -156,6 +161,10 @@ impl<D: Deck<Mesh = MeshFiles> + 'static> Solver for AxisymSolver<D> {
         self.deck.description()
     }
 
+    fn split_deck(&self) -> Option<&dyn SplitDeck> {
+        Some(self)
+    }
+
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         applicable(scene)?;
         let toolchain = &self.options.toolchain;
@@ -163,10 +172,7 @@ impl<D: Deck<Mesh = MeshFiles> + 'static> Solver for AxisymSolver<D> {
             .require(self.deck.tool())
             .map_err(SolveError::Unavailable)?;
         toolchain.require(Tool::Meshio).map_err(SolveError::Unavailable)?;
-        let resolution = self
-            .options
-            .resolution
-            .unwrap_or_else(|| geo::default_resolution(scene));
+        let resolution = self.pole_size(scene);
         let plan = Plan::of(scene, resolution);
         let run = deck::in_run_dir(&format!("spherecontact-{}-", self.deck.name()), |dir| {
             self.run_in(scene, resolution, &plan, dir)
@@ -184,14 +190,35 @@ impl<D: Deck<Mesh = MeshFiles>> AxisymSolver<D> {
         }
     }
 
-    /// Meshes, runs the deck and reads back, in `dir`.
+    /// The pole element size [m]: the option's, or [`geo::default_resolution`].
+    fn pole_size(&self, scene: &Scene) -> f64 {
+        self.options
+            .resolution
+            .unwrap_or_else(|| geo::default_resolution(scene))
+    }
+
+    /// Writes, runs the deck and reads back, in `dir`: the one path of the in-process run and of
+    /// a deck written and read apart ([`SplitDeck`]).
     fn run_in(&self, scene: &Scene, resolution: f64, plan: &Plan, dir: &RunDir) -> Result<Run, SolveError> {
-        let toolchain = &self.options.toolchain;
-        let mesh = geo::mesh(scene, resolution, dir.path(), toolchain)?;
-        let mut timing = Timing {
-            meshing_s: mesh.wall_s,
-            ..Timing::default()
-        };
+        let mesh = self.write_in(scene, resolution, plan, dir.path())?;
+        let meshing_s = mesh.wall_s;
+        let timeout = self.options.timeout.unwrap_or(BUDGET.limit(plan.steps.len()));
+        let run = deck::run_written(&self.deck, &self.options.toolchain, dir.path(), timeout)?;
+        let mut read = self.read_in(scene, plan, mesh, dir.path())?;
+        read.timing.meshing_s = meshing_s;
+        read.timing.solving_s = run.wall_s;
+        Ok(read)
+    }
+
+    /// Meshes the scene into `dir` and writes the deck and its list of steps there: the mesh.
+    fn write_in(
+        &self,
+        scene: &Scene,
+        resolution: f64,
+        plan: &Plan,
+        dir: &Path,
+    ) -> Result<MeshFiles, SolveError> {
+        let mesh = geo::mesh(scene, resolution, dir, &self.options.toolchain)?;
         let max_iterations = self.options.max_iterations.unwrap_or(MAX_ITERATIONS);
         let input = deck_input(&self.deck, scene, resolution, plan, &mesh, max_iterations);
         let text = self
@@ -199,23 +226,64 @@ impl<D: Deck<Mesh = MeshFiles>> AxisymSolver<D> {
             .deck_text
             .clone()
             .unwrap_or_else(|| deck::fill(self.deck.template(), &input));
-        let timeout = self.options.timeout.unwrap_or(BUDGET.limit(plan.steps.len()));
-        let run = deck::launch(&self.deck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
-        timing.solving_s = run.wall_s;
+        deck::write_deck(&self.deck, dir, &text, &plan.steps)?;
+        Ok(mesh)
+    }
+
+    /// Reads back the run the deck finished in `dir` on `mesh` (its reading time; meshing and
+    /// solving left at zero); writes nothing into `dir`.
+    fn read_in(&self, scene: &Scene, plan: &Plan, mesh: MeshFiles, dir: &Path) -> Result<Run, SolveError> {
         let start = Instant::now();
+        let radius_mm = scene.pair.body1.radius * 1e3;
         let (rows, surfaces) =
-            read_back(dir, plan, input.radius_mm, toolchain).map_err(SolveError::Failed)?;
-        timing.reading_s = start.elapsed().as_secs_f64();
-        let deck_clock = readback::read_output(dir.path(), "timing.csv")
+            read_back(dir, plan, radius_mm, &self.options.toolchain).map_err(SolveError::Failed)?;
+        let deck_clock = readback::read_output(dir, "timing.csv")
             .map(|t| readback::parse_timing(&t))
             .unwrap_or((None, None));
         Ok(Run {
             rows,
             surfaces,
             mesh,
-            timing,
+            timing: Timing {
+                reading_s: start.elapsed().as_secs_f64(),
+                ..Timing::default()
+            },
             deck_clock,
         })
+    }
+}
+
+impl<D: Deck<Mesh = MeshFiles> + 'static> SplitDeck for AxisymSolver<D> {
+    fn settings(&self, scene: &Scene) -> serde_json::Value {
+        json!({ "pole_element_m": self.pole_size(scene) })
+    }
+
+    fn command(&self) -> DeckCommand {
+        split::deck_command(&self.deck, &self.options.toolchain)
+    }
+
+    fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
+        applicable(scene)?;
+        let resolution = self.pole_size(scene);
+        self.write_in(scene, resolution, &Plan::of(scene, resolution), dir)
+            .map(drop)
+    }
+
+    fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
+        applicable(scene)?;
+        let toolchain = &self.options.toolchain;
+        toolchain.require(Tool::Meshio).map_err(SolveError::Unavailable)?;
+        let resolution = self.pole_size(scene);
+        let plan = Plan::of(scene, resolution);
+        let mesh = MeshFiles::in_folder(dir, resolution)?;
+        let run = self.read_in(scene, &plan, mesh, dir)?;
+        Ok(record::history(
+            &self.deck,
+            scene,
+            split::RUN_ELSEWHERE,
+            &plan,
+            &run,
+        ))
     }
 }
 
@@ -253,14 +321,14 @@ pub(crate) fn deck_input<D: Deck>(
 /// Reads steps.csv and surface.csv, and checks the field files through meshio against the nodal
 /// pressures (the same numbers, written twice: a field file that disagrees is garbage).
 fn read_back(
-    dir: &RunDir,
+    dir: &Path,
     plan: &Plan,
     radius_mm: f64,
     toolchain: &Toolchain,
 ) -> Result<(Vec<DeckRow>, Vec<Surface>), String> {
-    let rows = readback::parse_steps(&readback::read_output(dir.path(), "steps.csv")?, &plan.steps)?;
+    let rows = readback::parse_steps(&readback::read_output(dir, "steps.csv")?, &plan.steps)?;
     let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
-    let surfaces = surface::parse_surface(&readback::read_output(dir.path(), "surface.csv")?, &indices)?;
+    let surfaces = surface::parse_surface(&readback::read_output(dir, "surface.csv")?, &indices)?;
     if let Some(s) = surfaces.iter().find(|s| s.edge_loaded()) {
         return Err(format!(
             "step {}: the contact reached the outermost candidate node (r = {:e} m): the candidate \
@@ -282,8 +350,7 @@ fn read_back(
         return Err("steps.csv: a path position has no field file".into());
     }
     let window_mm = plan.candidate_radius * 1e3;
-    let profiles =
-        readback::read_profiles(dir.path(), &files, radius_mm, window_mm, toolchain, BUDGET.start)?;
+    let profiles = readback::read_profiles(dir, &files, radius_mm, window_mm, toolchain, BUDGET.start)?;
     for ((file, profile), (_, surface)) in files.iter().zip(&profiles).zip(&at_positions) {
         record::check_field_file(file, profile, surface)?;
     }

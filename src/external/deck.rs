@@ -236,8 +236,20 @@ pub fn launch(
     timeout: Duration,
 ) -> Result<Run, SolveError> {
     write_deck(deck, dir, text, steps)?;
+    run_written(deck, toolchain, dir, timeout)
+}
+
+/// Runs the deck already written into `dir` ([`write_deck`]) there within `timeout`, and returns
+/// the finished run; a run that failed (exit code, signal, timeout) is an error with the reason
+/// and the last lines of its log.
+pub fn run_written(
+    deck: &impl Deck,
+    toolchain: &Toolchain,
+    dir: &Path,
+    timeout: Duration,
+) -> Result<Run, SolveError> {
     let job = deck.job(toolchain, &dir.join(deck.file_name()), timeout);
-    let run = super::process::run(&job, dir, "deck")
+    let run = super::process::run(&job, dir, super::split::LOG_STEM)
         .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
     match failure(deck, &run.ending, timeout) {
         Some(why) => Err(SolveError::Failed(format!(

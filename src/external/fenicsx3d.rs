@@ -17,6 +17,7 @@ use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};
 use super::solid_geo::{self, SolidMeshFiles, Zones};
+use super::split;
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
@@ -24,6 +25,7 @@ use crate::history::{History, Metadata, StepResult};
 use crate::limits::SOLID_POLE;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
+use crate::solver::split::{DeckCommand, SplitDeck};
 use crate::solver::{SolveError, Solver};
 
 /// The solver name.
@@ -183,6 +185,7 @@ impl Solid3dDeck {
     /// cluster") into the existing folder `dir`, without running it: `body.geo`, `body.msh`,
     /// `deck3d.py` and `path.txt`.
     pub fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
+        applicable(scene)?;
         let (resolution, plan) = self.plan(scene);
         let (text, _) = self.prepare(scene, &plan, resolution, dir)?;
         deck::write_deck(&self.deck, dir, &text, &plan.steps)
@@ -202,6 +205,7 @@ impl Solid3dDeck {
     /// directory's `path.txt` must list `scene`'s computed steps; the pole size is this solver's
     /// (its resolution option, or the default), for the metadata and the edge check.
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
+        applicable(scene)?;
         let (resolution, plan) = self.plan(scene);
         let listed = readback::read_output(dir, PATH_FILE).map_err(SolveError::Failed)?;
         if listed != deck::path_file(&plan.steps) {
@@ -217,7 +221,7 @@ impl Solid3dDeck {
             .iter()
             .find(|(phase, _)| phase == "ranks")
             .map_or(self.deck.ranks, |(_, n)| n.round() as u32);
-        let mut history = history(scene, "(run elsewhere)", &plan, &run, ranks);
+        let mut history = history(scene, split::RUN_ELSEWHERE, &plan, &run, ranks);
         history.metadata.solver = NAME.into();
         Ok(history)
     }
@@ -312,21 +316,12 @@ impl Solver for Solid3dDeck {
         }))
     }
 
+    fn split_deck(&self) -> Option<&dyn SplitDeck> {
+        Some(self)
+    }
+
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
-        if !scene.pair.is_symmetric() || !scene.pair.body1.radius.is_finite() {
-            return Err(SolveError::NotApplicable(
-                "the 3D deck models two identical spheres through their symmetry plane; different \
-                 spheres or a sphere on a flat are not modelled"
-                    .into(),
-            ));
-        }
-        if scene.domain.grip != Grip::Rigid {
-            return Err(SolveError::NotApplicable(
-                "the 3D deck grips the far face rigidly (every component follows the approach and \
-                 shift); the axial grip is not modelled"
-                    .into(),
-            ));
-        }
+        applicable(scene)?;
         let toolchain = &self.options.toolchain;
         let version = toolchain
             .require(Tool::Dolfinx)
@@ -341,6 +336,46 @@ impl Solver for Solid3dDeck {
             self.run_in(scene, &plan, resolution, dir)
         })?;
         Ok(history(scene, &version, &plan, &run, self.deck.ranks))
+    }
+}
+
+/// `NotApplicable` unless the scene is two identical finite spheres held rigidly (the model).
+fn applicable(scene: &Scene) -> Result<(), SolveError> {
+    if !scene.pair.is_symmetric() || !scene.pair.body1.radius.is_finite() {
+        return Err(SolveError::NotApplicable(
+            "the 3D deck models two identical spheres through their symmetry plane; different \
+             spheres or a sphere on a flat are not modelled"
+                .into(),
+        ));
+    }
+    if scene.domain.grip != Grip::Rigid {
+        return Err(SolveError::NotApplicable(
+            "the 3D deck grips the far face rigidly (every component follows the approach and \
+             shift); the axial grip is not modelled"
+                .into(),
+        ));
+    }
+    Ok(())
+}
+
+/// The 3D deck written and read apart: its inherent [`Solid3dDeck::write_run`] and
+/// [`Solid3dDeck::read_run`].
+impl SplitDeck for Solid3dDeck {
+    fn settings(&self, scene: &Scene) -> serde_json::Value {
+        json!({ "pole_element_m": self.plan(scene).0 })
+    }
+
+    /// `python3 deck3d.py` on one rank, `mpirun -np N python3 deck3d.py` on the case's N.
+    fn command(&self) -> DeckCommand {
+        split::deck_command(&self.deck, &self.options.toolchain)
+    }
+
+    fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
+        Solid3dDeck::write_run(self, scene, dir)
+    }
+
+    fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
+        Solid3dDeck::read_run(self, scene, dir)
     }
 }
 

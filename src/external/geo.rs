@@ -194,6 +194,53 @@ pub struct QuadraticMesh {
 /// files' names, never paths relative to the caller's folder.
 const GEO_NAME: &str = "mesh.geo";
 
+/// The quadratic MSH 4.1 file's name in the mesh folder.
+const MSH41_NAME: &str = "mesh.msh";
+
+/// FreeFEM's first-order MSH 2.2 file's name in the mesh folder.
+const MSH22_MM_NAME: &str = "mesh_p1_mm.msh";
+
+/// A mesh file that [`mesh`] or [`mesh_quadratic`] wrote into `dir`, if it is there.
+fn found(dir: &Path, name: &str) -> Result<PathBuf, SolveError> {
+    let file = dir.join(name);
+    match file.is_file() {
+        true => Ok(file),
+        false => Err(SolveError::Failed(format!(
+            "{}: mesh file missing (the folder is not the one the deck was written into)",
+            file.display()
+        ))),
+    }
+}
+
+impl QuadraticMesh {
+    /// The files [`mesh_quadratic`] wrote into `dir` earlier, as found there (gmsh's wall time
+    /// 0: not meshed now).
+    pub fn in_folder(dir: &Path) -> Result<Self, SolveError> {
+        Ok(Self {
+            geo: found(dir, GEO_NAME)?,
+            msh41: found(dir, MSH41_NAME)?,
+            wall_s: 0.0,
+        })
+    }
+}
+
+impl MeshFiles {
+    /// The files [`mesh`] wrote into `dir` earlier at pole size `resolution`, as found there
+    /// (gmsh's wall time 0: not meshed now).
+    pub fn in_folder(dir: &Path, resolution: f64) -> Result<Self, SolveError> {
+        let quadratic = QuadraticMesh::in_folder(dir)?;
+        let msh22_mm = found(dir, MSH22_MM_NAME)?;
+        Ok(Self {
+            geo: quadratic.geo,
+            msh41: quadratic.msh41,
+            triangles: triangle_count(&msh22_mm),
+            msh22_mm,
+            resolution,
+            wall_s: 0.0,
+        })
+    }
+}
+
 /// Writes `<dir>/mesh.geo` for the scene and runs gmsh for the quadratic MSH 4.1 file only: what
 /// fem-axisym reads (the decks take [`mesh`], which adds FreeFEM's copy).
 pub fn mesh_quadratic(
@@ -206,7 +253,7 @@ pub fn mesh_quadratic(
     let geo = dir.join(GEO_NAME);
     std::fs::write(&geo, geo_for_scene(scene, resolution)?)
         .map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
-    let (msh41, wall_s) = mesh_2d(toolchain, dir, &["-order", "2", "-format", "msh41"], "mesh.msh")?;
+    let (msh41, wall_s) = mesh_2d(toolchain, dir, &["-order", "2", "-format", "msh41"], MSH41_NAME)?;
     Ok(QuadraticMesh { geo, msh41, wall_s })
 }
 
@@ -227,7 +274,7 @@ pub fn mesh(
         "Mesh.ScalingFactor",
         "1000",
     ];
-    let (msh22_mm, linear_s) = mesh_2d(toolchain, dir, &linear_mm, "mesh_p1_mm.msh")?;
+    let (msh22_mm, linear_s) = mesh_2d(toolchain, dir, &linear_mm, MSH22_MM_NAME)?;
     let triangles = triangle_count(&msh22_mm);
     Ok(MeshFiles {
         geo: quadratic.geo,

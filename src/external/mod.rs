@@ -14,6 +14,7 @@
 //! - [`readback`]: the decks' per-step CSV and the field files through meshio;
 //! - [`surface`]: the contact line's nodal state at every step, and what is measured from it;
 //! - [`fenicsx3d`]: the 3D deck under MPI (heavy), [`surface3d`]: its contact surface read back;
+//! - [`split`]: a deck's folder for a run elsewhere (`deck write|read`: manifest, README, script);
 //! - [`calculix`]: the CalculiX deck `ccx-axisym` (its `.inp` writer, `.dat`/`.frd` reader, settings).
 //!
 //! Install the tools with `scripts/setup.sh`. A missing tool makes the solver
@@ -35,6 +36,7 @@ pub mod program;
 pub mod readback;
 pub mod record;
 pub mod solid_geo;
+pub mod split;
 pub mod stored;
 pub mod surface;
 pub mod surface3d;

@@ -181,8 +181,26 @@ fn parse_row(record: &csv::StringRecord) -> Result<DeckRow, String> {
         iterations_normal: count(6)?,
         iterations_tangential: count(7)?,
         outcome,
-        field_file: (&record[9] != "-").then(|| record[9].to_owned()),
+        field_file: match &record[9] {
+            "-" => None,
+            name if is_plain_name(name) => Some(name.to_owned()),
+            name => {
+                return Err(format!(
+                    "field_file = `{name}` is not a file name (allowed: a name in the run folder, or -)"
+                ))
+            }
+        },
     })
+}
+
+/// Whether `name` names a file in its folder itself: one normal component (no folder, no `..`,
+/// not absolute).
+fn is_plain_name(name: &str) -> bool {
+    let mut components = Path::new(name).components();
+    matches!(
+        (components.next(), components.next()),
+        (Some(std::path::Component::Normal(_)), None)
+    )
 }
 
 /// Reads the file `name` of the run directory `dir` ("output missing" when absent).
@@ -220,7 +238,9 @@ pub struct SurfacePoint {
 pub type Profile = Vec<SurfacePoint>;
 
 /// Extracts p(r) on the spherical surface (radius `radius_mm`, r ≤ `window_mm`) from each field
-/// file in `dir`, through meshio (`scripts/read_fields.py` run by the toolchain's Python).
+/// file in `dir`, through meshio (`scripts/read_fields.py` run by the toolchain's Python). The
+/// script, its output and its logs live in a private temporary folder: nothing is written into
+/// `dir` (a run folder read back by `deck read` stays as the deck left it).
 pub fn read_profiles(
     dir: &Path,
     files: &[String],
@@ -229,9 +249,15 @@ pub fn read_profiles(
     toolchain: &Toolchain,
     timeout: Duration,
 ) -> Result<Vec<Profile>, String> {
-    let script = dir.join("read_fields.py");
+    let work = tempfile::Builder::new()
+        .prefix("spherecontact-meshio-")
+        .tempdir()
+        .map_err(|e| format!("meshio: no temporary folder: {e}"))?;
+    let script = work.path().join("read_fields.py");
     std::fs::write(&script, READ_FIELDS_PY).map_err(|e| format!("{}: {e}", script.display()))?;
-    let out: PathBuf = dir.join("profiles.csv");
+    let out: PathBuf = work.path().join("profiles.csv");
+    let dir = std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let paths: Vec<String> = files.iter().map(|f| dir.join(f).display().to_string()).collect();
     let mut args = vec![
         script.display().to_string(),
         "--radius".into(),
@@ -241,14 +267,14 @@ pub fn read_profiles(
         "--out".into(),
         out.display().to_string(),
     ];
-    args.extend(files.iter().cloned());
+    args.extend(paths.iter().cloned());
     let job = Job {
         program: toolchain.python.clone(),
         args,
         env: vec![],
         timeout,
     };
-    let run = process::run(&job, dir, "read_fields").map_err(|e| format!("meshio: {e}"))?;
+    let run = process::run(&job, work.path(), "read_fields").map_err(|e| format!("meshio: {e}"))?;
     if let Some(failure) = run
         .ending
         .failure("python (meshio)", timeout, |_| "reading the field files failed")
@@ -257,7 +283,7 @@ pub fn read_profiles(
     }
     let text =
         std::fs::read_to_string(&out).map_err(|e| format!("{}: output missing ({e})", out.display()))?;
-    parse_profiles(&text, files)
+    parse_profiles(&text, &paths)
 }
 
 /// Splits `read_fields.py`'s CSV (file, r [mm], p [MPa], gap [mm]) into one SI profile per file.
@@ -369,6 +395,10 @@ mod tests {
         assert!(e.contains("header"), "{e}");
         let e = parse_steps(&two_rows(), &asked()[..1]).unwrap_err();
         assert!(e.contains("more rows"), "{e}");
+        for name in ["../x.vtu", "/etc/passwd", "a/b.vtu"] {
+            let e = parse_steps(&two_rows().replace("field_2.vtu", name), &asked()).unwrap_err();
+            assert!(e.contains("field_file") && e.contains("not a file name"), "{e}");
+        }
     }
 
     #[test]

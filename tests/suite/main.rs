@@ -8,6 +8,7 @@ mod closed_forms;
 mod common;
 mod contact_engine;
 mod contact_measures;
+mod deck_commands;
 mod dem_codes;
 mod dem_laws;
 mod domain_compliance;
