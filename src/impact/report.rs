@@ -6,8 +6,9 @@
 use anyhow::Result;
 
 use crate::impact::case::{Quantity, SweepVariable, Variant};
+use crate::impact::code_rule::{is_reference, Rule};
 use crate::impact::judge::values;
-use crate::impact::run::{SolverRun, REFERENCE};
+use crate::impact::run::SolverRun;
 use crate::impact::ImpactRun;
 use crate::report::document::{Cell, Document, Section, Table};
 use crate::report::figures::figure;
@@ -79,12 +80,13 @@ fn distance_table(run: &ImpactRun) -> Table {
     let rows = run
         .runs
         .iter()
-        .filter(|r| r.solver != REFERENCE)
+        .filter(|r| !is_reference(&r.solver))
         .filter_map(|r| {
+            // Each code against the reference under its own damping rule (code_rule).
             let reference = run
                 .runs
                 .iter()
-                .find(|x| x.solver == REFERENCE && x.variant == r.variant)?;
+                .find(|x| x.solver == Rule::of(&r.solver).reference() && x.variant == r.variant)?;
             let mut row = vec![Cell::plain(&r.solver), Cell::plain(r.variant.name())];
             row.extend(Quantity::ALL.iter().map(|&q| {
                 Cell::plain(match worst_distance(r, reference, q) {
@@ -152,7 +154,7 @@ fn sweep_figure(
                 .into_iter()
                 .filter_map(|(at, v)| Some((at? * scale, v?)))
                 .collect();
-            let style = if r.solver == REFERENCE {
+            let style = if is_reference(&r.solver) {
                 Style::Reference
             } else {
                 Style::Line

@@ -37,6 +37,7 @@ mod hostile_reads;
 mod hostile_writes;
 mod house;
 mod impact;
+mod impact_codes;
 mod mdr_reference;
 mod path_walker;
 mod plot_layout;
