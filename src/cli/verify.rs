@@ -165,7 +165,10 @@ impl Outputs {
             io::write_atomically(&folder.path().join("summary.txt"), text.as_bytes())
                 .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
         }
-        Ok(if conclusion.passed() && impacts.iter().all(ImpactRun::passed) {
+        let impacts_passed = impacts
+            .iter()
+            .all(|r| r.passed() && !(self.require_external && r.lacks_a_solver()));
+        Ok(if conclusion.passed() && impacts_passed {
             ExitCode::SUCCESS
         } else {
             ExitCode::FAILURE

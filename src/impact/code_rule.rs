@@ -107,20 +107,10 @@ pub fn thornton_beta(e: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pair::{Body, ContactPair, Material};
 
+    /// The paper's aluminium spheres (R 0.1 m, E 70 GPa, ν 0.3).
     fn hertz() -> Hertz {
-        let body = Body {
-            radius: 0.1,
-            material: Material {
-                young: 7e10,
-                poisson: 0.3,
-            },
-        };
-        Hertz::of(&ContactPair {
-            body1: body,
-            body2: body,
-        })
+        Hertz::of(&crate::external::test_scene(&[0.0, 17.0]).pair)
     }
 
     #[test]

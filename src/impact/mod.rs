@@ -74,6 +74,12 @@ impl ImpactRun {
                 .all(|o| o.verdict != crate::check::Verdict::Nook)
     }
 
+    /// True when a solver could not run at all (a DEM code not installed): `verify
+    /// --require-external` counts that as a failure.
+    pub fn lacks_a_solver(&self) -> bool {
+        self.runs.iter().any(|r| r.unavailable.is_some())
+    }
+
     /// The block `verify` prints: a row per check, and each failed sweep point.
     pub fn block(&self) -> String {
         let mut text = format!("== {} ({})\n", self.case.name, self.case.file.display());

@@ -241,8 +241,9 @@ pub fn document(runs: &[ImpactRun]) -> Result<Document> {
              contact law of the same rigid-body integrator (velocity Verlet, both bodies' translation \
              and rotation) beside the exact quasi-static reference: MDR's spring bed, exact \
              Mindlin–Deresiewicz for any oblique history. Where a test prescribes a restitution, \
-             every law gets the same Tsuji damping and friction bounded by the elastic normal force, \
-             and the elastic variant (e = 1) runs beside: there the reference is exact without \
+             every law gets the same Tsuji damping and friction bounded by the elastic normal force \
+             (each DEM code, LAMMPS and YADE run dynamically, its own: mdr-lammps, mdr-yade), and \
+             the elastic variant (e = 1) runs beside: there the reference is exact without \
              assumption. Conventions, damping and convergence: docs/impact.md."
                 .into(),
         ],

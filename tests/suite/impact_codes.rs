@@ -262,3 +262,45 @@ fn yade_runs_one_sweep_point_under_its_own_rule() {
         judge_code("yade-mindlin", "mdr-yade");
     }
 }
+
+#[test]
+fn a_code_not_installed_makes_its_checks_na_and_require_external_fails() {
+    // No lmp or yade on PATH: the codes' checks are N/A with the reason, the case still passes
+    // (its own solvers ran); `--require-external` counts the missing codes as a failure.
+    let case = root().join("cases/impact/chung-ooi-2.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let verify = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+            .arg("verify")
+            .arg(&case)
+            .args(extra)
+            .current_dir(dir.path())
+            .env("PATH", dir.path())
+            .output()
+            .unwrap()
+    };
+    let output = verify(&[]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("N/A   lammps-mindlin (prescribed): not available: LAMMPS not installed"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("N/A   yade-mindlin (prescribed): not available: YADE not installed"),
+        "{stdout}"
+    );
+    assert_eq!(
+        stdout.matches("N/A   chung-ooi-2 | yade-mindlin ").count(),
+        4,
+        "{stdout}"
+    );
+    assert!(stdout
+        .lines()
+        .filter(|l| l.contains("| lammps-mindlin"))
+        .all(|l| l.starts_with("N/A")));
+    assert!(stdout
+        .lines()
+        .any(|l| l.starts_with("OK") && l.contains("| mdr contact_duration")));
+    assert_eq!(verify(&["--require-external"]).status.code(), Some(1));
+}
