@@ -206,17 +206,21 @@ fn variant_points(case: &ImpactCase, variant: Variant) -> Vec<Point> {
 
 /// Runs `code` over every sweep point of `case` in `variant`, in one process.
 pub fn run_sweep(case: &ImpactCase, code: Code, variant: Variant) -> SolverRun {
+    run_sweep_with(case, code, variant, &Toolchain::default())
+}
+
+/// [`run_sweep`] with the executables of `toolchain`.
+pub fn run_sweep_with(case: &ImpactCase, code: Code, variant: Variant, toolchain: &Toolchain) -> SolverRun {
     let points = variant_points(case, variant);
     let placements: Vec<Placement> = points
         .iter()
         .enumerate()
         .map(|(i, p)| Placement::of(case, p, i))
         .collect();
-    let toolchain = Toolchain::default();
     // The toolchain probe (once per process, every tool) is not the sweep's time.
     let available = toolchain.require(code.tool()).map_err(SolveError::Unavailable);
     let start = Instant::now();
-    let result = available.and_then(|_version| run_in_folder(code, &placements, &toolchain));
+    let result = available.and_then(|_version| run_in_folder(code, &placements, toolchain));
     let (results, trace, unavailable) = match result {
         Ok(integrations) => {
             let trace = integrations.first().map(|i| i.trace.clone()).unwrap_or_default();

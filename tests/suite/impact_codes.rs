@@ -1,7 +1,9 @@
 //! The real DEM codes run dynamically on the impact cases (docs/impact.md "The DEM codes run
 //! dynamically"): LAMMPS's input and YADE's points generated from a case, the read-back of a
-//! recorded LAMMPS output (and of broken ones), and one real sweep point per code against Hertz's
-//! closed forms and against the exact reference under the code's own damping rule.
+//! recorded LAMMPS output (and of broken ones), one real sweep point per code against Hertz's
+//! closed forms and against the exact reference under the code's own damping rule, and what a
+//! missing, crashing or garbage-writing code gives (N/A; a failure with its output and its folder
+//! kept).
 //!
 //! Tests that need LAMMPS or YADE print why they skip where those are absent (install them with
 //! `scripts/setup.sh`). Run: `cargo test --test suite impact_codes::`.
@@ -303,4 +305,55 @@ fn a_code_not_installed_makes_its_checks_na_and_require_external_fails() {
         .lines()
         .any(|l| l.starts_with("OK") && l.contains("| mdr contact_duration")));
     assert_eq!(verify(&["--require-external"]).status.code(), Some(1));
+}
+
+/// A stand-in `lmp` that passes the version probe and then does `then` (a shell fragment) in the
+/// run folder.
+fn fake_lammps(dir: &std::path::Path, then: &str) -> Toolchain {
+    use std::os::unix::fs::PermissionsExt;
+    let path = dir.join("lmp");
+    let script = format!(
+        "#!/bin/sh\nif [ \"$1\" = -h ]; then echo 'Large-scale Atomic/Molecular Massively Parallel Simulator - 29 Sep 2021'; echo GRANULAR; exit 0; fi\n{then}\n"
+    );
+    std::fs::write(&path, script).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    Toolchain {
+        lammps: path,
+        ..Toolchain::default()
+    }
+}
+
+/// The failure message of a sweep run with `toolchain`; the run folder it names is kept, with the
+/// generated input, and removed here.
+fn failed_sweep(toolchain: &Toolchain) -> String {
+    let case = load("cases/impact/chung-ooi-2.toml");
+    let code = spherecontact::impact::code_run::Code::Lammps(TangentialModel::Mindlin);
+    let run = spherecontact::impact::code_run::run_sweep_with(&case, code, Variant::Prescribed, toolchain);
+    assert!(run.unavailable.is_none());
+    let message = run.points[0].1.clone().unwrap_err();
+    let kept = message.rsplit("kept in ").next().unwrap().trim_end_matches(')');
+    let kept = std::path::Path::new(kept);
+    assert!(kept.join("in.impact").is_file(), "{message}");
+    std::fs::remove_dir_all(kept).unwrap();
+    message
+}
+
+#[test]
+fn a_crashing_code_fails_with_its_last_output_and_its_folder_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let message = failed_sweep(&fake_lammps(dir.path(), "echo 'ERROR: Lost atoms' >&2; exit 3"));
+    assert!(
+        message.contains("exit") && message.contains("ERROR: Lost atoms"),
+        "{message}"
+    );
+}
+
+#[test]
+fn garbage_from_a_code_fails_naming_the_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let message = failed_sweep(&fake_lammps(dir.path(), "echo '0 1 2 banana' > point-0.txt"));
+    assert!(
+        message.contains("point-0.txt: line 1: not 13 numbers"),
+        "{message}"
+    );
 }
