@@ -143,6 +143,11 @@ impl SpringBed {
         self.profile.last().copied().unwrap_or(0.0)
     }
 
+    /// Friction μ from the next increment on (the impact's total-force bound changes it per step).
+    pub(crate) fn set_friction(&mut self, friction: f64) {
+        self.friction = friction;
+    }
+
     /// Every spring leaves contact and forgets its history.
     pub(crate) fn release(&mut self) {
         self.u[..self.touched].fill(0.0);

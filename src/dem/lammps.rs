@@ -23,6 +23,7 @@ use crate::external::process::{Environment, Job};
 use crate::external::program;
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, Metadata, StepResult};
+use crate::pair::ContactPair;
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -169,7 +170,7 @@ impl Lammps {
         let rsum = b1.radius + b2.radius;
         let positions = scene.path.positions();
         let dt = self.timestep;
-        let (young, poisson) = equivalent_material(scene);
+        let (young, poisson) = equivalent_material(&scene.pair);
         let mut segments = String::new();
         for (pair, &m) in positions.windows(2).zip(scene.path.substeps()) {
             let m_f = m as f64;
@@ -235,13 +236,14 @@ impl Lammps {
     }
 }
 
-/// The one material (E', ν') whose identical pair has the scene's E* and Mindlin's G*.
+/// The one material (E', ν') whose identical pair has `pair`'s E* and Mindlin's G* (also used by
+/// the dynamic runs of `crate::impact`, where a rigid flat is a sphere of 2E and the same ν).
 ///
 /// LAMMPS's hertz/material for one type gives E* = E'/2(1 − ν'²) and G* = E'/4(2 − ν')(1 + ν'),
 /// so G*/E* = (1 − ν')/2(2 − ν'): with r = 2G*/E*, ν' = (1 − 2r)/(1 − r) and E' = 2E*(1 − ν'²).
 /// For identical spheres this is their own E and ν (to rounding).
-pub fn equivalent_material(scene: &Scene) -> (f64, f64) {
-    let (e_star, g_star) = (scene.pair.effective_modulus(), scene.pair.mindlin_shear_modulus());
+pub fn equivalent_material(pair: &ContactPair) -> (f64, f64) {
+    let (e_star, g_star) = (pair.effective_modulus(), pair.mindlin_shear_modulus());
     let r = 2.0 * g_star / e_star;
     let poisson = (1.0 - 2.0 * r) / (1.0 - r);
     (2.0 * e_star * (1.0 - poisson * poisson), poisson)
@@ -314,13 +316,13 @@ mod tests {
     #[test]
     fn the_equivalent_material_keeps_e_star_and_g_star() {
         let mut scene = crate::external::test_scene(&[0.0, 17.0]);
-        let (young, poisson) = equivalent_material(&scene);
+        let (young, poisson) = equivalent_material(&scene.pair);
         assert!((young / 70e9 - 1.0).abs() < 1e-14 && (poisson - 0.3).abs() < 1e-14);
         scene.pair.body2.material = Material {
             young: 210e9,
             poisson: 0.28,
         };
-        let (young, poisson) = equivalent_material(&scene);
+        let (young, poisson) = equivalent_material(&scene.pair);
         // LAMMPS's own formulas for one type (mix_stiffnessE, mix_stiffnessG of pair granular).
         let e_star = young / (2.0 * (1.0 - poisson * poisson));
         let g_star = young / (4.0 * (2.0 - poisson) * (1.0 + poisson));

@@ -14,11 +14,14 @@
 //! body 2 along +x, at the contact points, so that I1 dω1/dt = −R1 Q and I2 dω2/dt = +R2 Q (in
 //! the per-body spin sign of [`super::case`]). A rigid flat has infinite mass and inertia.
 //!
+//! When the total normal force bounds friction ([`FrictionBound::Total`]), the law's friction is
+//! scaled by total/elastic before each step, both at the step's end state.
+//!
 //! The contact starts at first touch (δn = 0) and ends when δn returns to zero; the end time is
 //! interpolated linearly within the last step.
 
 use super::case::Point;
-use super::law::{ContactLaw, Damping, LawError};
+use super::law::{ContactLaw, Damping, FrictionBound, LawError};
 
 /// The velocities of both bodies: centre (x, z) and spin.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -190,10 +193,19 @@ pub fn integrate(
         overlap += rate * h;
         time += h;
         let (p, q) = if overlap > 0.0 {
-            let forces = law.advance(overlap, half.slip(inertia.radius) * h)?;
             // The damping's rate at the step's end, predicted with the old accelerations (the
             // half-step rate would make the scheme first order in a damped impact).
             let predicted = half.kicked(&acceleration, 0.5 * h).approach_rate();
+            if let Some(d) = damping.filter(|d| d.bound == FrictionBound::Total) {
+                let elastic = law.elastic_normal(overlap);
+                let scale = if elastic > 0.0 {
+                    d.total(elastic, overlap, predicted) / elastic
+                } else {
+                    1.0
+                };
+                law.scale_friction(scale)?;
+            }
+            let forces = law.advance(overlap, half.slip(inertia.radius) * h)?;
             let p = damping.map_or(forces.normal, |d| d.total(forces.normal, overlap, predicted));
             (p, forces.tangential)
         } else {

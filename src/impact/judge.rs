@@ -94,6 +94,19 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
             None => return failed(format!("`{name}` did not run")),
         },
     };
+    if let Some(why) = std::iter::once(subject).chain(reference_run).find_map(|r| {
+        r.unavailable
+            .as_ref()
+            .map(|why| format!("{} not available: {why}", r.solver))
+    }) {
+        return CheckOutcome {
+            check: check.clone(),
+            verdict: Verdict::Unavailable,
+            worst: None,
+            message: Some(why),
+            drift: None,
+        };
+    }
     let hertz = Hertz::of(&case.pair());
     let points = case.points();
     let mut worst: Option<Worst> = None;

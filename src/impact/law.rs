@@ -14,7 +14,9 @@
 //! F_d = −2 √(5/6) β √(S_n m*) δ̇,   β = ln e / √(ln² e + π²),   S_n = 2 E* √(R* δn)
 //! ```
 //! added to P_e, the total clamped at zero (no attraction). This law returns e exactly only for
-//! a linear spring; for Hertz it does not (its restitution is measured, docs/impact.md).
+//! a linear spring; for Hertz it does not (its restitution is measured, docs/impact.md). The DEM
+//! codes' own damping laws differ from it only in the coefficient of δn^{1/4} δ̇, and they bound
+//! friction by the total normal force: [`super::code_rule`] builds their [`Damping`].
 
 use crate::analytic::incremental::{Increment, IncrementalSolver, NormalState, TangentialLaw};
 use crate::analytic::mdr::SpringBed;
@@ -41,6 +43,13 @@ pub trait ContactLaw {
 
     /// The gap opened: the contact forgets its history.
     fn release(&mut self);
+
+    /// The elastic normal force at approach `delta_n`, without changing the state [N].
+    fn elastic_normal(&self, delta_n: f64) -> f64;
+
+    /// Friction μ × `scale` for the next step (the total normal force over the elastic one, when
+    /// the total bounds friction).
+    fn scale_friction(&mut self, scale: f64) -> Result<(), LawError>;
 }
 
 /// A law that cannot continue.
@@ -54,11 +63,15 @@ pub enum LawError {
         /// The window's reach [m].
         reach: f64,
     },
+    /// A law whose friction is fixed at its making was asked to bound it by the total force.
+    #[error("this law bounds friction by the elastic normal force only (asked for μ × {0})")]
+    FixedFriction(f64),
 }
 
 /// MDR's spring bed (`crate::analytic::mdr`) as the contact law.
 pub struct MdrLaw {
     bed: SpringBed,
+    friction: f64,
 }
 
 impl MdrLaw {
@@ -66,6 +79,7 @@ impl MdrLaw {
     pub fn new(pair: &ContactPair, friction: f64, max_contact_radius: f64, springs: usize) -> Self {
         Self {
             bed: SpringBed::with_window(pair, friction, max_contact_radius, springs),
+            friction,
         }
     }
 }
@@ -87,6 +101,17 @@ impl ContactLaw for MdrLaw {
 
     fn release(&mut self) {
         self.bed.release();
+    }
+
+    fn elastic_normal(&self, delta_n: f64) -> f64 {
+        self.bed.normal_force(delta_n).0
+    }
+
+    /// Each spring's Coulomb limit becomes μ × `scale` × its normal force: the total normal
+    /// pressure taken as the elastic one scaled (the damping pressure distributed like it).
+    fn scale_friction(&mut self, scale: f64) -> Result<(), LawError> {
+        self.bed.set_friction(self.friction * scale);
+        Ok(())
     }
 }
 
@@ -154,24 +179,55 @@ impl ContactLaw for DemLaw {
         self.law.reset();
         self.before = None;
     }
+
+    fn elastic_normal(&self, delta_n: f64) -> f64 {
+        self.hertz.force(delta_n)
+    }
+
+    fn scale_friction(&mut self, scale: f64) -> Result<(), LawError> {
+        if scale == 1.0 {
+            Ok(())
+        } else {
+            Err(LawError::FixedFriction(scale))
+        }
+    }
 }
 
-/// Tsuji's viscous normal damping for a prescribed restitution (see the module doc).
+/// Which normal force bounds friction under damping.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrictionBound {
+    /// μ times the elastic normal force (the harness's laws).
+    Elastic,
+    /// μ times the total (elastic + viscous, clamped at zero) normal force (LAMMPS, YADE).
+    Total,
+}
+
+/// A viscous normal damping c δn^{1/4} δ̇ (Tsuji's form) and the friction bound that goes with it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Damping {
-    /// 2 √(5/6) |β| √(m* 2E* √R*): the coefficient of δn^{1/4} δ̇ [N s/m^{5/4}].
+    /// c: the coefficient of δn^{1/4} δ̇ [N s/m^{5/4}].
     coefficient: f64,
+    /// Which normal force bounds friction.
+    pub bound: FrictionBound,
 }
 
 impl Damping {
-    /// The damping of restitution `e` (0 < e ≤ 1; none at 1) for effective mass `mass` and `hertz`.
+    /// The harness's damping of restitution `e` (0 < e ≤ 1) for effective mass `mass` and
+    /// `hertz` (see the module doc): c = 2 √(5/6) |β| √(m* 2E* √R*), friction bounded by the
+    /// elastic force.
     pub fn new(restitution: f64, mass: f64, hertz: &Hertz) -> Self {
         let log = restitution.ln();
         let beta = log / (log * log + std::f64::consts::PI.powi(2)).sqrt();
         let stiffness_scale = 2.0 * hertz.effective_modulus * hertz.effective_radius.sqrt();
         Self {
             coefficient: 2.0 * (5.0_f64 / 6.0).sqrt() * beta.abs() * (stiffness_scale * mass).sqrt(),
+            bound: FrictionBound::Elastic,
         }
+    }
+
+    /// A damping of coefficient `coefficient` [N s/m^{5/4}] with friction bounded by `bound`.
+    pub fn with_coefficient(coefficient: f64, bound: FrictionBound) -> Self {
+        Self { coefficient, bound }
     }
 
     /// The total normal force: `elastic` plus the viscous force at approach `delta_n` and

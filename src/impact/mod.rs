@@ -23,16 +23,21 @@
 pub use crate::case::impact as case;
 pub use crate::case::impact_closed_form as closed_form;
 mod baselined;
+pub mod code_readback;
+pub mod code_rule;
+pub mod code_run;
 pub mod command;
 #[cfg(test)]
 mod cross_check;
 pub mod files;
 pub mod integrator;
 pub mod judge;
+pub mod lammps;
 pub mod law;
 pub mod outcome;
 pub mod report;
 pub mod run;
+pub mod yade;
 
 pub use case::ImpactCase;
 
@@ -60,10 +65,22 @@ impl ImpactRun {
         Self { case, runs, outcomes }
     }
 
-    /// True when no check fails the run (NOOK, DRIFT) and every solver ran at every sweep point.
+    /// True when no check fails the run (NOOK, DRIFT) and every available solver ran at every
+    /// sweep point (a DEM code not installed makes its checks N/A, as `verify` treats every
+    /// missing solver; `--require-external` fails on N/A).
     pub fn passed(&self) -> bool {
-        let solved = self.runs.iter().all(|r| r.points.iter().all(|(_, o)| o.is_ok()));
+        let solved = self
+            .runs
+            .iter()
+            .filter(|r| r.unavailable.is_none())
+            .all(|r| r.points.iter().all(|(_, o)| o.is_ok()));
         solved && !self.outcomes.iter().any(|o| o.verdict.fails_run())
+    }
+
+    /// True when a solver could not run at all (a DEM code not installed): `verify
+    /// --require-external` counts that as a failure.
+    pub fn lacks_a_solver(&self) -> bool {
+        self.runs.iter().any(|r| r.unavailable.is_some())
     }
 
     /// The block `verify` prints: a row per check, and each failed sweep point.
@@ -71,6 +88,14 @@ impl ImpactRun {
         let file = self.case.file.display().to_string();
         let mut text = format!("== {} ({})\n", self.case.name, crate::text::one_line(&file));
         for run in &self.runs {
+            if let Some(why) = &run.unavailable {
+                text.push_str(&format!(
+                    "N/A   {} ({}): not available: {why}\n",
+                    run.solver,
+                    run.variant.name()
+                ));
+                continue;
+            }
             for (at, result) in &run.points {
                 if let Err(e) = result {
                     text.push_str(&format!(

@@ -6,8 +6,9 @@
 use anyhow::Result;
 
 use crate::impact::case::{Quantity, SweepVariable, Variant};
+use crate::impact::code_rule::{is_reference, Rule};
 use crate::impact::judge::values;
-use crate::impact::run::{SolverRun, REFERENCE};
+use crate::impact::run::SolverRun;
 use crate::impact::ImpactRun;
 use crate::report::document::{Cell, Document, Section, Table};
 use crate::report::figures::figure;
@@ -79,12 +80,13 @@ fn distance_table(run: &ImpactRun) -> Table {
     let rows = run
         .runs
         .iter()
-        .filter(|r| r.solver != REFERENCE)
+        .filter(|r| !is_reference(&r.solver))
         .filter_map(|r| {
+            // Each code against the reference under its own damping rule (code_rule).
             let reference = run
                 .runs
                 .iter()
-                .find(|x| x.solver == REFERENCE && x.variant == r.variant)?;
+                .find(|x| x.solver == Rule::of(&r.solver).reference() && x.variant == r.variant)?;
             let mut row = vec![Cell::plain(&r.solver), Cell::plain(r.variant.name())];
             row.extend(Quantity::ALL.iter().map(|&q| {
                 Cell::plain(match worst_distance(r, reference, q) {
@@ -147,7 +149,7 @@ fn runs_figure(
         .into_iter()
         .filter(|(_, points)| !points.is_empty())
         .map(|(r, points)| {
-            let style = if r.solver == REFERENCE {
+            let style = if is_reference(&r.solver) {
                 Style::Reference
             } else {
                 Style::Line
@@ -320,8 +322,9 @@ pub fn document<'a>(runs: impl IntoIterator<Item = &'a ImpactRun>, traces: bool)
              contact law of the same rigid-body integrator (velocity Verlet, both bodies' translation \
              and rotation) beside the exact quasi-static reference: MDR's spring bed, exact \
              Mindlin–Deresiewicz for any oblique history. Where a test prescribes a restitution, \
-             every law gets the same Tsuji damping and friction bounded by the elastic normal force, \
-             and the elastic variant (e = 1) runs beside: there the reference is exact without \
+             every law gets the same Tsuji damping and friction bounded by the elastic normal force \
+             (each DEM code, LAMMPS and YADE run dynamically, its own: mdr-lammps, mdr-yade), and \
+             the elastic variant (e = 1) runs beside: there the reference is exact without \
              assumption. Conventions, damping and convergence: docs/impact.md."
                 .into(),
         ],

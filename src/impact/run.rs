@@ -5,8 +5,9 @@ use std::time::Instant;
 
 use super::case::{ImpactCase, Point, Variant};
 use super::closed_form::HertzImpact;
+use super::code_rule::{self, Rule};
 use super::integrator::{self, Integration, IntegrationError, Sample, Stepping};
-use super::law::{ContactLaw, Damping, DemLaw, MdrLaw};
+use super::law::{ContactLaw, DemLaw, MdrLaw};
 use super::outcome::Outcome;
 use crate::analytic;
 use crate::hertz::Hertz;
@@ -16,14 +17,14 @@ pub use crate::case::impact::REFERENCE;
 
 /// The most steps a contact may take, as a multiple of the steps per Hertz contact duration:
 /// an elastic contact lasts one duration, a damped one less (its rebound is faster).
-const STEP_BUDGET: usize = 4;
+pub(super) const STEP_BUDGET: usize = 4;
 
 /// The MDR window holds contact radii up to this factor of the elastic impact's largest one
 /// (the bed's own 5 % margin comes on top).
 const WINDOW_FACTOR: f64 = 1.05;
 
 /// At most this many samples in the trace of the first sweep point.
-const TRACE_SAMPLES: usize = 2000;
+pub(super) const TRACE_SAMPLES: usize = 2000;
 
 pub use crate::case::impact::solver_names;
 
@@ -42,12 +43,14 @@ pub struct SolverRun {
     pub trace: Vec<Sample>,
     /// Wall time of the sweep [s].
     pub wall_time_s: f64,
+    /// Why the solver could not run at all (a DEM code not installed): its checks are N/A.
+    pub unavailable: Option<String>,
 }
 
 /// The contact law `solver` for `point` (none for an unknown name).
 fn law_for(case: &ImpactCase, solver: &str, point: &Point) -> Option<Box<dyn ContactLaw>> {
     let pair = case.pair();
-    if solver == REFERENCE {
+    if code_rule::is_reference(solver) {
         let hertz = Hertz::of(&pair);
         let reach = HertzImpact::of(point, &hertz).max_overlap * WINDOW_FACTOR;
         let radius = hertz.contact_radius(reach);
@@ -68,8 +71,7 @@ pub fn impact(
     let mut law = law_for(case, solver, point).ok_or_else(|| format!("no impact solver `{solver}`"))?;
     let hertz = Hertz::of(&case.pair());
     let duration = HertzImpact::of(point, &hertz).duration;
-    let damping =
-        (point.restitution < 1.0).then(|| Damping::new(point.restitution, point.effective_mass(), &hertz));
+    let damping = Rule::of(solver).damping(point.restitution, point.effective_mass(), &hertz);
     let stepping = Stepping {
         step: duration / steps as f64,
         max_steps: STEP_BUDGET * steps,
@@ -83,8 +85,12 @@ pub fn impact(
         .map_err(|e: IntegrationError| e.to_string())
 }
 
-/// Runs `solver` over every sweep point of `case` in `variant`.
+/// Runs `solver` over every sweep point of `case` in `variant` (a DEM code: one process for the
+/// sweep, [`super::code_run`]).
 pub fn run_solver(case: &ImpactCase, solver: &str, variant: Variant) -> SolverRun {
+    if let Some(code) = super::code_run::Code::named(solver) {
+        return super::code_run::run_sweep(case, code, variant);
+    }
     let start = Instant::now();
     let mut trace = Vec::new();
     let points = case
@@ -111,6 +117,7 @@ pub fn run_solver(case: &ImpactCase, solver: &str, variant: Variant) -> SolverRu
         points,
         trace,
         wall_time_s: start.elapsed().as_secs_f64(),
+        unavailable: None,
     }
 }
 

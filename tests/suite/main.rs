@@ -39,6 +39,7 @@ mod hostile_writes;
 mod house;
 mod impact;
 mod impact_verify;
+mod impact_codes;
 mod mdr_reference;
 mod path_walker;
 mod plot_layout;
