@@ -9,13 +9,14 @@ use std::process::Command;
 use std::time::Duration;
 
 use spherecontact::check::{Histories, Verdict};
-use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
 use spherecontact::profile;
 
 use crate::common;
-use common::decks::{any_force_check, at_resolution, scene_17um, tools_present, with_deck_text};
+use common::decks::{
+    any_force_check, at_resolution, decks_on_scene_17um, scene_17um, tools_present, with_deck_text,
+};
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
 
@@ -56,11 +57,7 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
     )
     .unwrap();
     let mut forces = Vec::new();
-    for solver in [
-        Box::new(AxisymSolver::new(FreeFem)) as Box<dyn Solver>,
-        Box::new(AxisymSolver::new(Fenicsx)),
-    ] {
-        let history = solver::run(solver.as_ref(), &scene).unwrap();
+    for (name, history) in decks_on_scene_17um() {
         let row = history.at_position(1).unwrap();
         let p = row.normal_force.unwrap();
         // Against Hertz in series with the axially held hemisphere's computed compliance
@@ -68,16 +65,9 @@ fn both_decks_agree_with_hertz_and_with_each_other() {
         // penalty (< 1e-4 when k doubles) and the mesh (≈ 5e-5 at c/40): measured 1.1e-4.
         let raw = p / hertz.force(dn) - 1.0;
         let error = p / corrected.at_position(1).unwrap().normal_force.unwrap() - 1.0;
-        eprintln!(
-            "{}: P {raw:+.3e} from Hertz, {error:+.3e} from mdr-domain",
-            solver.name()
-        );
-        assert!(
-            error.abs() < 3e-4,
-            "{}: P error {error} (raw {raw})",
-            solver.name()
-        );
-        assert!((raw - 3.7e-3).abs() < 5e-4, "{}: raw offset {raw}", solver.name());
+        eprintln!("{}: P {raw:+.3e} from Hertz, {error:+.3e} from mdr-domain", name);
+        assert!(error.abs() < 3e-4, "{}: P error {error} (raw {raw})", name);
+        assert!((raw - 3.7e-3).abs() < 5e-4, "{}: raw offset {raw}", name);
         // Every step is computed: P rises with δn; a normal-only path has no Q.
         let normal: Vec<f64> = history.steps.iter().map(|r| r.normal_force.unwrap()).collect();
         assert!(normal.windows(2).all(|w| w[1] > w[0]), "{normal:?}");
@@ -120,19 +110,11 @@ fn the_decks_pressure_profiles_match_fem_axisym() {
     let scene = scene_17um();
     let fem = spherecontact::registry::by_name("fem-axisym").unwrap();
     let reference = solver::run(fem.as_ref(), &scene).unwrap();
-    for deck in [
-        Box::new(AxisymSolver::new(FreeFem)) as Box<dyn Solver>,
-        Box::new(AxisymSolver::new(Fenicsx)),
-    ] {
-        let history = solver::run(deck.as_ref(), &scene).unwrap();
-        let e = profile::compare(&history, &reference, 1, profile::Field::Pressure).unwrap();
+    for (name, history) in decks_on_scene_17um() {
+        let e = profile::compare(history, &reference, 1, profile::Field::Pressure).unwrap();
         let rms = e.rms / e.peak;
-        eprintln!(
-            "{}: p(r) RMS against fem-axisym {:.4} % of p0",
-            deck.name(),
-            rms * 100.0
-        );
-        assert!(rms < 5e-4, "{}: p(r) RMS {rms} of p0", deck.name());
+        eprintln!("{}: p(r) RMS against fem-axisym {:.4} % of p0", name, rms * 100.0);
+        assert!(rms < 5e-4, "{}: p(r) RMS {rms} of p0", name);
     }
 }
 

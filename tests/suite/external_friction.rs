@@ -2,7 +2,8 @@
 //! the finite body's measured offset and with each other, flagged iterations, mesh convergence.
 //!
 //! Tests that need gmsh, FreeFEM, dolfinx and meshio print why they skip where those are absent
-//! (install them with `scripts/setup.sh`). Run: `cargo test --test suite external_friction::`.
+//! (install them with `scripts/setup.sh`). Run: `cargo test --test suite external_friction::`; the
+//! heavy walk: `cargo test --release --test suite external_friction::the_decks_walk -- --ignored`.
 
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::fenicsx::Fenicsx;
@@ -26,6 +27,7 @@ use common::decks::{at_resolution, frictional_scene, tools_present};
 /// positive definite") and capped increments varied from run to run. The decks now take the
 /// grip from the scene, as the mesh does, and refuse a shift under the axial grip.
 #[test]
+#[ignore = "heavy: four deck runs (each deck twice); .ci/run's heavy step runs it"]
 fn the_decks_walk_a_frictional_path_with_history() {
     if !tools_present("the_decks_walk_a_frictional_path_with_history") {
         return;

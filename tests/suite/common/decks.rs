@@ -2,17 +2,21 @@
 //! variants.
 
 use std::path::Path;
+use std::sync::OnceLock;
 use std::time::Duration;
 
 use spherecontact::case::Case;
 use spherecontact::domain::Grip;
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
+use spherecontact::external::fenicsx::Fenicsx;
+use spherecontact::external::freefem::FreeFem;
 use spherecontact::external::geo::MeshFiles;
 use spherecontact::external::toolchain::{Tool, Toolchain};
+use spherecontact::history::History;
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
-use spherecontact::solver::Solver;
+use spherecontact::solver::{self, Solver};
 
 /// A check that any P at every position passes (tolerance 1: 100 %): what is left to judge is
 /// whether the solver gave a history at all (NOOK for a failure, N/A when not installed).
@@ -75,6 +79,27 @@ pub fn scene_17um() -> Scene {
     };
     scene.path = LoadingPath::try_new(vec![position(0.0), position(17e-6)], vec![17]).unwrap();
     scene
+}
+
+/// FreeFEM's and FEniCSx's axisymmetric decks on [`scene_17um`] at their default resolution, each
+/// run once for every test that judges that run (name, history); the caller checks
+/// [`tools_present`] first.
+pub fn decks_on_scene_17um() -> &'static [(String, History)] {
+    static RUNS: OnceLock<Vec<(String, History)>> = OnceLock::new();
+    RUNS.get_or_init(|| {
+        let scene = scene_17um();
+        [
+            Box::new(AxisymSolver::new(FreeFem)) as Box<dyn Solver>,
+            Box::new(AxisymSolver::new(Fenicsx)),
+        ]
+        .iter()
+        .map(|deck| {
+            let history =
+                solver::run(deck.as_ref(), &scene).unwrap_or_else(|e| panic!("{}: {e:?}", deck.name()));
+            (deck.name().to_owned(), history)
+        })
+        .collect()
+    })
 }
 
 pub fn with_deck_text<D: Deck<Mesh = MeshFiles>>(deck: D, text: &str, timeout_s: u64) -> AxisymSolver<D> {
