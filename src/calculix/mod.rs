@@ -10,6 +10,11 @@
 
 pub mod inp;
 pub mod results;
+pub mod solid;
+pub mod solid_inp;
+pub mod solid_read;
+
+pub use solid::CcxSolid;
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -203,13 +208,7 @@ impl CcxAxisym {
         };
         let timeout = self.options.timeout.unwrap_or(BUDGET.limit(positions.len()));
         let run = deck::launch(&CcxAxisymDeck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
-        if let Some(error) = run.stdout.lines().position(|l| l.contains("*ERROR")) {
-            let lines: Vec<&str> = run.stdout.lines().skip(error).take(6).collect();
-            return Err(SolveError::Failed(format!(
-                "ccx reported an error and exited with code 0: {}",
-                lines.join("\n")
-            )));
-        }
+        reported_error(&run.stdout)?;
         let start = Instant::now();
         let mut read = read_back(dir.path(), &spec).map_err(SolveError::Failed)?;
         read.wall_s = [mesh.wall_s, run.wall_s, start.elapsed().as_secs_f64()];
@@ -313,6 +312,21 @@ impl CcxAxisym {
         extra.insert("solving_s".into(), json!(solving));
         extra.insert("reading_back_s".into(), json!(reading));
         metadata
+    }
+}
+
+/// ccx exits with code 0 after some fatal errors (an input file it cannot open): its `*ERROR`
+/// lines in `stdout` make the run a failure.
+pub(crate) fn reported_error(stdout: &str) -> Result<(), SolveError> {
+    match stdout.lines().position(|l| l.contains("*ERROR")) {
+        Some(error) => {
+            let lines: Vec<&str> = stdout.lines().skip(error).take(6).collect();
+            Err(SolveError::Failed(format!(
+                "ccx reported an error and exited with code 0: {}",
+                lines.join("\n")
+            )))
+        }
+        None => Ok(()),
     }
 }
 

@@ -20,7 +20,7 @@ use super::solid_geo::{self, SolidMeshFiles, Zones};
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
-use crate::history::{History, Metadata, StepResult};
+use crate::history::{History, Metadata};
 use crate::limits::SOLID_POLE;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
@@ -346,26 +346,13 @@ impl Solver for Solid3dDeck {
 
 /// One `History` row per path step, the fields at the positions the case records, the metadata.
 fn history(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -> History {
-    let mut steps = Vec::with_capacity(run.rows.len());
-    let mut fields = Vec::new();
-    for ((step, row), surface) in scene.steps().iter().zip(&run.rows).zip(&run.surfaces) {
-        let measures = surface.measures(&run.triangles);
-        if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
-            fields.push(surface.field(position, plan.tangential, &run.triangles));
-        }
-        let in_contact = row.force_contact > 0.0;
-        steps.push(StepResult {
-            normal_force: Some(row.force_contact),
-            tangential_force: plan.tangential.then_some(row.tangential_force),
-            contact_radius: measures.radius,
-            peak_pressure: measures.peak,
-            stick_radius: (plan.tangential && in_contact).then(|| {
-                let c = measures.radius.unwrap_or(0.0);
-                surface.stick_zone(c).map_or(0.0, |z| z.radius)
-            }),
-            ..StepResult::at(step)
-        });
-    }
+    let forces: Vec<[f64; 2]> = run
+        .rows
+        .iter()
+        .map(|r| [r.force_contact, r.tangential_force])
+        .collect();
+    let (steps, fields) =
+        surface3d::step_results(scene, plan.tangential, &forces, &run.surfaces, &run.triangles);
     History {
         metadata: metadata(scene, version, plan, run, ranks),
         steps,

@@ -18,7 +18,7 @@ use crate::common;
 use common::decks::{any_force_check, scene_17um};
 
 /// True when gmsh and ccx run; otherwise prints why the calling test skips.
-fn ccx_present(test: &str) -> bool {
+pub(crate) fn ccx_present(test: &str) -> bool {
     let chain = Toolchain::default();
     let missing: Vec<String> = [Tool::Gmsh, Tool::Ccx]
         .into_iter()
@@ -34,7 +34,7 @@ fn ccx_present(test: &str) -> bool {
 
 /// A stand-in `ccx` (a shell script in `dir`) that answers `-v` as ccx 2.20 does and runs `body`
 /// for a job.
-fn fake_ccx(dir: &Path, body: &str) -> PathBuf {
+pub(crate) fn fake_ccx(dir: &Path, body: &str) -> PathBuf {
     use std::os::unix::fs::PermissionsExt;
     let path = dir.join("ccx");
     let script = format!(

@@ -14,6 +14,7 @@ mod domain_compliance;
 mod external;
 mod external_3d;
 mod external_calculix;
+mod external_ccx3d;
 mod external_friction;
 mod fem3d_element;
 mod fem3d_friction;
