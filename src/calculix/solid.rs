@@ -103,6 +103,7 @@ struct Run {
     nodes: usize,
     slave_faces: usize,
     stiffness: f64,
+    stick_slope: f64,
     /// Wall seconds of gmsh, ccx and the reading back.
     wall_s: [f64; 3],
 }
@@ -217,7 +218,9 @@ impl CcxSolid {
         let read = solid_read::read_back(dir, mesh, plan.candidate_radius, spec.friction, &plan.steps)
             .map_err(SolveError::Failed)?;
         for surface in &read.surfaces {
-            if surface.edge_loaded(h) {
+            // Within half an element of the outermost candidate ring (at c_max/2 a whole element
+            // reaches into the contact).
+            if surface.edge_loaded(0.5 * h) {
                 return Err(SolveError::Failed(format!(
                     "step {}: the contact reached the outermost candidate ring: the candidate zone is too small",
                     surface.step
@@ -229,6 +232,7 @@ impl CcxSolid {
             nodes: mesh.nodes.len(),
             slave_faces: spec.slave_faces().len(),
             stiffness: spec.stiffness_mpa_per_mm(),
+            stick_slope: spec.stick_slope_mpa_per_mm(),
             read,
             wall_s: [mesh_s, solve_s, start.elapsed().as_secs_f64()],
         })
@@ -254,8 +258,7 @@ impl CcxSolid {
     fn metadata(&self, scene: &Scene, version: &str, plan: &Plan, h: f64, run: &Run) -> Metadata {
         let friction = if plan.tangential {
             format!(
-                "Coulomb friction μ = {} with history, stick slope λ = K (the tangential penalty as \
-                 stiff as the normal one)",
+                "Coulomb friction μ = {} with history, stick slope λ = K/100 (λ = K diverged)",
                 scene.friction
             )
         } else {
@@ -289,7 +292,7 @@ impl CcxSolid {
         extra.insert("calculix".into(), self.settings.describe());
         extra.insert("element".into(), json!(C3D10.element));
         extra.insert("penalty_stiffness_mpa_per_mm".into(), json!(run.stiffness));
-        extra.insert("stick_slope_mpa_per_mm".into(), json!(run.stiffness));
+        extra.insert("stick_slope_mpa_per_mm".into(), json!(run.stick_slope));
         extra.insert(
             "stick_rule".into(),
             json!(format!(

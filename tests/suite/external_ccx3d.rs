@@ -102,9 +102,9 @@ fn the_deck_holds_both_spheres_the_friction_and_one_step_per_path_step() {
         ),
         "{text}"
     );
-    // K = 1e3 · 70 000 MPa / 0.5 mm, face-to-face, μ = 0.2 with the stick slope K.
+    // K = 1e3 · 70 000 MPa / 0.5 mm, face-to-face, μ = 0.2 with the stick slope K/100.
     assert!(text.contains(
-        "LINEAR\n1.400000000000e8\n*FRICTION\n2.000000000000e-1, 1.400000000000e8\n*CONTACT PAIR, INTERACTION=SPHERES, TYPE=SURFACE TO SURFACE\nSSPHERE1, SSPHERE2\n"
+        "LINEAR\n1.400000000000e8\n*FRICTION\n2.000000000000e-1, 1.400000000000e6\n*CONTACT PAIR, INTERACTION=SPHERES, TYPE=SURFACE TO SURFACE\nSSPHERE1, SSPHERE2\n"
     ), "{text}");
     assert!(
         text.contains("*NSET, NSET=NSYM\n1, 2, 4, 5, 8, 10\n11, 12, 14, 15, 18, 20\n"),
