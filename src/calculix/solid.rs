@@ -104,6 +104,8 @@ struct Run {
     slave_faces: usize,
     stiffness: f64,
     stick_slope: f64,
+    /// The steps whose outermost candidate ring carries pressure ([`edge_loaded`]).
+    edge_steps: Vec<usize>,
     /// Wall seconds of gmsh, ccx and the reading back.
     wall_s: [f64; 3],
 }
@@ -217,16 +219,12 @@ impl CcxSolid {
         let spec = self.spec(scene, plan, h, mesh);
         let read = solid_read::read_back(dir, mesh, plan.candidate_radius, spec.friction, &plan.steps)
             .map_err(SolveError::Failed)?;
-        for surface in &read.surfaces {
-            // Within half an element of the outermost candidate ring (at c_max/2 a whole element
-            // reaches into the contact).
-            if surface.edge_loaded(0.5 * h) {
-                return Err(SolveError::Failed(format!(
-                    "step {}: the contact reached the outermost candidate ring: the candidate zone is too small",
-                    surface.step
-                )));
-            }
-        }
+        let edge_steps = read
+            .surfaces
+            .iter()
+            .filter(|surface| edge_loaded(surface, h))
+            .map(|surface| surface.step)
+            .collect();
         Ok(Run {
             elements: mesh.tetrahedra.len(),
             nodes: mesh.nodes.len(),
@@ -234,6 +232,7 @@ impl CcxSolid {
             stiffness: spec.stiffness_mpa_per_mm(),
             stick_slope: spec.stick_slope_mpa_per_mm(),
             read,
+            edge_steps,
             wall_s: [mesh_s, solve_s, start.elapsed().as_secs_f64()],
         })
     }
@@ -288,6 +287,15 @@ impl CcxSolid {
             warnings: vec![FINITE_BODY.to_owned()],
             ..Metadata::default()
         };
+        if !run.edge_steps.is_empty() {
+            metadata.warnings.push(format!(
+                "CalculiX's nodal contact pressure reaches the outermost candidate ring at steps {:?}: \
+                 on a coarse mesh its extrapolation from the faces' integration points loads corners \
+                 beyond the contact, so c, p0 and the maps are not the contact's there (P and Q come \
+                 from the reactions)",
+                run.edge_steps
+            ));
+        }
         let extra = &mut metadata.extra;
         extra.insert("calculix".into(), self.settings.describe());
         extra.insert("element".into(), json!(C3D10.element));
@@ -316,6 +324,24 @@ impl CcxSolid {
         );
         metadata
     }
+}
+
+/// Fraction of the peak nodal pressure above which a node of the outermost candidate ring counts
+/// as loaded: CalculiX extrapolates its contact pressure from the faces' integration points to
+/// their nodes, so corners of faces partly in contact carry pressure beyond the contact
+/// (measured at c_max/2, δn = 17 µm: 237 MPa at r = 1.19 mm, 36 MPa at 1.38 mm, where Hertz's c
+/// is 0.92 mm and p0 450 MPa).
+const EDGE_PRESSURE: f64 = 0.05;
+
+/// Whether a node within half an element of the outermost candidate ring carries more than
+/// [`EDGE_PRESSURE`] of the peak: the contact may reach beyond the candidate zone.
+fn edge_loaded(surface: &surface3d::Surface3, h: f64) -> bool {
+    let peak = surface.nodes.iter().map(|n| n.pressure).fold(0.0, f64::max);
+    let outer = surface.nodes.iter().map(|n| n.r()).fold(0.0, f64::max);
+    surface
+        .nodes
+        .iter()
+        .any(|n| n.pressure > EDGE_PRESSURE * peak && n.r() >= outer - 0.5 * h)
 }
 
 /// The body's mesh, `body.msh` in `dir`.

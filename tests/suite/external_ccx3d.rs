@@ -271,7 +271,7 @@ fn ccx_3d_on_the_ci_case_agrees_with_fem_3d_on_the_same_mesh() {
     }
     let case = Case::load(Path::new("cases/ccx-3d.toml")).unwrap();
     let scene = case.scene;
-    let h = scene.max_contact_radius() / 3.0;
+    let h = scene.max_contact_radius() / 2.0;
     let mut ccx = CcxSolid::default();
     ccx.settings = case.calculix;
     ccx.options.resolution = Some(h);
