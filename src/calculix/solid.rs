@@ -28,9 +28,8 @@ use super::solid_read::{self, SolidRun, STICK_MARGIN};
 use super::{CcxAxisymDeck, Settings};
 use crate::domain::Grip;
 use crate::external::axisym::{Options, Plan};
-use crate::external::deck::{self, Deck, DeckKind, RunDir, TimeBudget, PATH_FILE};
+use crate::external::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
 use crate::external::process::Job;
-use crate::external::readback;
 use crate::external::record::FINITE_BODY;
 use crate::external::solid_geo::{self, SolidMeshFiles, Zones};
 use crate::external::surface3d;
@@ -182,14 +181,7 @@ impl CcxSolid {
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         applicable(scene)?;
         let (h, plan) = self.plan(scene);
-        let listed = readback::read_output(dir, PATH_FILE).map_err(SolveError::Failed)?;
-        if listed != deck::path_file(&plan.steps) {
-            return Err(SolveError::Failed(format!(
-                "{}: the steps it lists are not those of scene `{}`",
-                dir.join(PATH_FILE).display(),
-                scene.name
-            )));
-        }
+        deck::check_path_file(dir, &plan.steps, &scene.name)?;
         let mesh = read_mesh(dir)?;
         let run = self.read(scene, &plan, h, &mesh, dir, [0.0; 2])?;
         Ok(self.history(scene, "(run elsewhere)", &plan, h, &run))

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use super::axisym::{deck_input, Options, Plan, KFAC};
-use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget, PATH_FILE};
+use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};
@@ -203,14 +203,7 @@ impl Solid3dDeck {
     /// (its resolution option, or the default), for the metadata and the edge check.
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         let (resolution, plan) = self.plan(scene);
-        let listed = readback::read_output(dir, PATH_FILE).map_err(SolveError::Failed)?;
-        if listed != deck::path_file(&plan.steps) {
-            return Err(SolveError::Failed(format!(
-                "{}: the steps it lists are not those of scene `{}`",
-                dir.join(PATH_FILE).display(),
-                scene.name
-            )));
-        }
+        deck::check_path_file(dir, &plan.steps, &scene.name)?;
         let run = read_outputs(dir, &plan, resolution)?;
         let ranks = run
             .timing
@@ -417,7 +410,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::external::deck::DeckInput;
+    use crate::external::deck::{DeckInput, PATH_FILE};
 
     #[test]
     fn one_rank_runs_python_and_more_run_mpirun_as_root() {

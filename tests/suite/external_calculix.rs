@@ -47,8 +47,16 @@ pub(crate) fn fake_ccx(dir: &Path, body: &str) -> PathBuf {
 
 /// The failure message of a solve that must fail; the kept run directory is removed.
 fn failure(solver: &CcxAxisym) -> String {
-    let scene = scene_17um();
-    let message = match solver::run(solver, &scene) {
+    failure_of(solver, &scene_17um())
+}
+
+/// The failure message of `solver` on `scene`, which must fail keeping its run directory with
+/// the deck `job.inp`; the directory is removed.
+pub(crate) fn failure_of(
+    solver: &dyn spherecontact::solver::Solver,
+    scene: &spherecontact::scene::Scene,
+) -> String {
+    let message = match solver::run(solver, scene) {
         Err(SolveError::Failed(m)) => m,
         other => panic!("expected a failure, got {other:?}"),
     };

@@ -16,7 +16,7 @@ use spherecontact::external::deck::ComputedStep;
 use spherecontact::fem::mesh::solid::SolidMesh;
 use spherecontact::solver::{self, SolveError};
 
-use crate::external_calculix::{ccx_present, fake_ccx};
+use crate::external_calculix::{ccx_present, failure_of, fake_ccx};
 
 /// One 10-node tetrahedron (gmsh's order) with corners at the pole, 1 mm along x and y, and
 /// 1 mm up: its face on z = 0 is the contact face, the face y = 0 the symmetry plane.
@@ -237,18 +237,7 @@ fn a_hanging_ccx_is_killed_and_garbage_output_fails_with_its_reason() {
         solver.options.toolchain.ccx = fake_ccx(dir.path(), body);
         solver.options.timeout = Some(Duration::from_secs(timeout_s));
         solver.options.resolution = Some(scene.max_contact_radius() / 2.0);
-        let message = match solver::run(&solver, &scene) {
-            Err(SolveError::Failed(m)) => m,
-            other => panic!("expected a failure, got {other:?}"),
-        };
-        let kept = message
-            .rsplit("kept in ")
-            .next()
-            .and_then(|s| s.strip_suffix(')'));
-        let kept = kept.expect("the run directory is kept on failure");
-        assert!(Path::new(kept).join("job.inp").is_file(), "{message}");
-        std::fs::remove_dir_all(kept).ok();
-        message
+        failure_of(&solver, &scene)
     };
     let hang = failure("sleep 60", 2);
     assert!(hang.contains("did not finish within 2 s"), "{hang}");
