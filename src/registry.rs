@@ -15,6 +15,7 @@ pub fn registry() -> Vec<Box<dyn Solver>> {
     solvers.push(Box::new(fem::FemSolid3d::default()));
     solvers.extend(external::solvers());
     solvers.push(Box::new(crate::calculix::CcxAxisym::default()));
+    solvers.push(Box::new(crate::calculix::CcxSolid::default()));
     solvers.extend(dem::solvers());
     solvers
 }

@@ -64,7 +64,7 @@ pub struct DeckSpec<'a> {
 }
 
 /// A number as CalculiX reads it (see the module doc).
-fn num(x: f64) -> String {
+pub(crate) fn num(x: f64) -> String {
     format!("{x:.12e}")
 }
 
@@ -79,12 +79,7 @@ impl DeckSpec<'_> {
         let slave = self.slave_faces()?;
         let (plane_nodes, plane_elements, master) = self.strip();
         let k = self.stiffness_mpa_per_mm();
-        let behaviour = match self.settings.formulation {
-            // Node-to-face also takes the tension at large clearances (CalculiX's default 1 MPa
-            // pulled on open nodes near the edge): 1e-6 of E, far below any contact pressure.
-            Formulation::NodeToFace => format!("{}, {}", num(k), num(1e-6 * self.young * 1e-6)),
-            Formulation::FaceToFace => num(k),
-        };
+        let behaviour = surface_behavior(&self.settings, self.young, k);
         let grip = match self.grip {
             Grip::Rigid => "NFAR, 1, 1, 0.",
             Grip::Axial => "** axial grip: NFAR free in r",
@@ -228,8 +223,19 @@ impl DeckSpec<'_> {
     }
 }
 
+/// The data line of `*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR` for penalty `k` [MPa/mm]
+/// and Young's modulus `young` [Pa].
+pub(crate) fn surface_behavior(settings: &Settings, young: f64, k: f64) -> String {
+    match settings.formulation {
+        // Node-to-face also takes the tension at large clearances (CalculiX's default 1 MPa
+        // pulled on open nodes near the edge): 1e-6 of E, far below any contact pressure.
+        Formulation::NodeToFace => format!("{}, {}", num(k), num(1e-6 * young * 1e-6)),
+        Formulation::FaceToFace => num(k),
+    }
+}
+
 /// A node set's data lines: 1-based ids, 16 a line (CalculiX takes at most 16 entries a line).
-fn node_set(nodes: &[usize]) -> String {
+pub(crate) fn node_set(nodes: &[usize]) -> String {
     nodes
         .chunks(16)
         .map(|c| {

@@ -10,6 +10,11 @@
 
 pub mod inp;
 pub mod results;
+pub mod solid;
+pub mod solid_inp;
+pub mod solid_read;
+
+pub use solid::CcxSolid;
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -275,14 +280,7 @@ impl CcxAxisym {
         meshed: &Meshed,
         dir: &Path,
     ) -> Result<Run, SolveError> {
-        let stdout = read_output(dir, &format!("{LOG_STEM}.stdout")).map_err(SolveError::Failed)?;
-        if let Some(error) = stdout.lines().position(|l| l.contains("*ERROR")) {
-            let lines: Vec<&str> = stdout.lines().skip(error).take(6).collect();
-            return Err(SolveError::Failed(format!(
-                "ccx reported an error and exited with code 0: {}",
-                lines.join("\n")
-            )));
-        }
+        logged_error(dir)?;
         let start = Instant::now();
         let mut read = read_back(dir, &self.spec(scene, h, plan, meshed)).map_err(SolveError::Failed)?;
         read.wall_s[2] = start.elapsed().as_secs_f64();
@@ -402,6 +400,28 @@ impl CcxAxisym {
         extra.insert("solving_s".into(), json!(solving));
         extra.insert("reading_back_s".into(), json!(reading));
         metadata
+    }
+}
+
+/// ccx exits with code 0 after some fatal errors (an input file it cannot open): its `*ERROR`
+/// lines in `stdout` make the run a failure.
+/// [`reported_error`] of the ccx stdout a finished run left in `dir` (`deck.stdout`: the
+/// solver's own run and a written folder's `run.sh` both log there).
+pub(crate) fn logged_error(dir: &Path) -> Result<(), SolveError> {
+    let stdout = read_output(dir, &format!("{LOG_STEM}.stdout")).map_err(SolveError::Failed)?;
+    reported_error(&stdout)
+}
+
+pub(crate) fn reported_error(stdout: &str) -> Result<(), SolveError> {
+    match stdout.lines().position(|l| l.contains("*ERROR")) {
+        Some(error) => {
+            let lines: Vec<&str> = stdout.lines().skip(error).take(6).collect();
+            Err(SolveError::Failed(format!(
+                "ccx reported an error and exited with code 0: {}",
+                lines.join("\n")
+            )))
+        }
+        None => Ok(()),
     }
 }
 

@@ -51,13 +51,14 @@ fn finite(text: &str) -> Option<f64> {
     text.parse::<f64>().ok().filter(|v| v.is_finite())
 }
 
-/// One `CONTACT` block of a `.frd`: its output time and, per slave node, (COPEN, CPRESS) [mm, MPa].
+/// One `CONTACT` block of a `.frd`: its output time and, per slave node, (COPEN, CSLIP1, CSLIP2,
+/// CPRESS, CSHEAR1, CSHEAR2) [mm, MPa].
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ContactBlock {
     /// The output (total) time.
     pub time: f64,
-    /// Node number → (opening, pressure).
-    pub values: HashMap<u64, (f64, f64)>,
+    /// Node number → the six values.
+    pub values: HashMap<u64, [f64; 6]>,
 }
 
 /// What the `.frd` holds that the deck reads: the node coordinates (all of them, the expanded
@@ -113,7 +114,7 @@ pub fn parse_frd(text: &str) -> Result<Frd, String> {
             while i < lines.len() && !lines[i].starts_with(" -3") {
                 let (id, v) =
                     record(lines[i], 6).ok_or_else(|| at(i, "not a contact record of six finite values"))?;
-                block.values.insert(id, (v[0], v[3]));
+                block.values.insert(id, [v[0], v[1], v[2], v[3], v[4], v[5]]);
                 i += 1;
             }
             if i == lines.len() {
@@ -162,7 +163,12 @@ pub fn on_meridian(
     tolerance: f64,
 ) -> Result<Vec<(f64, f64)>, String> {
     let mut found: Vec<Option<(f64, f64)>> = vec![None; points.len()];
-    for (id, &(open, pressure)) in block.values.iter().filter(|(_, v)| **v != (0.0, 0.0)) {
+    for (id, (open, pressure)) in block
+        .values
+        .iter()
+        .map(|(id, v)| (id, (v[0], v[3])))
+        .filter(|(_, v)| *v != (0.0, 0.0))
+    {
         let [x, y, z] = *nodes
             .get(id)
             .ok_or_else(|| format!("job.frd: contact output at node {id}, which has no coordinates"))?;

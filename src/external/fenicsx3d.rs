@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use super::axisym::{deck_input, Options, Plan, KFAC};
-use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget, PATH_FILE};
+use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};
@@ -21,7 +21,7 @@ use super::split;
 use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
-use crate::history::{History, Metadata, StepResult};
+use crate::history::{History, Metadata};
 use crate::limits::SOLID_POLE;
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
@@ -207,14 +207,7 @@ impl Solid3dDeck {
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         applicable(scene)?;
         let (resolution, plan) = self.plan(scene);
-        let listed = readback::read_output(dir, PATH_FILE).map_err(SolveError::Failed)?;
-        if listed != deck::path_file(&plan.steps) {
-            return Err(SolveError::Failed(format!(
-                "{}: the steps it lists are not those of scene `{}`",
-                dir.join(PATH_FILE).display(),
-                scene.name
-            )));
-        }
+        deck::check_path_file(dir, &plan.steps, &scene.name)?;
         let run = read_outputs(dir, &plan, resolution)?;
         let ranks = run
             .timing
@@ -381,26 +374,13 @@ impl SplitDeck for Solid3dDeck {
 
 /// One `History` row per path step, the fields at the positions the case records, the metadata.
 fn history(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -> History {
-    let mut steps = Vec::with_capacity(run.rows.len());
-    let mut fields = Vec::new();
-    for ((step, row), surface) in scene.steps().iter().zip(&run.rows).zip(&run.surfaces) {
-        let measures = surface.measures(&run.triangles);
-        if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
-            fields.push(surface.field(position, plan.tangential, &run.triangles));
-        }
-        let in_contact = row.force_contact > 0.0;
-        steps.push(StepResult {
-            normal_force: Some(row.force_contact),
-            tangential_force: plan.tangential.then_some(row.tangential_force),
-            contact_radius: measures.radius,
-            peak_pressure: measures.peak,
-            stick_radius: (plan.tangential && in_contact).then(|| {
-                let c = measures.radius.unwrap_or(0.0);
-                surface.stick_zone(c).map_or(0.0, |z| z.radius)
-            }),
-            ..StepResult::at(step)
-        });
-    }
+    let forces: Vec<[f64; 2]> = run
+        .rows
+        .iter()
+        .map(|r| [r.force_contact, r.tangential_force])
+        .collect();
+    let (steps, fields) =
+        surface3d::step_results(scene, plan.tangential, &forces, &run.surfaces, &run.triangles);
     History {
         metadata: metadata(scene, version, plan, run, ranks),
         steps,
@@ -465,7 +445,7 @@ fn metadata(scene: &Scene, version: &str, plan: &Plan, run: &Run3, ranks: u32) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::external::deck::DeckInput;
+    use crate::external::deck::{DeckInput, PATH_FILE};
 
     #[test]
     fn one_rank_runs_python_and_more_run_mpirun_as_root() {

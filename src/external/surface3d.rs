@@ -13,8 +13,9 @@
 use super::readback;
 use crate::fit::stick::{self, StickZone};
 use crate::fit::surface::{self, Measures};
-use crate::history::{Layout, SurfaceField, TangentialComponents};
+use crate::history::{Layout, StepResult, SurfaceField, TangentialComponents};
 use crate::mirror::Mirror;
+use crate::scene::Scene;
 
 /// The columns of the 3D `surface.csv`, in order.
 pub const SURFACE3_COLUMNS: [&str; 11] = [
@@ -138,6 +139,38 @@ impl Surface3 {
             layout: Layout::Triangles(mirror.triangles(triangles)),
         }
     }
+}
+
+/// One row per step of `scene` (every step computed) from each step's forces (P, Q) [N] and
+/// contact surface, and the fields at the positions the case records: c and p0 by
+/// [`Surface3::measures`], the stick radius by [`Surface3::stick_zone`] (when `tangential`).
+pub fn step_results(
+    scene: &Scene,
+    tangential: bool,
+    forces: &[[f64; 2]],
+    surfaces: &[Surface3],
+    triangles: &[[usize; 3]],
+) -> (Vec<StepResult>, Vec<SurfaceField>) {
+    let mut steps = Vec::with_capacity(forces.len());
+    let mut fields = Vec::new();
+    for ((step, &[normal, shear]), surface) in scene.steps().iter().zip(forces).zip(surfaces) {
+        let measures = surface.measures(triangles);
+        if let Some(position) = step.position.filter(|&p| scene.records_fields_at(p)) {
+            fields.push(surface.field(position, tangential, triangles));
+        }
+        steps.push(StepResult {
+            normal_force: Some(normal),
+            tangential_force: tangential.then_some(shear),
+            contact_radius: measures.radius,
+            peak_pressure: measures.peak,
+            stick_radius: (tangential && normal > 0.0).then(|| {
+                let c = measures.radius.unwrap_or(0.0);
+                surface.stick_zone(c).map_or(0.0, |z| z.radius)
+            }),
+            ..StepResult::at(step)
+        });
+    }
+    (steps, fields)
 }
 
 /// The columns of the 3D deck's `triangles.csv`: the candidate faces, as indices of the contact

@@ -18,13 +18,13 @@ use crate::common;
 use common::decks::{any_force_check, scene_17um};
 
 /// True when gmsh and ccx run; otherwise prints why the calling test skips.
-fn ccx_present(test: &str) -> bool {
+pub(crate) fn ccx_present(test: &str) -> bool {
     common::decks::these_tools_present(test, &[Tool::Gmsh, Tool::Ccx])
 }
 
 /// A stand-in `ccx` (a shell script in `dir`) that answers `-v` as ccx 2.20 does and runs `body`
 /// for a job.
-fn fake_ccx(dir: &Path, body: &str) -> PathBuf {
+pub(crate) fn fake_ccx(dir: &Path, body: &str) -> PathBuf {
     use std::os::unix::fs::PermissionsExt;
     let path = dir.join("ccx");
     let script = format!(
@@ -37,8 +37,16 @@ fn fake_ccx(dir: &Path, body: &str) -> PathBuf {
 
 /// The failure message of a solve that must fail; the kept run directory is removed.
 fn failure(solver: &CcxAxisym) -> String {
-    let scene = scene_17um();
-    let message = match solver::run(solver, &scene) {
+    failure_of(solver, &scene_17um())
+}
+
+/// The failure message of `solver` on `scene`, which must fail keeping its run directory with
+/// the deck `job.inp`; the directory is removed.
+pub(crate) fn failure_of(
+    solver: &dyn spherecontact::solver::Solver,
+    scene: &spherecontact::scene::Scene,
+) -> String {
+    let message = match solver::run(solver, scene) {
         Err(SolveError::Failed(m)) => m,
         other => panic!("expected a failure, got {other:?}"),
     };
