@@ -408,7 +408,15 @@ mod tests {
                 "hertz-mindlin-spring",
                 "thornton",
                 "md-incremental",
-                "walton-braun"
+                "walton-braun",
+                // The DEM codes and their rules' references, named by the case's checks.
+                "lammps-mindlin",
+                "mdr-lammps",
+                "lammps-mindlin-rescale",
+                "lammps-mindlin-force",
+                "lammps-mindlin-rescale-force",
+                "yade-mindlin",
+                "mdr-yade"
             ]
         );
         assert!(plan.runs.iter().all(|r| r.cores == 1));
