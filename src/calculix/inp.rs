@@ -64,7 +64,7 @@ pub struct DeckSpec<'a> {
 }
 
 /// A number as CalculiX reads it (see the module doc).
-fn num(x: f64) -> String {
+pub(super) fn num(x: f64) -> String {
     format!("{x:.12e}")
 }
 
@@ -230,7 +230,7 @@ impl DeckSpec<'_> {
 }
 
 /// A node set's data lines: 1-based ids, 16 a line (CalculiX takes at most 16 entries a line).
-fn node_set(nodes: &[usize]) -> String {
+pub(super) fn node_set(nodes: &[usize]) -> String {
     nodes
         .chunks(16)
         .map(|c| {

@@ -11,26 +11,10 @@ use std::time::Duration;
 
 use spherecontact::calculix::CcxAxisym;
 use spherecontact::check::{Histories, Verdict};
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::solver::{self, SolveError};
 
 use crate::common;
-use common::decks::{any_force_check, scene_17um};
-
-/// True when gmsh and ccx run; otherwise prints why the calling test skips.
-fn ccx_present(test: &str) -> bool {
-    let chain = Toolchain::default();
-    let missing: Vec<String> = [Tool::Gmsh, Tool::Ccx]
-        .into_iter()
-        .map(|t| chain.probe(t))
-        .filter(|p| !p.available())
-        .map(|p| p.line())
-        .collect();
-    if !missing.is_empty() {
-        eprintln!("{test}: skipped (run scripts/setup.sh):\n{}", missing.join("\n"));
-    }
-    missing.is_empty()
-}
+use common::decks::{any_force_check, ccx_present, scene_17um};
 
 /// A stand-in `ccx` (a shell script in `dir`) that answers `-v` as ccx 2.20 does and runs `body`
 /// for a job.

@@ -9,7 +9,7 @@ use spherecontact::domain::Grip;
 use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
 use spherecontact::external::geo::MeshFiles;
-use spherecontact::external::toolchain::Toolchain;
+use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver::Solver;
@@ -47,6 +47,21 @@ pub fn tools_present(test: &str) -> bool {
             "{test}: skipped, external tools missing (run scripts/setup.sh):\n{}",
             missing.join("\n")
         );
+    }
+    missing.is_empty()
+}
+
+/// True when gmsh and ccx run; otherwise prints why the calling test skips.
+pub fn ccx_present(test: &str) -> bool {
+    let chain = Toolchain::default();
+    let missing: Vec<String> = [Tool::Gmsh, Tool::Ccx]
+        .into_iter()
+        .map(|t| chain.probe(t))
+        .filter(|p| !p.available())
+        .map(|p| p.line())
+        .collect();
+    if !missing.is_empty() {
+        eprintln!("{test}: skipped (run scripts/setup.sh):\n{}", missing.join("\n"));
     }
     missing.is_empty()
 }
