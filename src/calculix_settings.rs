@@ -1,13 +1,20 @@
 //! The settings of the CalculiX solvers that a case chooses (`[calculix]`): the contact
-//! formulation, the penalty stiffness and the element, each with its allowed set, recorded in
-//! every history's metadata.
+//! formulation, the penalty stiffness and the 3D element, each with its allowed set, recorded in
+//! every history's metadata. Code_Aster calls such variants of one physical test its
+//! "modelings"; here they are a case axis (docs/external-decks.md, "CalculiX: formulations").
 //!
 //! ```toml
 //! [calculix]
-//! contact = "face-to-face"    # or "node-to-face" (*CONTACT PAIR, TYPE=SURFACE TO SURFACE or NODE TO SURFACE)
+//! contact = "face-to-face"    # node-to-face, face-to-face, mortar, linmortar, pglinmortar
 //! penalty = 1e3               # K = penalty · E / h (*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR)
-//! element = "cax6"            # the element on the meridian's 6-node triangles
+//! element = "tet10"           # the 3D decks' element: tet10 (C3D10), hex20 (C3D20), hex20r (C3D20R)
 //! ```
+//!
+//! The formulations are those of CalculiX 2.20's `*CONTACT PAIR, TYPE=…` (its manual, "Contact":
+//! node-to-face penalty, face-to-face penalty, and face-to-face mortar with dual Lagrange
+//! multipliers in three variants, MORTAR, LINMORTAR and PGLINMORTAR; the Debian binary's keyword
+//! table has all five). The axisymmetric deck has one element, CAX6 on the shared mesh's
+//! quadratic triangles ([`AXISYMMETRIC_ELEMENT`]); `element` chooses the 3D decks'.
 
 /// How CalculiX enforces contact between the sphere (slave) and the plane (master).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -16,17 +23,33 @@ pub enum Formulation {
     NodeToFace,
     /// `TYPE=SURFACE TO SURFACE`: the penalty integrated over the slave faces.
     FaceToFace,
+    /// `TYPE=MORTAR`: face-to-face with dual Lagrange multipliers (quadratic ones).
+    Mortar,
+    /// `TYPE=LINMORTAR`: mortar with linear dual multipliers (none at the midside nodes).
+    LinMortar,
+    /// `TYPE=PGLINMORTAR`: mortar, the multiplier's variation by linear standard functions
+    /// (Petrov–Galerkin).
+    PgLinMortar,
 }
 
 impl Formulation {
     /// Every formulation, in the order error messages list them.
-    pub const ALL: [Formulation; 2] = [Formulation::FaceToFace, Formulation::NodeToFace];
+    pub const ALL: [Formulation; 5] = [
+        Formulation::FaceToFace,
+        Formulation::NodeToFace,
+        Formulation::Mortar,
+        Formulation::LinMortar,
+        Formulation::PgLinMortar,
+    ];
 
     /// The name in case files and metadata.
     pub fn name(self) -> &'static str {
         match self {
             Formulation::NodeToFace => "node-to-face",
             Formulation::FaceToFace => "face-to-face",
+            Formulation::Mortar => "mortar",
+            Formulation::LinMortar => "linmortar",
+            Formulation::PgLinMortar => "pglinmortar",
         }
     }
 
@@ -35,34 +58,85 @@ impl Formulation {
         match self {
             Formulation::NodeToFace => "NODE TO SURFACE",
             Formulation::FaceToFace => "SURFACE TO SURFACE",
+            Formulation::Mortar => "MORTAR",
+            Formulation::LinMortar => "LINMORTAR",
+            Formulation::PgLinMortar => "PGLINMORTAR",
         }
+    }
+
+    /// True for the mortar variants.
+    pub fn mortar(self) -> bool {
+        matches!(
+            self,
+            Formulation::Mortar | Formulation::LinMortar | Formulation::PgLinMortar
+        )
+    }
+
+    /// True for the face-to-face families (penalty or mortar), whose contact totals
+    /// `*CONTACT PRINT … CF` prints; node-to-face has none.
+    pub fn face_to_face(self) -> bool {
+        self != Formulation::NodeToFace
     }
 }
 
-/// The element on the meridian mesh.
+/// The axisymmetric deck's element: CAX6 on the shared meridian mesh's quadratic triangles (the
+/// mesh every axisymmetric solver shares, so that p(r) is compared node by node; CAX8 would need
+/// a recombined meridian mesh of its own).
+pub const AXISYMMETRIC_ELEMENT: &str = "CAX6";
+
+/// The mesh a 3D element needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshKind {
+    /// gmsh's quadratic tetrahedra (`src/external/solid_geo.rs`, as fem-3d).
+    Tet10,
+    /// 20-node hexahedra of the same body (`src/calculix/hex_mesh.rs`).
+    Hex20,
+}
+
+/// The 3D decks' element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Element {
-    /// CAX6: the 6-node axisymmetric triangle, on gmsh's quadratic triangles as they are (the
-    /// shared mesh of every axisymmetric solver, so that p(r) is compared node by node).
-    Cax6,
+    /// C3D10: the 10-node tetrahedron, on fem-3d's mesh.
+    Tet10,
+    /// C3D20: the 20-node brick, full integration (27 points), the paper's kind (ANSYS SOLID186).
+    Hex20,
+    /// C3D20R: the 20-node brick, reduced integration (8 points).
+    Hex20r,
 }
 
 impl Element {
     /// Every element, in the order error messages list them.
-    pub const ALL: [Element; 1] = [Element::Cax6];
+    pub const ALL: [Element; 3] = [Element::Tet10, Element::Hex20, Element::Hex20r];
 
     /// The name in case files and metadata.
     pub fn name(self) -> &'static str {
         match self {
-            Element::Cax6 => "cax6",
+            Element::Tet10 => "tet10",
+            Element::Hex20 => "hex20",
+            Element::Hex20r => "hex20r",
         }
     }
 
-    /// CalculiX's element type.
+    /// CalculiX's element type (`*ELEMENT, TYPE=…`).
     pub fn keyword(self) -> &'static str {
         match self {
-            Element::Cax6 => "CAX6",
+            Element::Tet10 => "C3D10",
+            Element::Hex20 => "C3D20",
+            Element::Hex20r => "C3D20R",
         }
+    }
+
+    /// The mesh it needs.
+    pub fn mesh(self) -> MeshKind {
+        match self {
+            Element::Tet10 => MeshKind::Tet10,
+            Element::Hex20 | Element::Hex20r => MeshKind::Hex20,
+        }
+    }
+
+    /// Its keyword and mesh: what a 3D deck asks of the setting.
+    pub fn spec(self) -> (&'static str, MeshKind) {
+        (self.keyword(), self.mesh())
     }
 }
 
@@ -80,18 +154,18 @@ pub struct Settings {
     pub formulation: Formulation,
     /// The penalty factor: K = penalty · E / h, h the pole element size.
     pub penalty: f64,
-    /// The element.
+    /// The 3D decks' element.
     pub element: Element,
 }
 
 impl Default for Settings {
     /// Face-to-face (CalculiX's advice for quadratic elements: node-to-face puts springs at the
-    /// corner and midside nodes whose pressures alternate), penalty 1e3, CAX6.
+    /// corner and midside nodes whose pressures alternate), penalty 1e3, C3D10 (fem-3d's mesh).
     fn default() -> Self {
         Self {
             formulation: Formulation::FaceToFace,
             penalty: 1e3,
-            element: Element::Cax6,
+            element: Element::Tet10,
         }
     }
 }
@@ -147,6 +221,7 @@ impl Settings {
             "contact_keyword": self.formulation.keyword(),
             "penalty_factor": self.penalty,
             "element": self.element.name(),
+            "element_keyword": self.element.keyword(),
         })
     }
 }
@@ -160,14 +235,33 @@ mod tests {
         for f in Formulation::ALL {
             assert_eq!(Settings::formulation(f.name()), Ok(f));
         }
-        let e = Settings::formulation("mortar").unwrap_err().to_string();
-        assert!(e.contains("face-to-face, node-to-face"), "{e}");
-        let e = Settings::element("cax8").unwrap_err().to_string();
-        assert!(e.contains("allowed: cax6"), "{e}");
+        for e in Element::ALL {
+            assert_eq!(Settings::element(e.name()), Ok(e));
+        }
+        let e = Settings::formulation("augmented-lagrange")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("face-to-face, node-to-face, mortar, linmortar, pglinmortar"),
+            "{e}"
+        );
+        let e = Settings::element("cax6").unwrap_err().to_string();
+        assert!(e.contains("allowed: tet10, hex20, hex20r"), "{e}");
         assert_eq!(Settings::penalty(1e3), Ok(1e3));
         for bad in [0.5, 2e6, f64::NAN, f64::INFINITY] {
             let e = Settings::penalty(bad).unwrap_err().to_string();
             assert!(e.contains("1 ≤ penalty ≤ 1000000"), "{e}");
         }
+    }
+
+    #[test]
+    fn the_element_axis_gives_the_keyword_and_the_mesh_a_3d_deck_needs() {
+        assert_eq!(Element::Tet10.spec(), ("C3D10", MeshKind::Tet10));
+        assert_eq!(Element::Hex20.spec(), ("C3D20", MeshKind::Hex20));
+        assert_eq!(Element::Hex20r.spec(), ("C3D20R", MeshKind::Hex20));
+        for f in Formulation::ALL {
+            assert_eq!(f.mortar(), f.keyword().contains("MORTAR"), "{f:?}");
+        }
+        assert!(!Formulation::NodeToFace.face_to_face() && Formulation::Mortar.face_to_face());
     }
 }

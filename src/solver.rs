@@ -227,11 +227,21 @@ impl Solver for Resolved {
     }
 
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
-        self.inner.writing_fields_to(dir).map(|inner| {
-            Box::new(Resolved {
-                inner,
-                value: self.value.clone(),
-            }) as Box<dyn Solver>
+        self.inner.writing_fields_to(dir).map(|inner| self.around(inner))
+    }
+
+    /// The same resolution with other CalculiX settings (a formulation sweep).
+    fn with_calculix(&self, settings: &crate::calculix_settings::Settings) -> Option<Box<dyn Solver>> {
+        self.inner.with_calculix(settings).map(|inner| self.around(inner))
+    }
+}
+
+impl Resolved {
+    /// `inner` at this resolution value.
+    fn around(&self, inner: Box<dyn Solver>) -> Box<dyn Solver> {
+        Box::new(Resolved {
+            inner,
+            value: self.value.clone(),
         })
     }
 }

@@ -10,7 +10,7 @@
 use std::collections::HashMap;
 use std::fmt::Write;
 
-use crate::calculix_settings::{Formulation, Settings};
+use crate::calculix_settings::{Formulation, Settings, AXISYMMETRIC_ELEMENT};
 use crate::domain::Grip;
 use crate::fem::mesh::meridian::Mesh;
 
@@ -94,7 +94,7 @@ impl DeckSpec<'_> {
             ("@TRIANGLES@", self.mesh.triangles.len().to_string()),
             ("@H_MM@", format!("{:.6e}", self.h * 1e3)),
             ("@BODY_NODES@", self.body_nodes()),
-            ("@ELEMENT@", self.settings.element.keyword().to_owned()),
+            ("@ELEMENT@", AXISYMMETRIC_ELEMENT.to_owned()),
             ("@BODY_ELEMENTS@", self.body_elements()),
             ("@PLANE_NODES@", plane_nodes),
             ("@PLANE_ELEMENTS@", plane_elements),
@@ -199,11 +199,12 @@ impl DeckSpec<'_> {
     /// names).
     fn steps(&self) -> String {
         let mut text = String::new();
-        let contact_totals = match self.settings.formulation {
-            // ccx 2.20 stops with "no existing contact pair defined" unless the pair is named;
-            // node-to-face has no CF totals at all.
-            Formulation::FaceToFace => "*CONTACT PRINT, TOTALS=ONLY, SLAVE=SSPHERE, MASTER=SPLANE\nCF\n",
-            Formulation::NodeToFace => "",
+        // ccx 2.20 stops with "no existing contact pair defined" unless the pair is named;
+        // node-to-face has no CF totals at all.
+        let contact_totals = if self.settings.formulation.face_to_face() {
+            "*CONTACT PRINT, TOTALS=ONLY, SLAVE=SSPHERE, MASTER=SPLANE\nCF\n"
+        } else {
+            ""
         };
         for p in self.positions {
             let _ = write!(
@@ -230,7 +231,7 @@ pub(crate) fn surface_behavior(settings: &Settings, young: f64, k: f64) -> Strin
         // Node-to-face also takes the tension at large clearances (CalculiX's default 1 MPa
         // pulled on open nodes near the edge): 1e-6 of E, far below any contact pressure.
         Formulation::NodeToFace => format!("{}, {}", num(k), num(1e-6 * young * 1e-6)),
-        Formulation::FaceToFace => num(k),
+        _ => num(k),
     }
 }
 

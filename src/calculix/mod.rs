@@ -8,6 +8,9 @@
 //!
 //! Model and findings: docs/external-decks.md, "CalculiX".
 
+pub mod hex20;
+pub mod hex_deck;
+pub mod hex_mesh;
 pub mod inp;
 pub mod results;
 pub mod solid;
@@ -221,6 +224,14 @@ impl Solver for CcxAxisym {
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         axisym::applicable(scene)?;
+        if self.settings.formulation.mortar() {
+            return Err(SolveError::NotApplicable(format!(
+                "CalculiX 2.20's {} contact refuses the axisymmetric model: the slave nodes carry the \
+                 MPCs of its expansion into a 2° wedge (measured: `*ERROR in catsmpcslavno: slavenodes \
+                 belonging to unallowed MPCs`; its manual advises mortar for genuine 3D elements only)",
+                self.settings.formulation.name()
+            )));
+        }
         let toolchain = &self.options.toolchain;
         let version = toolchain.require(Tool::Ccx).map_err(SolveError::Unavailable)?;
         let resolution = self.pole_size(scene);
@@ -339,9 +350,7 @@ impl CcxAxisym {
                     .into(),
             );
         }
-        if run.force_contact_print.iter().any(Option::is_none)
-            && self.settings.formulation == crate::calculix_settings::Formulation::FaceToFace
-        {
+        if run.force_contact_print.iter().any(Option::is_none) && self.settings.formulation.face_to_face() {
             warnings.push("*CONTACT PRINT CF printed no total at some positions".into());
         }
         let mut metadata = Metadata {
@@ -350,7 +359,7 @@ impl CcxAxisym {
                 "axisymmetric ({}, expanded by CalculiX into a 2° wedge), one sphere ({}) against a \
                  held strip on its symmetry plane, exact for identical spheres; normal contact, {} \
                  penalty K = {:e} E/h; P from the far face's reaction × {SEGMENT_FACTOR}",
-                self.settings.element.keyword(),
+                crate::calculix_settings::AXISYMMETRIC_ELEMENT,
                 scene.domain.describe(),
                 self.settings.formulation.name(),
                 self.settings.penalty
@@ -375,6 +384,10 @@ impl CcxAxisym {
         let contact_sum: Vec<_> = run.surfaces.iter().map(|s| json!(nodal_force(s))).collect();
         let extra = &mut metadata.extra;
         extra.insert("calculix".into(), self.settings.describe());
+        extra.insert(
+            "element_axisymmetric".into(),
+            json!(crate::calculix_settings::AXISYMMETRIC_ELEMENT),
+        );
         extra.insert("penalty_stiffness_mpa_per_mm".into(), json!(run.stiffness));
         extra.insert("grip".into(), json!(plan.grip.name()));
         extra.insert(

@@ -112,6 +112,19 @@ struct Run {
 }
 
 impl CcxSolid {
+    /// `NotApplicable` unless the case's `[calculix] element` is this deck's C3D10: the 20-node
+    /// bricks have their mesh (`hex_mesh`) and a frictionless deck (`hex_deck`), not this
+    /// frictional one yet, and a setting is never dropped silently.
+    fn element_supported(&self) -> Result<(), SolveError> {
+        match self.settings.element {
+            crate::calculix_settings::Element::Tet10 => Ok(()),
+            other => Err(SolveError::NotApplicable(format!(
+                "ccx-3d runs C3D10 (element = \"tet10\"); element = \"{}\" is not built into this deck",
+                other.name()
+            ))),
+        }
+    }
+
     /// The pole size and plan of `scene`: the candidate zone is fem-3d's, so that the slave
     /// faces are fem-3d's candidate faces.
     fn plan(&self, scene: &Scene) -> (f64, Plan) {
@@ -168,6 +181,7 @@ impl CcxSolid {
     /// -i job` there, then [`CcxSolid::read_run`]).
     pub fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
         applicable(scene)?;
+        self.element_supported()?;
         // gmsh runs in the folder: a relative path would name another place there.
         let dir = &dir
             .canonicalize()
@@ -182,6 +196,7 @@ impl CcxSolid {
     /// `scene`'s steps; the pole size is this solver's (its resolution option or the default).
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         applicable(scene)?;
+        self.element_supported()?;
         let (h, plan) = self.plan(scene);
         deck::check_path_file(dir, &plan.steps, &scene.name)?;
         super::logged_error(dir)?;
@@ -392,6 +407,7 @@ impl Solver for CcxSolid {
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         applicable(scene)?;
+        self.element_supported()?;
         let version = self
             .options
             .toolchain

@@ -28,7 +28,7 @@ impl Validator<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::calculix_settings::Formulation;
+    use crate::calculix_settings::{Element, Formulation};
     use crate::case::Case;
     use std::path::Path;
 
@@ -43,15 +43,17 @@ mod tests {
     #[test]
     fn the_table_sets_the_calculix_solvers_and_bad_values_list_the_allowed_set() {
         let c =
-            case("[calculix]\ncontact = \"node-to-face\"\npenalty = 100.0\nelement = \"cax6\"\n").unwrap();
+            case("[calculix]\ncontact = \"node-to-face\"\npenalty = 100.0\nelement = \"hex20r\"\n").unwrap();
         assert_eq!(c.calculix.formulation, Formulation::NodeToFace);
         assert_eq!(c.calculix.penalty, 100.0);
+        assert_eq!(c.calculix.element, Element::Hex20r);
         assert_eq!(case("").unwrap().calculix, Default::default());
-        let e = case("[calculix]\ncontact = \"mortar\"\n")
+        let e = case("[calculix]\ncontact = \"lagrange\"\n")
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("calculix.contact") && e.contains("allowed: face-to-face, node-to-face"),
+            e.contains("calculix.contact")
+                && e.contains("allowed: face-to-face, node-to-face, mortar, linmortar, pglinmortar"),
             "{e}"
         );
         let e = case("[calculix]\npenalty = 1e9\n").unwrap_err().to_string();
@@ -61,7 +63,7 @@ mod tests {
         );
         let e = case("[calculix]\nelement = \"c3d10\"\n").unwrap_err().to_string();
         assert!(
-            e.contains("calculix.element") && e.contains("allowed: cax6"),
+            e.contains("calculix.element") && e.contains("allowed: tet10, hex20, hex20r"),
             "{e}"
         );
         let e = case("[calculix]\nsolver = \"x\"\n").unwrap_err().to_string();

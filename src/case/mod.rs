@@ -37,9 +37,9 @@
 //! grip = "rigid"                        # "rigid" (default) or "axial" (frictionless scenes only)
 //!
 //! [calculix]                            # optional: the CalculiX solvers' settings
-//! contact = "face-to-face"              # or "node-to-face"
+//! contact = "face-to-face"              # node-to-face, face-to-face, mortar, linmortar, pglinmortar
 //! penalty = 1e3                         # K = penalty · E / h, 1 ≤ penalty ≤ 1e6
-//! element = "cax6"                      # the only element so far
+//! element = "tet10"                     # the 3D decks' element: tet10, hex20, hex20r
 //!
 //! [resolution]                          # optional: per solver, over its default (see
 //! bem = 128                             # `resolution`); `--resolution SOLVER=VALUE` overrides

@@ -170,9 +170,20 @@ pub fn mesh(
     stem: &str,
     toolchain: &Toolchain,
 ) -> Result<SolidMeshFiles, SolveError> {
+    let text = geometry.geo().map_err(SolveError::NotApplicable)?;
+    mesh_geo(&text, dir, stem, toolchain)
+}
+
+/// Writes the geometry `text` (one of [`SolidGeometry::geo`]'s, perhaps with options appended)
+/// to `<dir>/<stem>.geo` and runs gmsh for `<dir>/<stem>.msh` (MSH 4.1, quadratic).
+pub fn mesh_geo(
+    text: &str,
+    dir: &Path,
+    stem: &str,
+    toolchain: &Toolchain,
+) -> Result<SolidMeshFiles, SolveError> {
     toolchain.require(Tool::Gmsh).map_err(SolveError::Unavailable)?;
     let geo = dir.join(format!("{stem}.geo"));
-    let text = geometry.geo().map_err(SolveError::NotApplicable)?;
     std::fs::write(&geo, text).map_err(|e| SolveError::Failed(format!("writing {}: {e}", geo.display())))?;
     let msh = dir.join(format!("{stem}.msh"));
     let args = [

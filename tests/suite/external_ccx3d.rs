@@ -16,7 +16,8 @@ use spherecontact::external::deck::ComputedStep;
 use spherecontact::fem::mesh::solid::SolidMesh;
 use spherecontact::solver;
 
-use crate::external_calculix::{ccx_present, failure_of, fake_ccx};
+use crate::common::decks::ccx_present;
+use crate::external_calculix::{failure_of, fake_ccx};
 
 /// One 10-node tetrahedron (gmsh's order) with corners at the pole, 1 mm along x and y, and
 /// 1 mm up: its face on z = 0 is the contact face, the face y = 0 the symmetry plane.

@@ -55,6 +55,11 @@ pub fn tools_present(test: &str) -> bool {
     missing.is_empty()
 }
 
+/// True when gmsh and ccx run; otherwise prints why the calling test skips.
+pub fn ccx_present(test: &str) -> bool {
+    these_tools_present(test, &[Tool::Gmsh, Tool::Ccx])
+}
+
 /// True when every tool of `tools` works; otherwise prints why the calling test skips.
 pub fn these_tools_present(test: &str, tools: &[Tool]) -> bool {
     let chain = Toolchain::default();
@@ -68,6 +73,25 @@ pub fn these_tools_present(test: &str, tools: &[Tool]) -> bool {
         eprintln!("{test}: skipped (run scripts/setup.sh):\n{}", missing.join("\n"));
     }
     missing.is_empty()
+}
+
+/// P at position 1 of `history` against mdr-domain's on `scene`, printed with `label`: returns
+/// the relative error.
+pub fn force_error_against_mdr_domain(
+    label: &str,
+    history: &spherecontact::history::History,
+    scene: &Scene,
+) -> f64 {
+    let corrected = spherecontact::solver::run(
+        spherecontact::registry::by_name("mdr-domain").unwrap().as_ref(),
+        scene,
+    )
+    .unwrap();
+    let p = history.at_position(1).unwrap().normal_force.unwrap();
+    let reference = corrected.at_position(1).unwrap().normal_force.unwrap();
+    let error = p / reference - 1.0;
+    eprintln!("{label}: P = {p} N, mdr-domain {reference} N, error {error:+.3e}");
+    error
 }
 
 /// The hertz-normal case's scene with its path cut to δn 0 → 17 µm (one solve per deck).

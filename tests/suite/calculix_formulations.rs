@@ -1,0 +1,202 @@
+//! Formulations as a case axis (`[calculix]`: contact formulation, penalty factor, 3D element):
+//! a bad value stops the case with exit code 2 naming the file, the field and the allowed set;
+//! the case's settings reach the solver through its resolution and are recorded in the
+//! metadata; the mortars, which CalculiX 2.20 refuses on the axisymmetric model, are N/A with
+//! the reason. The sweep itself is `examples/ccx_formulations.rs` on
+//! `cases-heavy/ccx-formulations.toml` (docs/external-decks.md, "CalculiX: formulations").
+//! Tests that need gmsh and ccx skip, saying why, where those are absent.
+//! Run: `cargo test --test suite calculix_formulations::`.
+
+use std::path::Path;
+
+use spherecontact::calculix_settings::{Element, Formulation, MeshKind, Settings};
+use spherecontact::case::Case;
+use spherecontact::external::toolchain::Toolchain;
+use spherecontact::solver::{self, SolveError};
+
+use crate::common::decks::{ccx_present, force_error_against_mdr_domain, scene_17um};
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn a_bad_setting_exits_2_naming_the_file_the_field_and_the_allowed_set() {
+    for (file, field, allowed) in [
+        (
+            "bad-element.toml",
+            "calculix.element",
+            "allowed: tet10, hex20, hex20r",
+        ),
+        (
+            "bad-contact.toml",
+            "calculix.contact",
+            "allowed: face-to-face, node-to-face, mortar, linmortar, pglinmortar",
+        ),
+    ] {
+        let out = tempfile::tempdir().unwrap();
+        let path = root().join("tests/hostile/calculix").join(file);
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+            .arg("run")
+            .arg(&path)
+            .arg("--out")
+            .arg(out.path().join("o"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{file}: {stderr}");
+        assert!(
+            stderr.contains(file)
+                && stderr.contains(":15:")
+                && stderr.contains(field)
+                && stderr.contains(allowed),
+            "{file}: {stderr}"
+        );
+        assert!(!out.path().join("o").exists(), "{file}: output written");
+    }
+}
+
+#[test]
+fn the_element_axis_names_the_keyword_and_mesh_of_the_3d_decks() {
+    let case = Case::parse(
+        Path::new("c.toml"),
+        "friction = 0.2\nsolvers = [\"hertz\"]\n[body1]\nradius = 0.1\nyoung = 70e9\npoisson = 0.3\n\
+         [path]\nunit = \"um\"\ndelta_n = [0, 10]\ndelta_t = [0, 0]\nsubsteps = 1\n\
+         [calculix]\ncontact = \"mortar\"\npenalty = 1e4\nelement = \"hex20r\"\n",
+    )
+    .unwrap();
+    assert_eq!(case.calculix.formulation, Formulation::Mortar);
+    assert_eq!(case.calculix.element.spec(), ("C3D20R", MeshKind::Hex20));
+    let recorded = case.calculix.describe();
+    assert_eq!(recorded["contact_keyword"], "MORTAR");
+    assert_eq!(recorded["penalty_factor"], 1e4);
+    assert_eq!(recorded["element_keyword"], "C3D20R");
+    assert_eq!(Settings::default().element, Element::Tet10);
+}
+
+#[test]
+fn a_mortar_on_the_axisymmetric_deck_is_not_applicable_with_calculixs_reason() {
+    // Through the case's resolved solver (the sweep's path): the resolution is kept and the
+    // setting reaches the deck. CalculiX's refusal was measured with ccx 2.20 (the message
+    // quotes it); the deck says so before running it.
+    let case = Case::load(&root().join("cases/ccx-axisym.toml")).unwrap();
+    let resolved = case.solver("ccx-axisym").unwrap();
+    for formulation in [
+        Formulation::Mortar,
+        Formulation::LinMortar,
+        Formulation::PgLinMortar,
+    ] {
+        let settings = Settings {
+            formulation,
+            ..case.calculix
+        };
+        let solver = resolved
+            .with_calculix(&settings)
+            .expect("the resolved solver takes settings");
+        let error = solver::run(solver.as_ref(), &case.scene).unwrap_err();
+        assert!(matches!(error, SolveError::NotApplicable(_)), "{error}");
+        let message = error.to_string();
+        assert!(
+            message.contains(formulation.name()) && message.contains("catsmpcslavno"),
+            "{message}"
+        );
+    }
+}
+
+#[test]
+fn node_to_face_is_run_and_recorded() {
+    if !ccx_present("node_to_face_is_run_and_recorded") {
+        return;
+    }
+    let scene = scene_17um();
+    let settings = Settings {
+        formulation: Formulation::NodeToFace,
+        penalty: 1e4,
+        ..Settings::default()
+    };
+    let solver = spherecontact::registry::by_name("ccx-axisym")
+        .unwrap()
+        .with_calculix(&settings)
+        .unwrap()
+        .at_resolution(&scene, "c/10")
+        .unwrap();
+    let history = solver::run(solver.as_ref(), &scene).unwrap();
+    let extra = &history.metadata.extra;
+    assert_eq!(extra["calculix"]["contact"], "node-to-face");
+    assert_eq!(extra["calculix"]["contact_keyword"], "NODE TO SURFACE");
+    assert_eq!(extra["calculix"]["penalty_factor"], 1e4);
+    assert_eq!(extra["element_axisymmetric"], "CAX6");
+    assert!(
+        history.metadata.model.contains("node-to-face"),
+        "{}",
+        history.metadata.model
+    );
+    let error = force_error_against_mdr_domain("ccx-axisym node-to-face c/10", &history, &scene);
+    // As the face-to-face run of tests/suite/external_calculix.rs: the coarse mesh (c_max/10) and
+    // the penalty leave a few 1e-3; a wrong segment factor or a contact that does nothing would
+    // be off by orders of magnitude.
+    assert!(error.abs() < 5e-3, "P error {error:+.3e}");
+}
+
+#[test]
+#[ignore] // heavy: ccx on ~100 k DOFs of 20-node bricks, minutes; run with `-- --ignored`
+fn c3d20r_normal_contact_on_the_hex_mesh_against_mdr_domain() {
+    use spherecontact::calculix::{hex_deck, hex_mesh};
+    use spherecontact::calculix_settings::Element;
+    use spherecontact::fem::solid3d::meshing::{self, Zones};
+    if !ccx_present("c3d20r_normal_contact") {
+        return;
+    }
+    let chain = Toolchain::default();
+    let case = Case::load(&root().join("cases/ccx-axisym.toml")).unwrap();
+    let scene = &case.scene;
+    let radius = scene.pair.body1.radius;
+    let c_max = scene.max_contact_radius();
+    let h = c_max / 4.0;
+    let zones = Zones::new(c_max, h);
+    let geometry = meshing::geometry(radius, scene.domain.height(radius), h, zones);
+    let dir = tempfile::tempdir().unwrap();
+    let (mesh, _) = hex_mesh::mesh(&geometry, dir.path(), "body", &chain).unwrap();
+    let positions: Vec<usize> = (1..scene.path.positions().len()).collect();
+    let approaches: Vec<f64> = positions
+        .iter()
+        .map(|&k| scene.path.positions()[k].delta_n / 2.0)
+        .collect();
+    let spec = hex_deck::HexDeckSpec {
+        mesh: &mesh,
+        young: scene.pair.body1.material.young,
+        poisson: scene.pair.body1.material.poisson,
+        h,
+        candidate_radius: zones.candidate_radius,
+        grip: scene.domain.grip,
+        settings: Settings {
+            element: Element::Hex20r,
+            ..case.calculix
+        },
+        approaches: &approaches,
+    };
+    let start = std::time::Instant::now();
+    let results = hex_deck::run(&spec, dir.path(), &chain, std::time::Duration::from_secs(3600)).unwrap();
+    let wall = start.elapsed().as_secs_f64();
+    let reference = solver::run(
+        spherecontact::registry::by_name("mdr-domain").unwrap().as_ref(),
+        scene,
+    )
+    .unwrap();
+    for (&k, r) in positions.iter().zip(&results) {
+        let p_ref = reference.at_position(k).unwrap().normal_force.unwrap();
+        let c_ref = reference.at_position(k).unwrap().contact_radius.unwrap();
+        let (ep, ec) = (r.normal_force / p_ref - 1.0, r.contact_radius / c_ref - 1.0);
+        eprintln!(
+            "C3D20R, {} bricks, h = c_max/4, position {k}: P = {:.3} N ({ep:+.2e}), c = {:.4} mm ({ec:+.2e}), {wall:.0} s in all",
+            mesh.hexahedra.len(),
+            r.normal_force,
+            r.contact_radius * 1e3
+        );
+        // The coarse bricks (c_max/4 at the pole) and the penalty: P within 3 % of the corrected
+        // reference; c is the outermost node in contact, within one brick (h/c ≤ 1/4 beyond
+        // c_max, + the overshoot of a node-based bound).
+        assert!(ep.abs() < 3e-2, "P {} against {p_ref}", r.normal_force);
+        assert!(ec.abs() < 0.3, "c {} against {c_ref}", r.contact_radius);
+    }
+}
