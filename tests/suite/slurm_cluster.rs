@@ -276,7 +276,17 @@ fn slurm_runs_the_shards_and_the_merge_gives_the_local_junit() {
         w(name).to_str().unwrap().to_owned()
     };
     // A blank and a `%` in the output folder: sbatch's own parsing of #SBATCH lines meets them.
-    let passing = ["--label", "fast", "--require-external", "--allow-commands"];
+    // The fast path cases: the impact cases (also `fast`) run LAMMPS and YADE sweeps, a minute
+    // of the test's time with nothing more to show about Slurm; their shards and merge are
+    // scale::three_shards_merged_equal_the_unsharded_run's.
+    let passing = [
+        "--label",
+        "fast",
+        "--skip-label",
+        "impact",
+        "--require-external",
+        "--allow-commands",
+    ];
     let pass = submit(&cluster, &w("all pass %1"), &passing, "3", || {});
     // A baseline one check of hard-single-substep drifts from (4e-11 relative, over 1e-12).
     let drifting_baselines = folder("drifting");
