@@ -189,6 +189,12 @@ fn names(all: &[&str]) -> String {
 }
 
 impl Settings {
+    /// The penalty stiffness K = penalty · E / h [MPa/mm] of a body of Young's modulus `young`
+    /// [Pa] meshed at pole element size `h` [m] (the decks are in mm–N–MPa).
+    pub fn stiffness_mpa_per_mm(&self, young: f64, h: f64) -> f64 {
+        self.penalty * young * 1e-6 / (h * 1e3)
+    }
+
     /// The formulation called `name`.
     pub fn formulation(name: &str) -> Result<Formulation, SettingError> {
         Formulation::ALL

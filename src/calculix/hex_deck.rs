@@ -79,7 +79,7 @@ impl HexDeckSpec<'_> {
         }
         let slab = self.slab(&mut t);
         self.sets_and_surfaces(&mut t, slab)?;
-        let k = self.settings.penalty * self.young * 1e-6 / (self.h * 1e3);
+        let k = self.settings.stiffness_mpa_per_mm(self.young, self.h);
         let _ = write!(
             t,
             "*MATERIAL, NAME=SPHERE\n*ELASTIC\n{}, {}\n*SOLID SECTION, ELSET=EBODY, MATERIAL=SPHERE\n\

@@ -82,7 +82,7 @@ pub struct SolidDeckSpec<'a> {
 impl SolidDeckSpec<'_> {
     /// The penalty stiffness K = factor · E / h [MPa/mm].
     pub fn stiffness_mpa_per_mm(&self) -> f64 {
-        self.settings.penalty * self.young * 1e-6 / (self.h * 1e3)
+        self.settings.stiffness_mpa_per_mm(self.young, self.h)
     }
 
     /// The stick slope λ = [`STICK_SLOPE_FRACTION`] · K [MPa/mm].

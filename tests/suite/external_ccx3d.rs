@@ -118,15 +118,8 @@ fn the_deck_holds_both_spheres_the_friction_and_one_step_per_path_step() {
     ), "{text}");
     assert_eq!(text.matches("*CONTACT FILE\nCDIS, CSTR\n").count(), 2);
     // Every number of a data line fits the 20 characters CalculiX reads.
-    let longest = text
-        .lines()
-        .filter(|l| !l.starts_with('*'))
-        .flat_map(|l| l.split(',').map(str::trim))
-        .filter(|f| f.parse::<f64>().is_ok())
-        .map(str::len)
-        .max()
-        .unwrap();
-    assert!(longest <= 20, "a field of {longest} characters");
+    let longest = spherecontact::calculix::inp::widest_number(&text);
+    assert!((1..=20).contains(&longest), "a field of {longest} characters");
     // A frictionless path has no *FRICTION.
     let frictionless = SolidDeckSpec {
         friction: 0.0,
