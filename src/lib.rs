@@ -36,6 +36,7 @@ pub mod calculix_settings;
 pub mod case;
 pub mod check;
 pub mod conclusion;
+pub mod cores;
 pub mod contact;
 pub mod cost;
 pub mod dem;

@@ -11,7 +11,8 @@ mod cli;
 
 use clap::{Parser, Subcommand};
 use cli::deck::{deck, DeckAction};
-use cli::report::{bench, report, Report};
+use cli::report::{bench, report, Report, ReportRequest};
+use cli::Jobs;
 use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
 };
@@ -158,6 +159,8 @@ enum Command {
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
         #[command(flatten)]
+        jobs: Jobs,
+        #[command(flatten)]
         commands: CommandOptions,
         #[command(flatten)]
         force: Force,
@@ -174,6 +177,8 @@ enum Command {
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
         resolution: Vec<String>,
+        #[command(flatten)]
+        jobs: Jobs,
         #[command(flatten)]
         commands: CommandOptions,
         #[command(flatten)]
@@ -299,27 +304,25 @@ fn main() -> ExitCode {
             case,
             out,
             resolution,
+            jobs,
             commands,
             force,
-        } => commands
-            .permission()
-            .and_then(|p| report(&case, out, force.force, &resolution, Report::Compare, roots, &p)),
+        } => commands.permission().and_then(|p| {
+            let kind = Report::Compare;
+            let (force, resolution) = (force.force, &resolution);
+            report(ReportRequest { case: &case, out, force, resolution, jobs, kind }, roots, &p)
+        }),
         Command::ReproducePaper {
             out,
             case,
             resolution,
+            jobs,
             commands,
             force,
         } => commands.permission().and_then(|p| {
-            report(
-                &case,
-                Some(out),
-                force.force,
-                &resolution,
-                Report::Paper,
-                roots,
-                &p,
-            )
+            let (kind, out) = (Report::Paper, Some(out));
+            let (force, resolution) = (force.force, &resolution);
+            report(ReportRequest { case: &case, out, force, resolution, jobs, kind }, roots, &p)
         }),
         Command::Bench {
             case,

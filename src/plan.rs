@@ -13,6 +13,7 @@ use crate::case::impact::ImpactCase;
 use crate::case::labels;
 use crate::case::{Case, ReadRoots};
 use crate::external::permission::CommandPermission;
+use crate::cores::longest_first;
 
 /// Why a plan cannot be made (bad command-line input: exit code 2, nothing written).
 #[derive(Debug, thiserror::Error)]
@@ -277,21 +278,14 @@ impl Plan {
     }
 }
 
-/// The run indices, longest first (ties in plan order): the order a schedule starts them and
-/// shards take them, so that the last to finish are short (longest processing time first).
-pub fn longest_first(runs: &[Run]) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..runs.len()).collect();
-    order.sort_by(|&a, &b| runs[b].cost_s.total_cmp(&runs[a].cost_s).then(a.cmp(&b)));
-    order
-}
-
 /// The shard (0-based) of each run, `count` shards balanced by cost: each run, longest first,
 /// goes to the shard with the least cost so far (the lowest-numbered on a tie).
 pub fn partition(runs: &[Run], count: usize) -> Vec<usize> {
     let count = count.max(1);
     let mut load = vec![0.0_f64; count];
     let mut parts = vec![0; runs.len()];
-    for index in longest_first(runs) {
+    let costs: Vec<f64> = runs.iter().map(|run| run.cost_s).collect();
+    for index in longest_first(&costs) {
         let lightest = (0..count)
             .min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b)))
             .expect("at least one shard");

@@ -1,24 +1,18 @@
-//! Executing a plan: its runs proceed concurrently within a number of cores, each taking the
-//! cores its solver declares ([`crate::solver::Solver::cores`], at most all of them), longest
-//! first ([`crate::plan::longest_first`]); a run whose cores are not free waits, and those after it
-//! wait too (no run overtakes a longer one, so the long ones are never starved).
-//!
-//! A run gets exactly the cores it was given: it runs inside [`team::with_threads`], so the
-//! BEM's team has two threads only when the schedule gave it two cores, and one otherwise
-//! (`--jobs 1`, or a solver declaring one core). The results come back in plan order, whatever
-//! order the runs finished in, so what is printed and written does not depend on the schedule.
+//! Executing a plan: its runs proceed concurrently within a number of cores
+//! ([`crate::cores::within_cores`]), each taking the cores its solver declares
+//! ([`crate::solver::Solver::cores`], at most all of them), longest first by the plan's costs.
+//! The results come back in plan order, whatever order the runs finished in, so what is printed
+//! and written does not depend on the schedule.
 
-use std::sync::mpsc;
-use std::time::Instant;
 
 use crate::baseline::Baselined;
 use crate::history::History;
 use crate::impact::run::SolverRun;
 use crate::impact::ImpactRun;
 use crate::judged::Suite;
-use crate::plan::{longest_first, Member, Plan};
+use crate::cores::{within_cores, Task};
+use crate::plan::{Member, Plan, Run};
 use crate::solver::SolveError;
-use crate::team;
 use crate::verify::{self, CaseRun};
 
 /// What a run gives: a path case's solver history (or why it has none), or an impact case's
@@ -55,58 +49,46 @@ pub struct Finished {
     pub cores: usize,
 }
 
-/// The cores of this machine, the default of `verify --jobs`.
-pub fn machine_cores() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
-}
-
 /// Runs every run of `plan` within `cores` cores; the results in plan order.
 pub fn execute(plan: &Plan, cores: usize) -> Vec<Finished> {
-    let cores = cores.max(1);
-    let mut finished: Vec<Option<Finished>> = plan.runs.iter().map(|_| None).collect();
-    std::thread::scope(|scope| {
-        let (sender, receiver) = mpsc::channel();
-        let (mut free, mut running) = (cores, 0);
-        let mut queue = longest_first(&plan.runs).into_iter().peekable();
-        loop {
-            while let Some(&index) = queue.peek() {
-                let run = &plan.runs[index];
-                let given = run.cores.clamp(1, cores);
-                if given > free {
-                    break;
-                }
-                queue.next();
-                (free, running) = (free - given, running + 1);
-                let sender = sender.clone();
-                let case = &plan.cases[run.case];
-                scope.spawn(move || {
-                    let start = Instant::now();
-                    let result = team::with_threads(given, || Output::of(case, &run.solver));
-                    let wall_s = start.elapsed().as_secs_f64();
-                    // The receiver lives until every run has reported.
-                    let _ = sender.send((
-                        index,
-                        Finished {
-                            result,
-                            wall_s,
-                            cores: given,
-                        },
-                    ));
-                });
-            }
-            if running == 0 {
-                break;
-            }
-            // `solver::run` turns a solver's panic into its failure, so every run reports.
-            let (index, done) = receiver.recv().expect("a running run reports before it ends");
-            (free, running) = (free + done.cores, running - 1);
-            finished[index] = Some(done);
-        }
-    });
-    finished
-        .into_iter()
-        .map(|f| f.expect("every run of the plan was started and reported"))
-        .collect()
+    execute_around(plan, cores, &|_, solve| solve())
+}
+
+/// [`execute`], each run inside `around(run, solve)` (e.g. to show it on a progress bar):
+/// `around` calls `solve` once and returns what it gives.
+pub fn execute_around(
+    plan: &Plan,
+    cores: usize,
+    around: &(dyn Fn(&Run, &dyn Fn() -> Output) -> Output + Sync),
+) -> Vec<Finished> {
+    let tasks: Vec<Task> = plan.runs.iter().map(|run| Task::new(run.cores, run.cost_s)).collect();
+    within_cores(&tasks, cores, |index| {
+        let run = &plan.runs[index];
+        around(run, &|| Output::of(&plan.cases[run.case], &run.solver))
+    })
+    .into_iter()
+    .map(|(result, wall_s, cores)| Finished { result, wall_s, cores })
+    .collect()
+}
+
+/// A path case run as `verify` runs it ([`execute_around`] over its solvers, costed by
+/// `recorded(solver)` where known), judged: the same [`CaseRun`] as
+/// [`verify::run_case`]'s, whatever the cores.
+pub fn run_case(
+    case: crate::case::Case,
+    cores: usize,
+    recorded: impl Fn(&str) -> Option<f64>,
+    around: &(dyn Fn(&Run, &dyn Fn() -> Output) -> Output + Sync),
+) -> CaseRun {
+    if case.required_solvers().is_empty() {
+        return verify::judge(case, Vec::new());
+    }
+    let plan = Plan::new(vec![Member::Path(case)], |_, solver| recorded(solver));
+    let finished = execute_around(&plan, cores, around);
+    match judge(plan, finished).pop() {
+        Some(Judged::Path(run)) => run,
+        _ => unreachable!("a plan of one path case with runs judges one path case"),
+    }
 }
 
 /// A case judged on its finished runs.

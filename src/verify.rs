@@ -32,20 +32,18 @@ impl CaseRun {
 }
 
 /// Runs every solver the case needs and judges its checks. A solver that fails does not stop
-/// the others; the checks that need it are NOOK (or N/A when it is not installed).
+/// the others; the checks that need it are NOOK (or N/A when it is not installed). The solvers
+/// run one after another, each long run announced and metered on stderr ([`crate::progress`]);
+/// `crate::schedule::run_case` runs them concurrently.
 pub fn run_case(case: Case) -> CaseRun {
-    run_case_with_progress(case, &mut |_, _, _| {})
-}
-
-/// [`run_case`], calling `progress(solver, index, count)` before each solver runs; a long solver
-/// run is announced and metered on stderr ([`crate::progress`]).
-pub fn run_case_with_progress(case: Case, progress: &mut dyn FnMut(&str, usize, usize)) -> CaseRun {
-    let names = case.required_solvers();
-    let mut results = Vec::new();
-    for (index, name) in names.iter().enumerate() {
-        progress(name, index, names.len());
-        results.push((name.clone(), run_solver(&case, name)));
-    }
+    let results = case
+        .required_solvers()
+        .into_iter()
+        .map(|name| {
+            let result = run_solver(&case, &name);
+            (name, result)
+        })
+        .collect();
     judge(case, results)
 }
 

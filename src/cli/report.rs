@@ -6,8 +6,9 @@ use std::process::ExitCode;
 use spherecontact::case::ReadRoots;
 use spherecontact::external::permission::CommandPermission;
 use spherecontact::report::{history_files, summary};
-use spherecontact::{progress, solver, verify};
+use spherecontact::{baseline, progress, schedule, solver};
 
+use super::Jobs;
 use crate::{claim, load_case, planned_solvers, resolution_options, InputError};
 
 pub(crate) fn bench(
@@ -85,21 +86,51 @@ pub(crate) fn bench(
     })
 }
 
+/// How the progress lines reach the user beside `bar`: above it (a hidden bar prints nothing:
+/// stderr then).
+fn printer(bar: &indicatif::ProgressBar) -> Box<dyn Fn(&str)> {
+    let lines = bar.clone();
+    match bar.is_hidden() {
+        true => Box::new(|line| eprintln!("{line}")),
+        false => Box::new(move |line| lines.println(line)),
+    }
+}
+
 /// Which report to write.
 pub(crate) enum Report {
     Compare,
     Paper,
 }
 
+/// What `compare` and `reproduce-paper` were asked for.
+pub(crate) struct ReportRequest<'a> {
+    /// The case file.
+    pub case: &'a Path,
+    /// The output folder; default: `out/compare-<case name>`.
+    pub out: Option<PathBuf>,
+    /// `--force`.
+    pub force: bool,
+    /// `--resolution SOLVER=VALUE`s.
+    pub resolution: &'a [String],
+    /// The cores the solvers (and the paper's resolution study) run within.
+    pub jobs: Jobs,
+    /// Which report.
+    pub kind: Report,
+}
+
 pub(crate) fn report(
-    case: &Path,
-    out: Option<PathBuf>,
-    force: bool,
-    resolution: &[String],
-    kind: Report,
+    request: ReportRequest,
     roots: &ReadRoots,
     permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
+    let ReportRequest {
+        case,
+        out,
+        force,
+        resolution,
+        jobs,
+        kind,
+    } = request;
     let case = load_case(case, None, &resolution_options(resolution)?, roots, permission)?;
     case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
@@ -121,24 +152,28 @@ pub(crate) fn report(
             .progress_chars("=> "),
     );
     bar.set_prefix(case.name().to_owned());
-    // The progress lines go above the bar (a hidden bar prints nothing: stderr then).
-    let lines = bar.clone();
-    let printer: Box<dyn Fn(&str)> = match bar.is_hidden() {
-        true => Box::new(|line| eprintln!("{line}")),
-        false => Box::new(move |line| lines.println(line)),
-    };
-    let run = progress::printing_through(printer, || {
-        verify::run_case_with_progress(case, &mut |name, index, _| {
-            bar.set_position(index as u64);
-            bar.set_message(name.to_owned());
-        })
-    });
+    // The solvers run concurrently within the cores (verify's schedule, costed by the case's
+    // baseline where there is one: the costs only order the runs); the bar counts the runs done.
+    let recorded = baseline::Baseline::load(Path::new(baseline::DIR), case.name())
+        .ok()
+        .flatten();
+    let run = schedule::run_case(
+        case,
+        jobs.cores(),
+        |solver| recorded.as_ref()?.wall_s(solver),
+        &|run, solve| {
+            bar.set_message(run.solver.clone());
+            let output = progress::printing_through(printer(&bar), solve);
+            bar.inc(1);
+            output
+        },
+    );
     bar.finish_and_clear();
     let document = match paper_references {
         None => spherecontact::report::compare::document(&run),
         Some(reference_dir) => {
             // The surface-field claims at the finest rungs of each map solver's ladder.
-            let study = spherecontact::report::claims::Study::of_ladders(&run);
+            let study = spherecontact::report::claims::Study::of_ladders(&run, jobs.cores());
             spherecontact::report::paper::document(&run, &study, &reference_dir)
         }
     }

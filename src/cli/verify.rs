@@ -14,6 +14,7 @@ use spherecontact::runfile::RunFile;
 use spherecontact::schedule::Judged;
 use spherecontact::{baseline, io, merge, plan, schedule};
 
+use super::Jobs;
 use crate::{claim, resolution_options, CommandOptions, InputError};
 
 /// The arguments of `verify`.
@@ -40,10 +41,8 @@ pub(crate) struct VerifyArgs {
     /// Leave out the cases with this label (repeatable).
     #[arg(long = "skip-label", value_name = "LABEL")]
     skip_labels: Vec<String>,
-    /// Cores for concurrent runs (each solver takes the cores it declares); default: the
-    /// machine's.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-    jobs: Option<u32>,
+    #[command(flatten)]
+    jobs: Jobs,
     /// Run only the K-th of N parts of the runs, balanced by their recorded cost (e.g. 2/3);
     /// `merge` puts the parts' --out folders together.
     #[arg(long, value_name = "K/N")]
@@ -110,9 +109,8 @@ pub(crate) enum BaselineAction {
         /// The baselines' folder.
         #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
         baselines: PathBuf,
-        /// Cores for concurrent runs; default: the machine's.
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-        jobs: Option<u32>,
+        #[command(flatten)]
+        jobs: Jobs,
         #[command(flatten)]
         commands: CommandOptions,
     },
@@ -255,7 +253,7 @@ fn verify_plan(
 /// `verify`: the plan checked and built (nothing written on bad input), then executed.
 pub(crate) fn verify_command(args: VerifyArgs, roots: &ReadRoots) -> Result<ExitCode, InputError> {
     let selection = plan::Selection::new(&args.labels, &args.skip_labels)?;
-    let jobs = args.jobs.map_or_else(schedule::machine_cores, |n| n as usize);
+    let jobs = args.jobs.cores();
     let shard = args.shard.map(|s| s.parse::<plan::Shard>()).transpose()?;
     let options = plan::CaseOptions {
         ranks: args.ranks,
@@ -312,7 +310,7 @@ pub(crate) fn merge_runs(
 pub(crate) fn update_baselines(
     cases: Vec<PathBuf>,
     dir: &Path,
-    jobs: Option<u32>,
+    jobs: Jobs,
     roots: &ReadRoots,
     commands: &CommandOptions,
 ) -> Result<ExitCode, InputError> {
@@ -322,8 +320,7 @@ pub(crate) fn update_baselines(
         ..plan::CaseOptions::default()
     };
     let verify = verify_plan(cases, &plan::Selection::default(), &options, dir)?;
-    let jobs = jobs.map_or_else(schedule::machine_cores, |n| n as usize);
-    let finished = schedule::execute(&verify.plan, jobs);
+    let finished = schedule::execute(&verify.plan, jobs.cores());
     io::create_folder(dir).map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
     for judged in schedule::judge(verify.plan, finished) {
         let run = judged.baselined();

@@ -7,9 +7,8 @@
 //! the forces do): the study runs `increments` per segment, and the claims compare its rung at
 //! the run's own resolution with the run itself (the case's increments).
 
-use std::time::Instant;
-
 use super::measure::{MapMeasures, RadialProfile};
+use crate::cores::{within_cores, Task};
 use crate::history::History;
 use crate::path::LoadingPath;
 use crate::report::figures::surface::FieldView;
@@ -62,8 +61,9 @@ impl Study {
         Self::default()
     }
 
-    /// The two finest rungs of each map solver's ladder, `STUDY_INCREMENTS` per segment.
-    pub fn of_ladders(run: &CaseRun) -> Self {
+    /// The two finest rungs of each map solver's ladder, `STUDY_INCREMENTS` per segment, run
+    /// within `cores` cores.
+    pub fn of_ladders(run: &CaseRun, cores: usize) -> Self {
         let scene = &run.case.scene;
         let solvers = map_solvers(run)
             .into_iter()
@@ -75,48 +75,62 @@ impl Study {
                 (name, rungs.into_iter().skip(finest).collect())
             })
             .collect();
-        Self::of(run, solvers, STUDY_INCREMENTS)
+        Self::of(run, solvers, STUDY_INCREMENTS, cores)
     }
 
-    /// The study with the given solvers (by name: the rungs to run), `increments` per segment.
-    pub fn of(run: &CaseRun, solvers: Vec<(String, Vec<Box<dyn Solver>>)>, increments: usize) -> Self {
+    /// The study with the given solvers (by name: the rungs to run), `increments` per segment;
+    /// the rungs run concurrently within `cores` cores ([`within_cores`], the costliest first by
+    /// their solvers' estimates), each timed alone.
+    pub fn of(
+        run: &CaseRun,
+        solvers: Vec<(String, Vec<Box<dyn Solver>>)>,
+        increments: usize,
+        cores: usize,
+    ) -> Self {
         let focus = run.case.focus;
         let Some(scene) = cut_at(&run.case.scene, focus, increments) else {
             return Self::none();
         };
-        let friction = scene.friction;
-        let md = md_profile(run);
-        let solvers = solvers
-            .into_iter()
-            .map(|(name, ladder)| {
-                let mut study = SolverStudy {
-                    solver: name.clone(),
-                    rungs: Vec::new(),
-                    problems: Vec::new(),
-                };
-                if ladder.is_empty() {
-                    study.problems.push(format!("{name} has no resolution ladder"));
-                }
-                for rung in ladder {
-                    let start = Instant::now();
-                    match solver::run(rung.as_ref(), &scene) {
-                        Ok(history) => match measure(&history, focus, friction, md.as_ref()) {
-                            Some((measures, contact_radius)) => study.rungs.push(Rung {
-                                resolution: history.metadata.resolution.clone(),
-                                increments,
-                                measures,
-                                contact_radius,
-                                seconds: start.elapsed().as_secs_f64(),
-                            }),
-                            None => study.problems.push(format!("{name}: no map at position {focus}")),
-                        },
-                        Err(e) => study.problems.push(format!("{name}: {e}")),
-                    }
-                }
-                study
+        let rungs: Vec<(usize, &dyn Solver)> = solvers
+            .iter()
+            .enumerate()
+            .flat_map(|(k, (_, ladder))| ladder.iter().map(move |rung| (k, rung.as_ref())))
+            .collect();
+        let tasks: Vec<Task> = rungs
+            .iter()
+            .map(|(_, rung)| Task::new(rung.cores(), rung.estimated_seconds(&scene).unwrap_or(1.0)))
+            .collect();
+        let solved = within_cores(&tasks, cores, |i| solver::run(rungs[i].1, &scene));
+        let mut studies: Vec<SolverStudy> = solvers
+            .iter()
+            .map(|(name, ladder)| SolverStudy {
+                solver: name.clone(),
+                rungs: Vec::new(),
+                problems: match ladder.is_empty() {
+                    true => vec![format!("{name} has no resolution ladder")],
+                    false => Vec::new(),
+                },
             })
             .collect();
-        Self { solvers }
+        let (friction, md) = (scene.friction, md_profile(run));
+        for ((k, _), (result, seconds, _)) in rungs.iter().zip(solved) {
+            let study = &mut studies[*k];
+            let name = &study.solver;
+            match result {
+                Ok(history) => match measure(&history, focus, friction, md.as_ref()) {
+                    Some((measures, contact_radius)) => study.rungs.push(Rung {
+                        resolution: history.metadata.resolution.clone(),
+                        increments,
+                        measures,
+                        contact_radius,
+                        seconds,
+                    }),
+                    None => study.problems.push(format!("{name}: no map at position {focus}")),
+                },
+                Err(e) => study.problems.push(format!("{name}: {e}")),
+            }
+        }
+        Self { solvers: studies }
     }
 
     /// The study of `solver`, if it ran.

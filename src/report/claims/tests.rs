@@ -118,7 +118,7 @@ fn claims_of(run: &CaseRun) -> Vec<Claim> {
 fn surface_field_claims_are_measured_on_a_map_solver_with_its_resolution() {
     let run = run(&["hertz", "mdr", "bem"]);
     let ladder: Vec<Box<dyn Solver>> = vec![Box::new(Bem::with_grid(24)), Box::new(Bem::with_grid(32))];
-    let study = Study::of(&run, vec![("bem".into(), ladder)], 4);
+    let study = Study::of(&run, vec![("bem".into(), ladder)], 4, 2);
     assert_eq!(study.solvers[0].rungs.len(), 2, "{:?}", study.solvers[0].problems);
     let claims = claims(&run, &study, &quoted());
     for start in [
@@ -174,6 +174,7 @@ fn a_finite_element_map_solver_is_judged_and_the_bem_measured_beside_it() {
         &run,
         vec![("bem".into(), ladder()), ("fem-fake".into(), ladder())],
         4,
+        2,
     );
     let claims = claims(&run, &study, &quoted());
     for start in [
@@ -212,7 +213,7 @@ fn finite_element_solvers_are_recognised_by_name() {
 fn without_friction_nothing_prints_as_nan_or_infinity() {
     let run = run_with(&["hertz", "mdr", "bem"], 0.0);
     let ladder: Vec<Box<dyn Solver>> = vec![Box::new(Bem::with_grid(16)), Box::new(Bem::with_grid(24))];
-    let study = Study::of(&run, vec![("bem".into(), ladder)], 2);
+    let study = Study::of(&run, vec![("bem".into(), ladder)], 2, 2);
     for c in claims(&run, &study, &quoted()) {
         let text = format!("{} {} {}", c.measured, c.reading, c.evidence).to_lowercase();
         let words: Vec<&str> = text.split(|ch: char| !ch.is_alphanumeric()).collect();
