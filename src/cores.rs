@@ -73,9 +73,8 @@ pub fn within_cores<T: Send>(
                 let sender = sender.clone();
                 scope.spawn(move || {
                     let start = Instant::now();
-                    let result = panic::catch_unwind(AssertUnwindSafe(|| {
-                        team::with_threads(given, || work(index))
-                    }));
+                    let result =
+                        panic::catch_unwind(AssertUnwindSafe(|| team::with_threads(given, || work(index))));
                     // The receiver lives until every task has reported.
                     let _ = sender.send((index, result, start.elapsed().as_secs_f64(), given));
                 });
@@ -112,7 +111,12 @@ mod tests {
     /// cores it was given (clamped to the machine's), and the busy cores never exceed the limit.
     #[test]
     fn results_in_task_order_within_the_cores() {
-        let tasks = [Task::new(1, 0.1), Task::new(2, 3.0), Task::new(1, 2.0), Task::new(5, 1.0)];
+        let tasks = [
+            Task::new(1, 0.1),
+            Task::new(2, 3.0),
+            Task::new(1, 2.0),
+            Task::new(5, 1.0),
+        ];
         let (busy, most) = (AtomicUsize::new(0), AtomicUsize::new(0));
         let results = within_cores(&tasks, 2, |i| {
             let given = tasks[i].cores.clamp(1, 2);
@@ -131,7 +135,12 @@ mod tests {
     /// Requirement: on one core the tasks start longest first, ties in the given order.
     #[test]
     fn one_core_starts_the_longest_first() {
-        let tasks = [Task::new(1, 1.0), Task::new(1, 5.0), Task::new(1, 1.0), Task::new(1, 3.0)];
+        let tasks = [
+            Task::new(1, 1.0),
+            Task::new(1, 5.0),
+            Task::new(1, 1.0),
+            Task::new(1, 3.0),
+        ];
         let order = Mutex::new(Vec::new());
         within_cores(&tasks, 1, |i| order.lock().expect("not poisoned").push(i));
         assert_eq!(*order.lock().expect("not poisoned"), [1, 3, 0, 2]);

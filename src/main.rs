@@ -12,10 +12,10 @@ mod cli;
 use clap::{Parser, Subcommand};
 use cli::deck::{deck, DeckAction};
 use cli::report::{bench, report, Report, ReportRequest};
-use cli::Jobs;
 use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
 };
+use cli::Jobs;
 use spherecontact::case::{limits, Case, ReadRoots};
 use spherecontact::external::permission::CommandPermission;
 use spherecontact::external::{geo, toolchain::Toolchain};
@@ -310,7 +310,18 @@ fn main() -> ExitCode {
         } => commands.permission().and_then(|p| {
             let kind = Report::Compare;
             let (force, resolution) = (force.force, &resolution);
-            report(ReportRequest { case: &case, out, force, resolution, jobs, kind }, roots, &p)
+            report(
+                ReportRequest {
+                    case: &case,
+                    out,
+                    force,
+                    resolution,
+                    jobs,
+                    kind,
+                },
+                roots,
+                &p,
+            )
         }),
         Command::ReproducePaper {
             out,
@@ -322,7 +333,18 @@ fn main() -> ExitCode {
         } => commands.permission().and_then(|p| {
             let (kind, out) = (Report::Paper, Some(out));
             let (force, resolution) = (force.force, &resolution);
-            report(ReportRequest { case: &case, out, force, resolution, jobs, kind }, roots, &p)
+            report(
+                ReportRequest {
+                    case: &case,
+                    out,
+                    force,
+                    resolution,
+                    jobs,
+                    kind,
+                },
+                roots,
+                &p,
+            )
         }),
         Command::Bench {
             case,

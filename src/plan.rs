@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 use crate::case::impact::ImpactCase;
 use crate::case::labels;
 use crate::case::{Case, ReadRoots};
-use crate::external::permission::CommandPermission;
 use crate::cores::longest_first;
+use crate::external::permission::CommandPermission;
 
 /// Why a plan cannot be made (bad command-line input: exit code 2, nothing written).
 #[derive(Debug, thiserror::Error)]

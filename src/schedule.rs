@@ -4,13 +4,12 @@
 //! The results come back in plan order, whatever order the runs finished in, so what is printed
 //! and written does not depend on the schedule.
 
-
 use crate::baseline::Baselined;
+use crate::cores::{within_cores, Task};
 use crate::history::History;
 use crate::impact::run::SolverRun;
 use crate::impact::ImpactRun;
 use crate::judged::Suite;
-use crate::cores::{within_cores, Task};
 use crate::plan::{Member, Plan, Run};
 use crate::solver::SolveError;
 use crate::verify::{self, CaseRun};
@@ -61,13 +60,21 @@ pub fn execute_around(
     cores: usize,
     around: &(dyn Fn(&Run, &dyn Fn() -> Output) -> Output + Sync),
 ) -> Vec<Finished> {
-    let tasks: Vec<Task> = plan.runs.iter().map(|run| Task::new(run.cores, run.cost_s)).collect();
+    let tasks: Vec<Task> = plan
+        .runs
+        .iter()
+        .map(|run| Task::new(run.cores, run.cost_s))
+        .collect();
     within_cores(&tasks, cores, |index| {
         let run = &plan.runs[index];
         around(run, &|| Output::of(&plan.cases[run.case], &run.solver))
     })
     .into_iter()
-    .map(|(result, wall_s, cores)| Finished { result, wall_s, cores })
+    .map(|(result, wall_s, cores)| Finished {
+        result,
+        wall_s,
+        cores,
+    })
     .collect()
 }
 
