@@ -11,11 +11,10 @@ mod cli;
 
 use clap::{Parser, Subcommand};
 use cli::deck::{deck, DeckAction};
-use cli::report::{bench, report, Report, ReportRequest};
+use cli::report::{bench, report, Report, ReportOptions};
 use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
 };
-use cli::Jobs;
 use spherecontact::case::{limits, Case, ReadRoots};
 use spherecontact::external::permission::CommandPermission;
 use spherecontact::external::{geo, toolchain::Toolchain};
@@ -154,16 +153,8 @@ enum Command {
         /// Output folder; default: out/compare-<case name>.
         #[arg(long)]
         out: Option<PathBuf>,
-        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
-        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
-        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
-        resolution: Vec<String>,
         #[command(flatten)]
-        jobs: Jobs,
-        #[command(flatten)]
-        commands: CommandOptions,
-        #[command(flatten)]
-        force: Force,
+        options: ReportOptions,
     },
     /// Reproduce the paper: its case with every available solver, reported in its figures' order.
     ReproducePaper {
@@ -173,16 +164,8 @@ enum Command {
         /// The paper's case file.
         #[arg(long, default_value = "cases/paper-fig7.toml")]
         case: PathBuf,
-        /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
-        /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
-        #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
-        resolution: Vec<String>,
         #[command(flatten)]
-        jobs: Jobs,
-        #[command(flatten)]
-        commands: CommandOptions,
-        #[command(flatten)]
-        force: Force,
+        options: ReportOptions,
     },
     /// Run impact cases (default: every file under cases/impact/) with their checks and write
     /// the report "How far is your DEM code from exact Mindlin–Deresiewicz in impact?".
@@ -300,52 +283,10 @@ fn main() -> ExitCode {
         } => mesh(&case, resolution.as_deref(), &out, force.force, roots),
         Command::Doctor => Ok(doctor()),
         Command::List => list(roots),
-        Command::Compare {
-            case,
-            out,
-            resolution,
-            jobs,
-            commands,
-            force,
-        } => commands.permission().and_then(|p| {
-            let kind = Report::Compare;
-            let (force, resolution) = (force.force, &resolution);
-            report(
-                ReportRequest {
-                    case: &case,
-                    out,
-                    force,
-                    resolution,
-                    jobs,
-                    kind,
-                },
-                roots,
-                &p,
-            )
-        }),
-        Command::ReproducePaper {
-            out,
-            case,
-            resolution,
-            jobs,
-            commands,
-            force,
-        } => commands.permission().and_then(|p| {
-            let (kind, out) = (Report::Paper, Some(out));
-            let (force, resolution) = (force.force, &resolution);
-            report(
-                ReportRequest {
-                    case: &case,
-                    out,
-                    force,
-                    resolution,
-                    jobs,
-                    kind,
-                },
-                roots,
-                &p,
-            )
-        }),
+        Command::Compare { case, out, options } => report(&case, out, Report::Compare, options, roots),
+        Command::ReproducePaper { out, case, options } => {
+            report(&case, Some(out), Report::Paper, options, roots)
+        }
         Command::Bench {
             case,
             solvers,

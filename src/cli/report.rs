@@ -9,7 +9,7 @@ use spherecontact::report::{history_files, summary};
 use spherecontact::{baseline, progress, schedule, solver};
 
 use super::Jobs;
-use crate::{claim, load_case, planned_solvers, resolution_options, InputError};
+use crate::{claim, load_case, planned_solvers, resolution_options, CommandOptions, Force, InputError};
 
 pub(crate) fn bench(
     case: &Path,
@@ -102,35 +102,37 @@ pub(crate) enum Report {
     Paper,
 }
 
-/// What `compare` and `reproduce-paper` were asked for.
-pub(crate) struct ReportRequest<'a> {
-    /// The case file.
-    pub case: &'a Path,
-    /// The output folder; default: `out/compare-<case name>`.
-    pub out: Option<PathBuf>,
-    /// `--force`.
-    pub force: bool,
-    /// `--resolution SOLVER=VALUE`s.
-    pub resolution: &'a [String],
+/// The options `compare` and `reproduce-paper` share.
+#[derive(clap::Args)]
+pub(crate) struct ReportOptions {
+    /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
+    /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
+    #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
+    resolution: Vec<String>,
     /// The cores the solvers (and the paper's resolution study) run within.
-    pub jobs: Jobs,
-    /// Which report.
-    pub kind: Report,
+    #[command(flatten)]
+    jobs: Jobs,
+    #[command(flatten)]
+    commands: CommandOptions,
+    #[command(flatten)]
+    force: Force,
 }
 
 pub(crate) fn report(
-    request: ReportRequest,
+    case: &Path,
+    out: Option<PathBuf>,
+    kind: Report,
+    options: ReportOptions,
     roots: &ReadRoots,
-    permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
-    let ReportRequest {
-        case,
-        out,
-        force,
+    let ReportOptions {
         resolution,
         jobs,
-        kind,
-    } = request;
+        commands,
+        force,
+    } = options;
+    let (permission, force) = (&commands.permission()?, force.force);
+    let resolution = &resolution;
     let case = load_case(case, None, &resolution_options(resolution)?, roots, permission)?;
     case.command_lines().iter().for_each(|line| eprintln!("{line}"));
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
