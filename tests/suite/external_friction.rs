@@ -27,7 +27,7 @@ use common::decks::{at_resolution, frictional_scene, tools_present};
 /// positive definite") and capped increments varied from run to run. The decks now take the
 /// grip from the scene, as the mesh does, and refuse a shift under the axial grip.
 #[test]
-#[ignore = "heavy: four deck runs (each deck twice); .ci/run's heavy step runs it"]
+#[ignore = "heavy: four deck runs (each deck twice); .ci/run runs it"]
 fn the_decks_walk_a_frictional_path_with_history() {
     if !tools_present("the_decks_walk_a_frictional_path_with_history") {
         return;
@@ -122,6 +122,7 @@ fn the_decks_walk_a_frictional_path_with_history() {
 /// A step whose contact iteration hits the cap is flagged in the metadata, not hidden and not a
 /// failure: with a cap of one iteration, every step that needs a second is flagged.
 #[test]
+#[ignore = "heavy: a FreeFEM deck with its iterations capped; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn capped_iterations_are_flagged() {
     if !tools_present("capped_iterations_are_flagged") {
         return;

@@ -1,5 +1,6 @@
 //! The house stays clean: no import cycle between the crate's top-level modules (a low-level
-//! module never reaches up into one that uses it) and no source file over 600 lines.
+//! module never reaches up into one that uses it), no source file over 600 lines, and every test
+//! said to be run by CI as heavy is in the heavy list of `.ci/run`.
 //!
 //! The module graph is read from the sources: an edge A → B for every `crate::B` path (in a
 //! `use` or in code) in the files of module A, and for `super::B` where `super` is the crate
@@ -213,4 +214,52 @@ fn no_source_file_over_600_lines() {
         })
         .collect();
     assert!(long.is_empty(), "over {MAX_LINES} lines:\n{}", long.join("\n"));
+}
+
+/// The tests of `tests/suite/<module>.rs` marked `#[ignore = "heavy: …; .ci/run runs it …"]`, as
+/// `module::name`.
+fn heavy_tests_ci_runs() -> Vec<String> {
+    let suite = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/suite");
+    let mut tests = Vec::new();
+    for file in rust_files(&suite) {
+        let Some(module) = file.strip_prefix(&suite).ok().and_then(|f| f.to_str()) else {
+            continue;
+        };
+        let module = module.trim_end_matches(".rs").replace('/', "::");
+        let text = std::fs::read_to_string(&file).unwrap();
+        let mut marked = false;
+        for line in text.lines() {
+            let line = line.trim();
+            if line.starts_with("#[ignore = \"heavy:") && line.contains(".ci/run runs it") {
+                marked = true;
+            } else if let Some(rest) = line.strip_prefix("fn ").filter(|_| marked) {
+                let name = rest.split('(').next().unwrap_or_default();
+                tests.push(format!("{module}::{name}"));
+                marked = false;
+            } else if !line.starts_with("#[") && !line.starts_with("//") {
+                marked = false;
+            }
+        }
+    }
+    tests
+}
+
+/// Requirement: a test that says CI runs it as heavy is in the `heavy=(…)` list of `.ci/run`,
+/// by its module or its name (else neither the README's command nor CI would run it).
+#[test]
+fn every_heavy_test_said_to_run_in_ci_is_in_its_list() {
+    let ci = std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(".ci/run")).unwrap();
+    let listed = ci
+        .split("heavy=(")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .expect(".ci/run has a heavy=(…) list");
+    let filters: Vec<&str> = listed.split_whitespace().collect();
+    let tests = heavy_tests_ci_runs();
+    assert!(tests.len() >= 10, "{tests:?}");
+    let missing: Vec<&String> = tests
+        .iter()
+        .filter(|t| !filters.iter().any(|f| t.contains(f)))
+        .collect();
+    assert!(missing.is_empty(), "not in .ci/run's heavy list: {missing:?}");
 }
