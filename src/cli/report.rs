@@ -3,10 +3,13 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use spherecontact::case::Case;
 use spherecontact::case::ReadRoots;
 use spherecontact::external::permission::CommandPermission;
 use spherecontact::report::{history_files, summary};
-use spherecontact::{baseline, progress, schedule, solver};
+use spherecontact::schedule::Judged;
+use spherecontact::verify::CaseRun;
+use spherecontact::{baseline, merge, progress, schedule, solver};
 
 use super::Jobs;
 use crate::{claim, load_case, planned_solvers, resolution_options, CommandOptions, Force, InputError};
@@ -96,6 +99,63 @@ fn printer(bar: &indicatif::ProgressBar) -> Box<dyn Fn(&str)> {
     }
 }
 
+/// Runs the case's solvers concurrently within the cores (verify's schedule, costed by the case's
+/// baseline where there is one: the costs only order the runs), a bar counting the runs done.
+fn run_solvers(case: Case, jobs: Jobs) -> CaseRun {
+    let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_prefix(case.name().to_owned());
+    let recorded = baseline::Baseline::load(Path::new(baseline::DIR), case.name())
+        .ok()
+        .flatten();
+    let run = schedule::run_case(
+        case,
+        jobs.cores(),
+        |solver| recorded.as_ref()?.wall_s(solver),
+        &|run, solve| {
+            bar.set_message(run.solver.clone());
+            let output = progress::printing_through(printer(&bar), solve);
+            bar.inc(1);
+            output
+        },
+    );
+    bar.finish_and_clear();
+    run
+}
+
+/// The case's run read from the run files of `verify --out` folders ([`merge::merge`]) and
+/// judged; its solvers are not run again, and the run says so among its warnings.
+fn stored_run(dirs: &[PathBuf], case: &Case, roots: &ReadRoots) -> Result<CaseRun, InputError> {
+    let merged = merge::merge(dirs, roots).map_err(|e| InputError(format!("--from: {e}")))?;
+    let wanted = std::fs::canonicalize(&case.file).ok();
+    let mut run = schedule::judge(merged.plan, merged.finished)
+        .into_iter()
+        .find_map(|judged| match judged {
+            Judged::Path(run) if std::fs::canonicalize(&run.case.file).ok() == wanted => Some(run),
+            _ => None,
+        })
+        .ok_or_else(|| {
+            InputError(format!(
+                "--from {}: no run of case {} there (allowed: folders of `verify --out DIR` that ran it)",
+                dirs[0].display(),
+                case.file.display()
+            ))
+        })?;
+    let folders: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+    run.warnings.insert(
+        0,
+        format!(
+            "the solvers' runs were read from the `verify --out` run file(s) of {}, not run again by this command",
+            folders.join(", ")
+        ),
+    );
+    Ok(run)
+}
+
 /// Which report to write.
 pub(crate) enum Report {
     Compare,
@@ -112,6 +172,10 @@ pub(crate) struct ReportOptions {
     /// The cores the solvers (and the paper's resolution study) run within.
     #[command(flatten)]
     jobs: Jobs,
+    /// Read the case's solver runs from this folder of `verify --out DIR` (repeatable: the
+    /// folders of its shards) instead of running them again; not with --resolution.
+    #[arg(long = "from", value_name = "DIR")]
+    from: Vec<PathBuf>,
     #[command(flatten)]
     commands: CommandOptions,
     #[command(flatten)]
@@ -128,9 +192,16 @@ pub(crate) fn report(
     let ReportOptions {
         resolution,
         jobs,
+        from,
         commands,
         force,
     } = options;
+    if !from.is_empty() && !resolution.is_empty() {
+        return Err(InputError(
+            "--resolution: not with --from (the runs read are at the resolutions their `verify` recorded)"
+                .into(),
+        ));
+    }
     let (permission, force) = (&commands.permission()?, force.force);
     let resolution = &resolution;
     let case = load_case(case, None, &resolution_options(resolution)?, roots, permission)?;
@@ -146,31 +217,16 @@ pub(crate) fn report(
         ),
         Report::Compare => None,
     };
+    // Stored runs are read and checked before anything is written.
+    let stored = match from.is_empty() {
+        true => None,
+        false => Some(stored_run(&from, &case, roots)?),
+    };
     let folder = claim(&out, force)?;
-    let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg}")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_prefix(case.name().to_owned());
-    // The solvers run concurrently within the cores (verify's schedule, costed by the case's
-    // baseline where there is one: the costs only order the runs); the bar counts the runs done.
-    let recorded = baseline::Baseline::load(Path::new(baseline::DIR), case.name())
-        .ok()
-        .flatten();
-    let run = schedule::run_case(
-        case,
-        jobs.cores(),
-        |solver| recorded.as_ref()?.wall_s(solver),
-        &|run, solve| {
-            bar.set_message(run.solver.clone());
-            let output = progress::printing_through(printer(&bar), solve);
-            bar.inc(1);
-            output
-        },
-    );
-    bar.finish_and_clear();
+    let run = match stored {
+        Some(run) => run,
+        None => run_solvers(case, jobs),
+    };
     let document = match paper_references {
         None => spherecontact::report::compare::document(&run),
         Some(reference_dir) => {

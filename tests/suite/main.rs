@@ -47,6 +47,7 @@ mod mdr_reference;
 mod path_walker;
 mod plot_layout;
 mod report_browser;
+mod report_from;
 mod reports;
 mod resolution;
 mod scale;
