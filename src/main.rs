@@ -170,6 +170,10 @@ enum Command {
         /// The paper's case file.
         #[arg(long, default_value = "cases/paper-fig7.toml")]
         case: PathBuf,
+        /// A case of the paper's discretisation (20-node bricks in CalculiX, minutes of CPU), run
+        /// beside and reported against mdr-domain and fem-3d, e.g. cases-heavy/ccx-3d-hex20.toml.
+        #[arg(long, value_name = "CASE")]
+        discretisation: Option<PathBuf>,
         /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
         /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
         #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
@@ -307,6 +311,7 @@ fn main() -> ExitCode {
         Command::ReproducePaper {
             out,
             case,
+            discretisation,
             resolution,
             commands,
             force,
@@ -316,7 +321,7 @@ fn main() -> ExitCode {
                 Some(out),
                 force.force,
                 &resolution,
-                Report::Paper,
+                Report::Paper { discretisation },
                 roots,
                 &p,
             )

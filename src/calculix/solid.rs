@@ -1,5 +1,7 @@
 //! The CalculiX deck `ccx-3d`: the frictional path in 3D on fem-3d's gmsh mesh of the half body
-//! ([`crate::external::solid_geo`]: hemisphere or cap, y ≥ 0), C3D10, the symmetry plane y = 0
+//! ([`crate::external::solid_geo`]: hemisphere or cap, y ≥ 0) — C3D10 on its tetrahedra, or, by
+//! `[calculix] element`, C3D20/C3D20R on the 20-node bricks of the same body
+//! ([`super::hex_mesh`], graded faster: the paper's discretisation) — the symmetry plane y = 0
 //! held in y, both spheres meshed (the second the mirror image of the first through the contact
 //! plane), penalty contact with Coulomb friction and history, one `*STEP` per path step (the
 //! case's increments).
@@ -70,7 +72,7 @@ pub struct CcxSolidDeck;
 impl Deck for CcxSolidDeck {
     const KIND: DeckKind = DeckKind {
         name: NAME,
-        description: "CalculiX (ccx) 3D FEM, C3D10 on fem-3d's gmsh mesh of the half body, both spheres meshed (the second mirrored), face-to-face penalty contact with Coulomb friction and history",
+        description: "CalculiX (ccx) 3D FEM, C3D10 on fem-3d's gmsh mesh of the half body (or C3D20/C3D20R on its 20-node bricks), both spheres meshed (the second mirrored), face-to-face penalty contact with Coulomb friction and history",
         tool: Tool::Ccx,
         template: super::solid_inp::TEMPLATE,
         file_name: "job.inp",

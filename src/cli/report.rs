@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use spherecontact::case::ReadRoots;
 use spherecontact::external::permission::CommandPermission;
 use spherecontact::report::{history_files, summary};
+use spherecontact::verify::CaseRun;
 use spherecontact::{progress, solver, verify};
 
 use crate::{claim, load_case, planned_solvers, resolution_options, InputError};
@@ -88,7 +89,10 @@ pub(crate) fn bench(
 /// Which report to write.
 pub(crate) enum Report {
     Compare,
-    Paper,
+    /// The paper's, with the case of its discretisation (`--discretisation`) run beside.
+    Paper {
+        discretisation: Option<PathBuf>,
+    },
 }
 
 pub(crate) fn report(
@@ -105,13 +109,20 @@ pub(crate) fn report(
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
     // The paper's quoted values are read before anything is written or run: a missing file is
     // bad input.
-    let paper_references = match kind {
-        Report::Paper => Some(
+    let paper_references = match &kind {
+        Report::Paper { .. } => Some(
             spherecontact::report::paper::Quoted::for_case(&case)
                 .map_err(|e| InputError(format!("{}: {e}", case.file.display())))?
                 .0,
         ),
         Report::Compare => None,
+    };
+    // The discretisation case is read before anything is written or run: bad input exits 2.
+    let discretisation = match kind {
+        Report::Paper {
+            discretisation: Some(file),
+        } => Some(load_case(&file, None, &[], roots, permission)?),
+        _ => None,
     };
     let folder = claim(&out, force)?;
     let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
@@ -134,23 +145,38 @@ pub(crate) fn report(
         })
     });
     bar.finish_and_clear();
+    let discretisation = discretisation.map(|case| {
+        eprintln!("{}: the paper's discretisation", case.name());
+        progress::printing_through(Box::new(|line: &str| eprintln!("{line}")), || {
+            verify::run_case_with_progress(case, &mut |_, _, _| {})
+        })
+    });
     let document = match paper_references {
         None => spherecontact::report::compare::document(&run),
         Some(reference_dir) => {
             // The surface-field claims at the finest rungs of each map solver's ladder.
             let study = spherecontact::report::claims::Study::of_ladders(&run);
-            spherecontact::report::paper::document(&run, &study, &reference_dir)
+            spherecontact::report::paper::document(&run, &study, &reference_dir, discretisation.as_ref())
         }
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;
     history_files::write_all(&folder.path().join("solvers"), &run)
+        .and_then(|()| match &discretisation {
+            Some(d) => history_files::write_all(&folder.path().join("discretisation"), d),
+            None => Ok(()),
+        })
         .and_then(|()| document.write(folder.path()))
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     print!("{}", summary::screen(&run));
+    if let Some(d) = &discretisation {
+        print!("{}", summary::screen(d));
+    }
     println!("report: {}", out.join("report.html").display());
-    Ok(if run.passed() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
-    })
+    Ok(
+        if run.passed() && discretisation.as_ref().is_none_or(CaseRun::passed) {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        },
+    )
 }

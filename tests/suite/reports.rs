@@ -47,7 +47,7 @@ fn reports_regenerate_identically_apart_from_timings() {
     let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
     for dir in &dirs {
         let run = paper_run();
-        paper::document(&run, &Study::none(), &root().join("reference"))
+        paper::document(&run, &Study::none(), &root().join("reference"), None)
             .unwrap()
             .write(dir.path())
             .unwrap();
