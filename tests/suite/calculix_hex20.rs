@@ -124,3 +124,55 @@ fn sphere_2s_bricks_are_right_side_out() {
         "the reflection turns a brick inside out"
     );
 }
+
+fn root() -> &'static std::path::Path {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn a_bad_discretisation_case_exits_2_before_anything_runs_or_is_written() {
+    let out = tempfile::tempdir().unwrap();
+    let bad = root().join("tests/hostile/calculix/bad-element.toml");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .current_dir(root())
+        .args(["reproduce-paper", "--discretisation"])
+        .arg(&bad)
+        .arg("--out")
+        .arg(out.path().join("o"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("bad-element.toml") && stderr.contains("calculix.element"),
+        "{stderr}"
+    );
+    assert!(!out.path().join("o").exists(), "output written");
+}
+
+#[test]
+#[ignore] // heavy: ccx on 2 × 6 410 nodes of C3D20R along 5 path positions, about 2 min of CPU; `-- --ignored --nocapture`
+fn the_shipped_brick_case_passes_its_checks_against_fem_3d_and_mdr_domain() {
+    if !crate::common::decks::ccx_present("the_shipped_brick_case") {
+        return;
+    }
+    let case = spherecontact::case::Case::load(&root().join("cases-heavy/ccx-3d-hex20.toml")).unwrap();
+    assert_eq!(case.calculix.element, Element::Hex20r);
+    let run = spherecontact::verify::run_case(case);
+    let bricks = run.histories["ccx-3d"].as_ref().unwrap();
+    assert!(
+        bricks.metadata.model.contains("C3D20R"),
+        "{}",
+        bricks.metadata.model
+    );
+    let section = spherecontact::report::discretisation::section(Some(&run));
+    eprintln!("{}\n{:#?}", section.paragraphs[0], section.tables[0].rows);
+    // The case's checks (P and Q at every position against fem-3d and mdr-domain, each with its
+    // measured reason) are the assertions; none may be N/A here, ccx being present.
+    for o in &run.outcomes {
+        eprintln!("{:?} {:?} error {:?}", o.verdict, o.spec, o.error);
+        assert_eq!(o.verdict, spherecontact::check::Verdict::Ok, "{:?}", o.spec);
+    }
+    assert!(run.passed());
+    assert_eq!(section.tables[0].rows.len(), 5);
+}
