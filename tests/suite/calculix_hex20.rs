@@ -1,7 +1,9 @@
 //! `ccx-3d` on the paper's discretisation, 20-node bricks (`[calculix] element = "hex20"` or
 //! `"hex20r"`): the deck text on one brick (the element keyword, the node order of both spheres,
-//! the element-face surfaces), every brick of sphere 2 right side out, and the run of the shipped
-//! case against mdr-domain (heavy).
+//! the element-face surfaces), every brick of sphere 2 right side out with the same faces, the
+//! read-back corners of an 8-node face (its bilinear hats' weights, two triangles), a bad
+//! `reproduce-paper --discretisation` case, and the run of the shipped case against fem-3d and
+//! mdr-domain (heavy).
 //!
 //! Run: `cargo test --test suite calculix_hex20::` (the run: `-- --ignored --nocapture`).
 
@@ -175,4 +177,41 @@ fn the_shipped_brick_case_passes_its_checks_against_fem_3d_and_mdr_domain() {
     }
     assert!(run.passed());
     assert_eq!(section.tables[0].rows.len(), 5);
+}
+
+#[test]
+fn a_bricks_face_is_read_back_on_its_corners_as_two_triangles() {
+    let body = Body::Hex20(brick());
+    let corners = body.corners(2e-3).unwrap();
+    // The corners by distance from the axis: node 1 (the origin) first, node 3 last.
+    assert_eq!(corners.nodes, vec![0, 1, 3, 2]);
+    // A flat square of 1 mm²: each bilinear hat integrates to a quarter.
+    assert!(
+        corners.weights.iter().all(|w| (w - 0.25e-6).abs() < 1e-18),
+        "{:?}",
+        corners.weights
+    );
+    assert_eq!(corners.triangles, vec![[0, 1, 3], [0, 3, 2]]);
+    assert!(body.corners(0.5e-3).is_err());
+}
+
+#[test]
+fn mirrored_elements_keep_their_faces() {
+    let body = Body::Hex20(brick());
+    let mirrored = body.element(0, true);
+    // The mirror image's faces are the element's faces (as node sets), renumbered.
+    let sets = |e: &[usize]| {
+        let mut s: Vec<Vec<usize>> = body
+            .face_corners()
+            .iter()
+            .map(|f| {
+                let mut c: Vec<usize> = f.iter().map(|&k| e[k]).collect();
+                c.sort_unstable();
+                c
+            })
+            .collect();
+        s.sort();
+        s
+    };
+    assert_eq!(sets(&mirrored), sets(&body.element(0, false)));
 }
