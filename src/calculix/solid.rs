@@ -56,6 +56,12 @@ pub const NAME: &str = "ccx-3d";
 /// on finer meshes; docs/external-decks.md).
 pub const DEFAULT_POLE_FRACTION: f64 = 1.0 / 5.0;
 
+/// Default pole brick size on the 20-node bricks: c_max/2, the coarsest (on the paper's
+/// hemispheres 6 410 nodes a body, ≈ 2.4 s a Newton iteration, 68 s of ccx CPU for
+/// `cases/ccx-3d.toml`'s path; 9 212 nodes and 154 s at c_max/4: docs/external-decks.md, "The
+/// paper's discretisation").
+pub const DEFAULT_BRICK_POLE_FRACTION: f64 = 1.0 / 2.0;
+
 /// Time allowed: start-up, set-up (reading the deck) and per path step (measured ≈ 10 s a step
 /// at c_max/4 on the paper's spheres; the budget leaves room for finer meshes and a loaded
 /// machine).
@@ -123,7 +129,11 @@ impl CcxSolid {
     /// faces are fem-3d's candidate faces.
     fn plan(&self, scene: &Scene) -> (f64, Plan) {
         let c_max = scene.max_contact_radius();
-        let h = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
+        let fraction = match self.settings.element.mesh() {
+            MeshKind::Tet10 => DEFAULT_POLE_FRACTION,
+            MeshKind::Hex20 => DEFAULT_BRICK_POLE_FRACTION,
+        };
+        let h = self.options.resolution.unwrap_or(fraction * c_max);
         let mut plan = Plan::of(scene, h);
         plan.candidate_radius = Zones::new(c_max, h).candidate_radius;
         (h, plan)
