@@ -286,6 +286,14 @@ mod tests {
         for (area, exact) in areas.iter().zip([6.0, 6.0, 10.0, 15.0, 10.0, 15.0]) {
             assert!((area - exact).abs() < 1e-12, "{areas:?}");
         }
+        // A rectangle's corner hats each integrate to a quarter of it.
+        for (f, area) in FACES.iter().zip(&areas) {
+            let w = quad_corner_weights(&f.map(|n| coords[n]));
+            assert!(
+                w.iter().all(|w| (w - area / 4.0).abs() < 1e-12),
+                "{w:?} of {area}"
+            );
+        }
     }
 
     #[test]
