@@ -168,7 +168,16 @@ fn the_shipped_brick_case_passes_its_checks_against_fem_3d_and_mdr_domain() {
         bricks.metadata.model
     );
     let section = spherecontact::report::discretisation::section(Some(&run));
-    eprintln!("{}\n{:#?}", section.paragraphs[0], section.tables[0].rows);
+    eprintln!("{}", section.paragraphs[0]);
+    for row in &section.tables[0].rows {
+        eprintln!(
+            "{}",
+            row.iter()
+                .map(|c| c.text.as_str())
+                .collect::<Vec<_>>()
+                .join(" | ")
+        );
+    }
     // The case's checks (P and Q at every position against fem-3d and mdr-domain, each with its
     // measured reason) are the assertions; none may be N/A here, ccx being present.
     for o in &run.outcomes {
