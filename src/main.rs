@@ -164,6 +164,10 @@ enum Command {
         /// The paper's case file.
         #[arg(long, default_value = "cases/paper-fig7.toml")]
         case: PathBuf,
+        /// A case of the paper's discretisation (20-node bricks in CalculiX, minutes of CPU), run
+        /// beside and reported against mdr-domain and fem-3d, e.g. cases-heavy/ccx-3d-hex20.toml.
+        #[arg(long, value_name = "CASE")]
+        discretisation: Option<PathBuf>,
         #[command(flatten)]
         options: ReportOptions,
     },
@@ -284,9 +288,12 @@ fn main() -> ExitCode {
         Command::Doctor => Ok(doctor()),
         Command::List => list(roots),
         Command::Compare { case, out, options } => report(&case, out, Report::Compare, options, roots),
-        Command::ReproducePaper { out, case, options } => {
-            report(&case, Some(out), Report::Paper, options, roots)
-        }
+        Command::ReproducePaper {
+            out,
+            case,
+            discretisation,
+            options,
+        } => report(&case, Some(out), Report::Paper { discretisation }, options, roots),
         Command::Bench {
             case,
             solvers,

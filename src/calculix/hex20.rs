@@ -138,11 +138,11 @@ pub fn volume(coords: &[[f64; 3]; 20]) -> f64 {
     gauss_points().map(|(xi, w)| w * jacobian(coords, xi)).sum()
 }
 
-/// The area of an 8-node quadrangle by the 3 × 3 rule.
-pub fn quad_area(coords: &[[f64; 3]; 8]) -> f64 {
-    let mut area = 0.0;
-    for (a, wa) in GAUSS3 {
-        for (b, wb) in GAUSS3 {
+/// The surface element |∂x/∂ξ × ∂x/∂η| of an 8-node quadrangle at each point of the 3 × 3
+/// rule, with the point and its weight.
+fn quad_points(coords: &[[f64; 3]; 8]) -> impl Iterator<Item = ([f64; 2], f64)> + '_ {
+    GAUSS3.into_iter().flat_map(move |(a, wa)| {
+        GAUSS3.into_iter().map(move |(b, wb)| {
             let (mut ta, mut tb) = ([0.0; 3], [0.0; 3]);
             for (node, x) in QUAD_NODES.iter().zip(coords) {
                 let (_, g) = serendipity(*node, [a, b]);
@@ -156,10 +156,26 @@ pub fn quad_area(coords: &[[f64; 3]; 8]) -> f64 {
                 ta[2] * tb[0] - ta[0] * tb[2],
                 ta[0] * tb[1] - ta[1] * tb[0],
             ];
-            area += wa * wb * n.iter().map(|v| v * v).sum::<f64>().sqrt();
+            ([a, b], wa * wb * n.iter().map(|v| v * v).sum::<f64>().sqrt())
+        })
+    })
+}
+
+/// The area of an 8-node quadrangle by the 3 × 3 rule.
+pub fn quad_area(coords: &[[f64; 3]; 8]) -> f64 {
+    quad_points(coords).map(|(_, da)| da).sum()
+}
+
+/// The integrals over an 8-node quadrangle of its four corners' bilinear hats
+/// ¼ (1 ± ξ)(1 ± η) (3 × 3 rule): they sum to its area.
+pub fn quad_corner_weights(coords: &[[f64; 3]; 8]) -> [f64; 4] {
+    let mut weights = [0.0; 4];
+    for ([a, b], da) in quad_points(coords) {
+        for (w, [xa, xb]) in weights.iter_mut().zip(&QUAD_NODES[..4]) {
+            *w += 0.25 * (1.0 + a * xa) * (1.0 + b * xb) * da;
         }
     }
-    area
+    weights
 }
 
 /// The node permutation that mirrors the brick in the plane ξ = η (node k goes to the node at
@@ -269,6 +285,14 @@ mod tests {
         let areas: Vec<f64> = FACES.iter().map(|f| quad_area(&f.map(|n| coords[n]))).collect();
         for (area, exact) in areas.iter().zip([6.0, 6.0, 10.0, 15.0, 10.0, 15.0]) {
             assert!((area - exact).abs() < 1e-12, "{areas:?}");
+        }
+        // A rectangle's corner hats each integrate to a quarter of it.
+        for (f, area) in FACES.iter().zip(&areas) {
+            let w = quad_corner_weights(&f.map(|n| coords[n]));
+            assert!(
+                w.iter().all(|w| (w - area / 4.0).abs() < 1e-12),
+                "{w:?} of {area}"
+            );
         }
     }
 

@@ -8,8 +8,8 @@
 //!
 //! Model and findings: docs/external-decks.md, "CalculiX".
 
+pub mod body;
 pub mod hex20;
-pub mod hex_deck;
 pub mod hex_mesh;
 pub mod inp;
 pub mod results;

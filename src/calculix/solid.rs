@@ -1,5 +1,7 @@
 //! The CalculiX deck `ccx-3d`: the frictional path in 3D on fem-3d's gmsh mesh of the half body
-//! ([`crate::external::solid_geo`]: hemisphere or cap, y ≥ 0), C3D10, the symmetry plane y = 0
+//! ([`crate::external::solid_geo`]: hemisphere or cap, y ≥ 0) — C3D10 on its tetrahedra, or, by
+//! `[calculix] element`, C3D20/C3D20R on the 20-node bricks of the same body
+//! ([`super::hex_mesh`], graded faster: the paper's discretisation) — the symmetry plane y = 0
 //! held in y, both spheres meshed (the second the mirror image of the first through the contact
 //! plane), penalty contact with Coulomb friction and history, one `*STEP` per path step (the
 //! case's increments).
@@ -23,9 +25,12 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use super::solid_inp::{SolidDeckSpec, C3D10};
+use super::body::Body;
+use super::hex_mesh;
+use super::solid_inp::SolidDeckSpec;
 use super::solid_read::{self, SolidRun, STICK_MARGIN};
 use super::{CcxAxisymDeck, Settings};
+use crate::calculix_settings::MeshKind;
 use crate::domain::Grip;
 use crate::external::axisym::{Options, Plan};
 use crate::external::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
@@ -35,7 +40,7 @@ use crate::external::solid_geo::{self, SolidMeshFiles, Zones};
 use crate::external::split;
 use crate::external::surface3d;
 use crate::external::toolchain::{Tool, Toolchain};
-use crate::fem::mesh::solid::{self, SolidMesh};
+use crate::fem::mesh::solid;
 use crate::history::{History, Metadata};
 use crate::limits::SOLID_POLE;
 use crate::resolution::{self, ResolutionError};
@@ -50,6 +55,12 @@ pub const NAME: &str = "ccx-3d";
 /// coarse mesh of fenicsx-3d (ccx's direct solves with contact take tens of seconds an increment
 /// on finer meshes; docs/external-decks.md).
 pub const DEFAULT_POLE_FRACTION: f64 = 1.0 / 5.0;
+
+/// Default pole brick size on the 20-node bricks: c_max/2, the coarsest (on the paper's
+/// hemispheres 6 410 nodes a body, ≈ 2.4 s a Newton iteration, 68 s of ccx CPU for
+/// `cases/ccx-3d.toml`'s path; 9 212 nodes and 154 s at c_max/4: docs/external-decks.md, "The
+/// paper's discretisation").
+pub const DEFAULT_BRICK_POLE_FRACTION: f64 = 1.0 / 2.0;
 
 /// Time allowed: start-up, set-up (reading the deck) and per path step (measured ≈ 10 s a step
 /// at c_max/4 on the paper's spheres; the budget leaves room for finer meshes and a loaded
@@ -67,7 +78,7 @@ pub struct CcxSolidDeck;
 impl Deck for CcxSolidDeck {
     const KIND: DeckKind = DeckKind {
         name: NAME,
-        description: "CalculiX (ccx) 3D FEM, C3D10 on fem-3d's gmsh mesh of the half body, both spheres meshed (the second mirrored), face-to-face penalty contact with Coulomb friction and history",
+        description: "CalculiX (ccx) 3D FEM, C3D10 on fem-3d's gmsh mesh of the half body (or C3D20/C3D20R on its 20-node bricks), both spheres meshed (the second mirrored), face-to-face penalty contact with Coulomb friction and history",
         tool: Tool::Ccx,
         template: super::solid_inp::TEMPLATE,
         file_name: "job.inp",
@@ -100,6 +111,8 @@ pub struct CcxSolid {
 /// A finished run: what was read back, the mesh's size, the wall times.
 struct Run {
     read: SolidRun,
+    /// The mesh in words.
+    mesh: &'static str,
     elements: usize,
     nodes: usize,
     slave_faces: usize,
@@ -112,27 +125,28 @@ struct Run {
 }
 
 impl CcxSolid {
-    /// `NotApplicable` unless the case's `[calculix] element` is this deck's C3D10: the 20-node
-    /// bricks have their mesh (`hex_mesh`) and a frictionless deck (`hex_deck`), not this
-    /// frictional one yet, and a setting is never dropped silently.
-    fn element_supported(&self) -> Result<(), SolveError> {
-        match self.settings.element {
-            crate::calculix_settings::Element::Tet10 => Ok(()),
-            other => Err(SolveError::NotApplicable(format!(
-                "ccx-3d runs C3D10 (element = \"tet10\"); element = \"{}\" is not built into this deck",
-                other.name()
-            ))),
-        }
-    }
-
     /// The pole size and plan of `scene`: the candidate zone is fem-3d's, so that the slave
     /// faces are fem-3d's candidate faces.
     fn plan(&self, scene: &Scene) -> (f64, Plan) {
         let c_max = scene.max_contact_radius();
-        let h = self.options.resolution.unwrap_or(DEFAULT_POLE_FRACTION * c_max);
+        let fraction = match self.settings.element.mesh() {
+            MeshKind::Tet10 => DEFAULT_POLE_FRACTION,
+            MeshKind::Hex20 => DEFAULT_BRICK_POLE_FRACTION,
+        };
+        let h = self.options.resolution.unwrap_or(fraction * c_max);
         let mut plan = Plan::of(scene, h);
         plan.candidate_radius = Zones::new(c_max, h).candidate_radius;
         (h, plan)
+    }
+
+    /// The body's mesh, `body.msh` in `dir`, of the kind of the case's element.
+    fn read_mesh(&self, dir: &Path) -> Result<Body, SolveError> {
+        let path = dir.join("body.msh");
+        let failed = |e: String| SolveError::Failed(format!("reading gmsh's mesh: {e}"));
+        Ok(match self.settings.element.mesh() {
+            MeshKind::Tet10 => Body::Tet10(solid::read(&path).map_err(|e| failed(e.to_string()))?),
+            MeshKind::Hex20 => Body::Hex20(hex_mesh::read(&path).map_err(|e| failed(e.to_string()))?),
+        })
     }
 
     /// Meshes the body into `dir` (`body.geo`, `body.msh`): the mesh, the filled deck and gmsh's
@@ -143,12 +157,21 @@ impl CcxSolid {
         plan: &Plan,
         h: f64,
         dir: &Path,
-    ) -> Result<(SolidMesh, String, f64), SolveError> {
+    ) -> Result<(Body, String, f64), SolveError> {
         let zones = Zones::new(scene.max_contact_radius(), h);
         let r = scene.pair.body1.radius;
         let geometry = solid_geo::geometry(r, scene.domain.height(r), h, zones);
-        let files = solid_geo::mesh(&geometry, dir, "body", &self.options.toolchain)?;
-        let mesh = read_mesh(dir)?;
+        let toolchain = &self.options.toolchain;
+        let (mesh, files) = match self.settings.element.mesh() {
+            MeshKind::Tet10 => {
+                let files = solid_geo::mesh(&geometry, dir, "body", toolchain)?;
+                (self.read_mesh(dir)?, files)
+            }
+            MeshKind::Hex20 => {
+                let (mesh, files) = hex_mesh::mesh(&hex_mesh::graded(&geometry), dir, "body", toolchain)?;
+                (Body::Hex20(mesh), files)
+            }
+        };
         let text = match &self.options.deck_text {
             Some(text) => text.clone(),
             None => self
@@ -159,7 +182,7 @@ impl CcxSolid {
         Ok((mesh, text, files.wall_s))
     }
 
-    fn spec<'a>(&self, scene: &'a Scene, plan: &'a Plan, h: f64, mesh: &'a SolidMesh) -> SolidDeckSpec<'a> {
+    fn spec<'a>(&self, scene: &'a Scene, plan: &'a Plan, h: f64, mesh: &'a Body) -> SolidDeckSpec<'a> {
         SolidDeckSpec {
             scene: &scene.name,
             domain: scene.domain.describe(),
@@ -171,7 +194,6 @@ impl CcxSolid {
             grip: plan.grip,
             candidate_radius: plan.candidate_radius,
             settings: self.settings,
-            keywords: C3D10,
             steps: &plan.steps,
         }
     }
@@ -181,7 +203,6 @@ impl CcxSolid {
     /// -i job` there, then [`CcxSolid::read_run`]).
     pub fn write_run(&self, scene: &Scene, dir: &Path) -> Result<(), SolveError> {
         applicable(scene)?;
-        self.element_supported()?;
         // gmsh runs in the folder: a relative path would name another place there.
         let dir = &dir
             .canonicalize()
@@ -196,11 +217,10 @@ impl CcxSolid {
     /// `scene`'s steps; the pole size is this solver's (its resolution option or the default).
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         applicable(scene)?;
-        self.element_supported()?;
         let (h, plan) = self.plan(scene);
         deck::check_path_file(dir, &plan.steps, &scene.name)?;
         super::logged_error(dir)?;
-        let mesh = read_mesh(dir)?;
+        let mesh = self.read_mesh(dir)?;
         let run = self.read(scene, &plan, h, &mesh, dir, [0.0; 2])?;
         Ok(self.history(scene, "(run elsewhere)", &plan, h, &run))
     }
@@ -221,7 +241,7 @@ impl CcxSolid {
         scene: &Scene,
         plan: &Plan,
         h: f64,
-        mesh: &SolidMesh,
+        mesh: &Body,
         dir: &Path,
         [mesh_s, solve_s]: [f64; 2],
     ) -> Result<Run, SolveError> {
@@ -236,8 +256,9 @@ impl CcxSolid {
             .map(|surface| surface.step)
             .collect();
         Ok(Run {
-            elements: mesh.tetrahedra.len(),
-            nodes: mesh.nodes.len(),
+            mesh: mesh.describe(),
+            elements: mesh.element_count(),
+            nodes: mesh.nodes().len(),
             slave_faces: spec.slave_faces().len(),
             stiffness: spec.stiffness_mpa_per_mm(),
             stick_slope: spec.stick_slope_mpa_per_mm(),
@@ -277,11 +298,12 @@ impl CcxSolid {
             version: format!("CalculiX {version}"),
             model: format!(
                 "3D, the halves (y ≥ 0) of both spheres ({}; the second mirrored through the \
-                 contact plane); {} on fem-3d's gmsh mesh; {} penalty contact \
+                 contact plane); {} on gmsh's {}; {} penalty contact \
                  K = {:e} E/h; {friction}; P and Q from the far face's reaction × 2, the maps from \
                  CalculiX's contact output at the candidate faces' corners",
                 scene.domain.describe(),
-                C3D10.element,
+                self.settings.element.keyword(),
+                run.mesh,
                 self.settings.formulation.name(),
                 self.settings.penalty,
             ),
@@ -308,7 +330,7 @@ impl CcxSolid {
         }
         let extra = &mut metadata.extra;
         extra.insert("calculix".into(), self.settings.describe());
-        extra.insert("element".into(), json!(C3D10.element));
+        extra.insert("element".into(), json!(self.settings.element.keyword()));
         extra.insert("penalty_stiffness_mpa_per_mm".into(), json!(run.stiffness));
         extra.insert("stick_slope_mpa_per_mm".into(), json!(run.stick_slope));
         extra.insert(
@@ -352,11 +374,6 @@ fn edge_loaded(surface: &surface3d::Surface3, h: f64) -> bool {
         .nodes
         .iter()
         .any(|n| n.pressure > EDGE_PRESSURE * peak && n.r() >= outer - 0.5 * h)
-}
-
-/// The body's mesh, `body.msh` in `dir`.
-fn read_mesh(dir: &Path) -> Result<SolidMesh, SolveError> {
-    solid::read(&dir.join("body.msh")).map_err(|e| SolveError::Failed(format!("reading gmsh's mesh: {e}")))
 }
 
 /// Why the model does not apply to `scene`, if it does not: identical spheres (one body by the
@@ -407,7 +424,6 @@ impl Solver for CcxSolid {
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
         applicable(scene)?;
-        self.element_supported()?;
         let version = self
             .options
             .toolchain

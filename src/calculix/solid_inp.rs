@@ -1,48 +1,28 @@
 //! Writing the `.inp` of `ccx-3d` from fem-3d's gmsh mesh of the half body
 //! ([`crate::external::solid_geo`]): the template (`templates/calculix_3d.inp`) filled with the
-//! 10-node tetrahedra of both spheres (sphere 2 the mirror image of sphere 1 through the contact
+//! elements of both spheres (sphere 2 the mirror image of sphere 1 through the contact
 //! plane), the node sets and surfaces, the material, the penalty contact with Coulomb friction,
 //! and one `*STEP` per computed path step.
 //!
-//! The element and contact keywords are chosen in one place, [`Keywords`], so that the element
-//! and the formulation can become settings.
+//! The element is the case's `[calculix] element` on the mesh of its kind ([`Body`]: C3D10 on
+//! the tetrahedra, C3D20 or C3D20R on the 20-node bricks); the contact keyword its
+//! `[calculix] contact`.
 
 use std::collections::HashMap;
 use std::fmt::Write;
 
+use super::body::Body;
 use super::inp::{node_set, num, surface_behavior};
-use crate::calculix_settings::Settings;
+use crate::calculix_settings::{MeshKind, Settings};
 use crate::domain::Grip;
 use crate::external::deck::ComputedStep;
-use crate::fem::element::tet10;
-use crate::fem::mesh::solid::SolidMesh;
 
 /// The deck template.
 pub const TEMPLATE: &str = include_str!("templates/calculix_3d.inp");
 
-/// The body's element and the contact pair's keywords.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Keywords {
-    /// `*ELEMENT, TYPE=…` of the body.
-    pub element: &'static str,
-    /// The body's node order from gmsh's (`order[k]` = gmsh's index of CalculiX's node k).
-    pub order: [usize; 10],
-    /// CalculiX's faces of that element by their corners (gmsh's indices), face k+1 = `S{k+1}`.
-    pub faces: [[usize; 3]; 4],
-}
-
-/// C3D10 on gmsh's 10-node tetrahedra: CalculiX's (Abaqus's) node order is VTK's (gmsh's midside
-/// nodes 8 and 9 swapped), its faces S1 = 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
-pub const C3D10: Keywords = Keywords {
-    element: "C3D10",
-    order: tet10::VTK_ORDER,
-    faces: [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]],
-};
-
-/// Body 2 is body 1 mirrored through the contact plane (z → −z); mirroring turns a tetrahedron
-/// inside out, so its corners 1 and 2 are swapped (and with them the midside nodes): `MIRROR[i]`
-/// is the gmsh index, in body 1's element, of the mirrored element's node i.
-const MIRROR: [usize; 10] = [0, 2, 1, 3, 6, 5, 4, 7, 9, 8];
+/// CalculiX reads at most 16 entries on a data line: an element's id and its first 15 nodes go
+/// on the first line, the rest (a 20-node brick's last 5) on the next.
+const NODES_ON_FIRST_LINE: usize = 15;
 
 /// The stick slope λ of `*FRICTION` as a fraction of the normal penalty K. λ = K diverged on the
 /// first loaded step (two spheres at c_max/3 and c_max/2: CalculiX's residual grew from 360 % to
@@ -57,8 +37,8 @@ pub struct SolidDeckSpec<'a> {
     pub scene: &'a str,
     /// The domain, in words.
     pub domain: String,
-    /// The half body's mesh [m].
-    pub mesh: &'a SolidMesh,
+    /// The half body's mesh [m], of the element kind of `settings.element`.
+    pub mesh: &'a Body,
     /// Young's modulus [Pa].
     pub young: f64,
     /// Poisson ratio.
@@ -71,10 +51,8 @@ pub struct SolidDeckSpec<'a> {
     pub grip: Grip,
     /// The contact faces wholly within this radius of the pole [m] are the slave.
     pub candidate_radius: f64,
-    /// The case's CalculiX settings (contact formulation, penalty factor).
+    /// The case's CalculiX settings (contact formulation, penalty factor, element).
     pub settings: Settings,
-    /// The body's element and its faces.
-    pub keywords: Keywords,
     /// The computed steps, in order.
     pub steps: &'a [ComputedStep],
 }
@@ -91,18 +69,22 @@ impl SolidDeckSpec<'_> {
     }
 
     /// The contact faces within the candidate radius (fem-3d's candidates, `Surface::new`).
-    pub fn slave_faces(&self) -> Vec<[usize; 6]> {
-        let r = |n: usize| self.mesh.nodes[n][0].hypot(self.mesh.nodes[n][1]);
-        self.mesh
-            .contact
-            .iter()
-            .filter(|f| f.iter().all(|&n| r(n) <= self.candidate_radius))
-            .copied()
-            .collect()
+    pub fn slave_faces(&self) -> Vec<Vec<usize>> {
+        self.mesh.candidate_faces(self.candidate_radius)
     }
 
     /// The filled deck.
     pub fn text(&self) -> Result<String, String> {
+        let kind = match self.mesh {
+            Body::Tet10(_) => MeshKind::Tet10,
+            Body::Hex20(_) => MeshKind::Hex20,
+        };
+        if self.settings.element.mesh() != kind {
+            return Err(format!(
+                "element {} does not fit the mesh ({kind:?})",
+                self.settings.element.name()
+            ));
+        }
         let faces = self.face_index();
         let slave = self.face_lines(&faces, 1)?;
         let master = self.face_lines(&faces, 2)?;
@@ -116,7 +98,7 @@ impl SolidDeckSpec<'_> {
         } else {
             "** frictionless (the path has no tangential motion)".to_owned()
         };
-        let keys: [(&str, String); 24] = [
+        let keys: [(&str, String); 25] = [
             ("@SCENE@", self.scene.replace(['\n', '`'], " ")),
             ("@DOMAIN@", self.domain.clone()),
             ("@GRIP@", self.grip.name().to_owned()),
@@ -126,15 +108,16 @@ impl SolidDeckSpec<'_> {
             ("@K@", format!("{k:.6e}")),
             ("@LAMBDA@", format!("{:.6e}", self.stick_slope_mpa_per_mm())),
             ("@MU@", format!("{}", self.friction)),
-            ("@ELEMENTS@", self.mesh.tetrahedra.len().to_string()),
+            ("@ELEMENTS@", self.mesh.element_count().to_string()),
+            ("@MESH@", self.mesh.describe().to_owned()),
             ("@H_MM@", format!("{:.6e}", self.h * 1e3)),
             ("@BODY1_NODES@", self.body_nodes(1)),
             ("@BODY2_NODES@", self.body_nodes(2)),
             ("@BODY1_ELEMENTS@", self.body_elements(1)),
             ("@BODY2_ELEMENTS@", self.body_elements(2)),
-            ("@SYMMETRY_NODES@", self.node_sets(&self.mesh.symmetry)),
-            ("@FAR1_NODES@", node_set(&self.of_body(&self.mesh.far, 1))),
-            ("@FAR2_NODES@", node_set(&self.of_body(&self.mesh.far, 2))),
+            ("@SYMMETRY_NODES@", self.node_sets(&self.mesh.symmetry_nodes())),
+            ("@FAR1_NODES@", node_set(&self.of_body(&self.mesh.far_nodes(), 1))),
+            ("@FAR2_NODES@", node_set(&self.of_body(&self.mesh.far_nodes(), 2))),
             ("@SLAVE_FACES@", slave),
             ("@MASTER_FACES@", master),
             ("@E_MPA@", num(self.young * 1e-6)),
@@ -146,75 +129,69 @@ impl SolidDeckSpec<'_> {
             .into_iter()
             .fold(TEMPLATE.to_owned(), |t, (key, value)| t.replace(key, &value));
         Ok(text
-            .replace("@ELEMENT@", self.keywords.element)
+            .replace("@ELEMENT@", self.settings.element.keyword())
             .replace("@CONTACT_TYPE@", self.settings.formulation.keyword())
             .replace("@STEPS@", &self.steps_text()))
     }
 
-    /// The mesh's node ids (0-based) of `faces`, as 0-based ids of body `body` (1 or 2).
-    fn of_body(&self, faces: &[[usize; 6]], body: usize) -> Vec<usize> {
-        let offset = (body - 1) * self.mesh.nodes.len();
-        SolidMesh::nodes_of(faces)
-            .into_iter()
-            .map(|n| n + offset)
-            .collect()
+    /// The (0-based) node ids `nodes` of body 1 as ids of body `body` (1 or 2).
+    fn of_body(&self, nodes: &[usize], body: usize) -> Vec<usize> {
+        let offset = (body - 1) * self.mesh.nodes().len();
+        nodes.iter().map(|n| n + offset).collect()
     }
 
-    /// The nodes of `faces` on both bodies, as data lines.
-    fn node_sets(&self, faces: &[[usize; 6]]) -> String {
-        [1, 2].map(|b| node_set(&self.of_body(faces, b))).join("\n")
+    /// The nodes `nodes` on both bodies, as data lines.
+    fn node_sets(&self, nodes: &[usize]) -> String {
+        [1, 2].map(|b| node_set(&self.of_body(nodes, b))).join("\n")
     }
 
     /// Body `body`'s nodes [mm]: body 2's are body 1's mirrored (z → −z), numbered after them.
     fn body_nodes(&self, body: usize) -> String {
-        let (offset, sign) = if body == 1 {
-            (0, 1.0)
-        } else {
-            (self.mesh.nodes.len(), -1.0)
-        };
+        let nodes = self.mesh.nodes();
+        let (offset, sign) = if body == 1 { (0, 1.0) } else { (nodes.len(), -1.0) };
         let mut text = String::new();
-        for (i, [x, y, z]) in self.mesh.nodes.iter().enumerate() {
+        for (i, [x, y, z]) in nodes.iter().enumerate() {
             let (x, y, z) = (num(x * 1e3), num(y * 1e3), num(sign * z * 1e3));
             let _ = writeln!(text, "{}, {x}, {y}, {z}", offset + i + 1);
         }
         text.trim_end().to_owned()
     }
 
-    /// Body `body`'s elements in gmsh's node order (0-based node ids): body 2's mirrored.
-    fn elements(&self, body: usize) -> impl Iterator<Item = [usize; 10]> + '_ {
-        let offset = (body - 1) * self.mesh.nodes.len();
-        self.mesh.tetrahedra.iter().map(move |t| {
-            let element = if body == 1 { *t } else { MIRROR.map(|i| t[i]) };
-            element.map(|n| n + offset)
+    /// Body `body`'s elements in CalculiX's node order (0-based node ids): body 2's mirrored.
+    fn elements(&self, body: usize) -> impl Iterator<Item = Vec<usize>> + '_ {
+        let offset = (body - 1) * self.mesh.nodes().len();
+        (0..self.mesh.element_count()).map(move |e| {
+            let element = self.mesh.element(e, body == 2);
+            element.into_iter().map(|n| n + offset).collect()
         })
     }
 
-    /// Body `body`'s element lines in CalculiX's node order, numbered after body 1's for body 2.
+    /// Body `body`'s element lines, numbered after body 1's for body 2.
     fn body_elements(&self, body: usize) -> String {
-        let first = (body - 1) * self.mesh.tetrahedra.len() + 1;
+        let first = (body - 1) * self.mesh.element_count() + 1;
         let mut text = String::new();
-        for (e, t) in self.elements(body).enumerate() {
-            let nodes: Vec<String> = self
-                .keywords
-                .order
-                .iter()
-                .map(|&k| (t[k] + 1).to_string())
-                .collect();
-            // CalculiX reads at most 16 entries a line: the id and ten nodes fit.
-            let _ = writeln!(text, "{}, {}", first + e, nodes.join(", "));
+        for (e, element) in self.elements(body).enumerate() {
+            let ids: Vec<String> = element.iter().map(|n| (n + 1).to_string()).collect();
+            let split = ids.len().min(NODES_ON_FIRST_LINE);
+            let _ = write!(text, "{}, {}", first + e, ids[..split].join(", "));
+            if split < ids.len() {
+                let _ = write!(text, ",\n{}", ids[split..].join(", "));
+            }
+            text.push('\n');
         }
         text.trim_end().to_owned()
     }
 
     /// Every element face of both bodies by its sorted corners (0-based node ids): (element id,
     /// face number).
-    fn face_index(&self) -> HashMap<[usize; 3], (usize, usize)> {
+    fn face_index(&self) -> HashMap<Vec<usize>, (usize, usize)> {
         let mut faces = HashMap::new();
+        let corners_of = self.mesh.face_corners();
         for body in [1, 2] {
-            let first = (body - 1) * self.mesh.tetrahedra.len() + 1;
-            for (e, t) in self.elements(body).enumerate() {
-                for (k, corners) in self.keywords.faces.iter().enumerate() {
-                    faces.insert(sorted(corners.map(|c| t[c])), (first + e, k + 1));
+            let first = (body - 1) * self.mesh.element_count() + 1;
+            for (e, element) in self.elements(body).enumerate() {
+                for (k, corners) in corners_of.iter().enumerate() {
+                    faces.insert(sorted(corners.iter().map(|&c| element[c])), (first + e, k + 1));
                 }
             }
         }
@@ -223,14 +200,18 @@ impl SolidDeckSpec<'_> {
 
     /// The candidate faces of body `body` as `element, S<k>` lines: body 1's the slave, body 2's
     /// the master.
-    fn face_lines(&self, faces: &HashMap<[usize; 3], (usize, usize)>, body: usize) -> Result<String, String> {
-        let offset = (body - 1) * self.mesh.nodes.len();
+    fn face_lines(&self, faces: &HashMap<Vec<usize>, (usize, usize)>, body: usize) -> Result<String, String> {
+        let offset = (body - 1) * self.mesh.nodes().len();
+        let corners = self.mesh.face_corner_count();
         let mut text = String::new();
         for face in self.slave_faces() {
-            let corners = sorted([face[0], face[1], face[2]].map(|n| n + offset));
-            let (element, k) = faces
-                .get(&corners)
-                .ok_or_else(|| format!("contact face {:?} is not the face of any element", &face[..3]))?;
+            let key = sorted(face[..corners].iter().map(|n| n + offset));
+            let (element, k) = faces.get(&key).ok_or_else(|| {
+                format!(
+                    "contact face {:?} is not the face of any element",
+                    &face[..corners]
+                )
+            })?;
             let _ = writeln!(text, "{element}, S{k}");
         }
         if text.is_empty() {
@@ -276,8 +257,9 @@ impl SolidDeckSpec<'_> {
     }
 }
 
-/// The three ids in increasing order.
-fn sorted(mut corners: [usize; 3]) -> [usize; 3] {
+/// The ids in increasing order.
+fn sorted(corners: impl Iterator<Item = usize>) -> Vec<usize> {
+    let mut corners: Vec<usize> = corners.collect();
     corners.sort_unstable();
     corners
 }

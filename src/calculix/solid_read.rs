@@ -1,18 +1,17 @@
 //! Reading back a `ccx-3d` run: P and Q at every computed step from the reaction totals of the
 //! far face in `job.dat` (checked against the plate's), and the contact surface from the
 //! `CONTACT` blocks of `job.frd` (COPEN, CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2 at the slave
-//! nodes) at the corners of the candidate faces, with fem-3d's weights and triangles
-//! ([`crate::fem::solid3d::surface::Surface`] with [`Rule::Corners`]): the layout of fem-3d's
-//! fields ([`Surface3`]).
+//! nodes) at the corners of the candidate faces ([`Body::corners`]: on the tetrahedra fem-3d's
+//! weights and triangles, on the bricks each face's corners and two triangles): the layout of
+//! fem-3d's fields ([`Surface3`]).
 
 use std::path::Path;
 
+use super::body::{Body, Corners};
 use super::results::{self, ContactBlock};
 use crate::external::deck::ComputedStep;
 use crate::external::readback::read_output;
 use crate::external::surface3d::{Node3, Surface3};
-use crate::fem::mesh::solid::SolidMesh;
-use crate::fem::solid3d::surface::{Rule, Surface};
 
 /// Largest disagreement between the reactions of the far face and of the plate (x and z),
 /// relative to the larger of the two and 1 N: the body's equilibrium, which CalculiX reaches to
@@ -44,7 +43,7 @@ pub struct SolidRun {
 /// `candidate_radius` [m], friction `mu`, and the computed `steps`.
 pub fn read_back(
     dir: &Path,
-    mesh: &SolidMesh,
+    mesh: &Body,
     candidate_radius: f64,
     mu: f64,
     steps: &[ComputedStep],
@@ -54,7 +53,7 @@ pub fn read_back(
     let far = results::last_per_step(&results::totals(&dat, "NFAR1")?, |t| t.time, n, "job.dat NFAR1")?;
     let other = results::last_per_step(&results::totals(&dat, "NFAR2")?, |t| t.time, n, "job.dat NFAR2")?;
     let frd = results::parse_frd(&read_output(dir, "job.frd")?)?;
-    let surface = Surface::new(mesh, candidate_radius, Rule::Corners)?;
+    let surface = mesh.corners(candidate_radius)?;
     let mut run = SolidRun {
         forces: Vec::with_capacity(n),
         forces_plane: Vec::with_capacity(n),
@@ -102,9 +101,9 @@ pub fn read_back(
 /// global x and y (its master faces lie in z = 0); its shear is the traction on the slave, the
 /// sphere, opposite to ∫ q_x dA = Q's sign convention, and its slip that of the sphere against
 /// the plate, half the relative slip of the two spheres.
-fn corner_values(block: &ContactBlock, surface: &Surface, mu: f64) -> Result<Vec<Node3>, String> {
+fn corner_values(block: &ContactBlock, surface: &Corners, mu: f64) -> Result<Vec<Node3>, String> {
     surface
-        .point_nodes
+        .nodes
         .iter()
         .zip(&surface.points)
         .zip(&surface.weights)

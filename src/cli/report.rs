@@ -159,7 +159,10 @@ fn stored_run(dirs: &[PathBuf], case: &Case, roots: &ReadRoots) -> Result<CaseRu
 /// Which report to write.
 pub(crate) enum Report {
     Compare,
-    Paper,
+    /// The paper's, with the case of its discretisation (`--discretisation`) run beside.
+    Paper {
+        discretisation: Option<PathBuf>,
+    },
 }
 
 /// The options `compare` and `reproduce-paper` share.
@@ -209,13 +212,20 @@ pub(crate) fn report(
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
     // The paper's quoted values are read before anything is written or run: a missing file is
     // bad input.
-    let paper_references = match kind {
-        Report::Paper => Some(
+    let paper_references = match &kind {
+        Report::Paper { .. } => Some(
             spherecontact::report::paper::Quoted::for_case(&case)
                 .map_err(|e| InputError(format!("{}: {e}", case.file.display())))?
                 .0,
         ),
         Report::Compare => None,
+    };
+    // The discretisation case is read before anything is written or run: bad input exits 2.
+    let discretisation = match kind {
+        Report::Paper {
+            discretisation: Some(file),
+        } => Some(load_case(&file, None, &[], roots, permission)?),
+        _ => None,
     };
     // Stored runs are read and checked before anything is written.
     let stored = match from.is_empty() {
@@ -227,23 +237,36 @@ pub(crate) fn report(
         Some(run) => run,
         None => run_solvers(case, jobs),
     };
+    let discretisation = discretisation.map(|case| {
+        eprintln!("{}: the paper's discretisation", case.name());
+        run_solvers(case, jobs)
+    });
     let document = match paper_references {
         None => spherecontact::report::compare::document(&run),
         Some(reference_dir) => {
             // The surface-field claims at the finest rungs of each map solver's ladder.
             let study = spherecontact::report::claims::Study::of_ladders(&run, jobs.cores());
-            spherecontact::report::paper::document(&run, &study, &reference_dir)
+            spherecontact::report::paper::document(&run, &study, &reference_dir, discretisation.as_ref())
         }
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;
     history_files::write_all(&folder.path().join("solvers"), &run)
+        .and_then(|()| match &discretisation {
+            Some(d) => history_files::write_all(&folder.path().join("discretisation"), d),
+            None => Ok(()),
+        })
         .and_then(|()| document.write(folder.path()))
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     print!("{}", summary::screen(&run));
+    if let Some(d) = &discretisation {
+        print!("{}", summary::screen(d));
+    }
     println!("report: {}", out.join("report.html").display());
-    Ok(if run.passed() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
-    })
+    Ok(
+        if run.passed() && discretisation.as_ref().is_none_or(CaseRun::passed) {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        },
+    )
 }

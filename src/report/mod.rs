@@ -5,6 +5,7 @@ pub mod bench;
 pub mod claims;
 pub mod compare;
 pub mod dem_scoreboard;
+pub mod discretisation;
 pub mod document;
 pub mod figures;
 pub mod glance;

@@ -235,8 +235,14 @@ pub fn paper_numbers(run: &CaseRun, quoted: &Quoted) -> Result<Section> {
 }
 
 /// The reproduce-paper report; `study` resolves the surface-field claims ([`Study::of_ladders`],
-/// or [`Study::none`] for the run's own fields only).
-pub fn document(run: &CaseRun, study: &Study, reference_dir: &Path) -> Result<Document> {
+/// or [`Study::none`] for the run's own fields only); `discretisation` is the run of the paper's
+/// discretisation case, if one was asked for ([`super::discretisation`]).
+pub fn document(
+    run: &CaseRun,
+    study: &Study,
+    reference_dir: &Path,
+    discretisation: Option<&CaseRun>,
+) -> Result<Document> {
     let focus = run.case.focus;
     let quoted = Quoted::load(reference_dir)?;
     let mut fields = figures::profiles(run, focus)?;
@@ -261,6 +267,7 @@ pub fn document(run: &CaseRun, study: &Study, reference_dir: &Path) -> Result<Do
             fields,
         ),
         figure_section("Errors against the references", figures::errors(run)?),
+        super::discretisation::section(discretisation),
         super::dem_scoreboard::section(run),
         claims::section(run, study, &claims),
         checks_section(run),

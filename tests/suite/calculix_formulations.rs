@@ -11,7 +11,6 @@ use std::path::Path;
 
 use spherecontact::calculix_settings::{Element, Formulation, MeshKind, Settings};
 use spherecontact::case::Case;
-use spherecontact::external::toolchain::Toolchain;
 use spherecontact::solver::{self, SolveError};
 
 use crate::common::decks::{ccx_present, force_error_against_mdr_domain, scene_17um};
@@ -137,67 +136,4 @@ fn node_to_face_is_run_and_recorded() {
     // the penalty leave a few 1e-3; a wrong segment factor or a contact that does nothing would
     // be off by orders of magnitude.
     assert!(error.abs() < 5e-3, "P error {error:+.3e}");
-}
-
-#[test]
-#[ignore] // heavy: ccx on ~100 k DOFs of 20-node bricks, minutes; run with `-- --ignored`
-fn c3d20r_normal_contact_on_the_hex_mesh_against_mdr_domain() {
-    use spherecontact::calculix::{hex_deck, hex_mesh};
-    use spherecontact::calculix_settings::Element;
-    use spherecontact::fem::solid3d::meshing::{self, Zones};
-    if !ccx_present("c3d20r_normal_contact") {
-        return;
-    }
-    let chain = Toolchain::default();
-    let case = Case::load(&root().join("cases/ccx-axisym.toml")).unwrap();
-    let scene = &case.scene;
-    let radius = scene.pair.body1.radius;
-    let c_max = scene.max_contact_radius();
-    let h = c_max / 4.0;
-    let zones = Zones::new(c_max, h);
-    let geometry = meshing::geometry(radius, scene.domain.height(radius), h, zones);
-    let dir = tempfile::tempdir().unwrap();
-    let (mesh, _) = hex_mesh::mesh(&geometry, dir.path(), "body", &chain).unwrap();
-    let positions: Vec<usize> = (1..scene.path.positions().len()).collect();
-    let approaches: Vec<f64> = positions
-        .iter()
-        .map(|&k| scene.path.positions()[k].delta_n / 2.0)
-        .collect();
-    let spec = hex_deck::HexDeckSpec {
-        mesh: &mesh,
-        young: scene.pair.body1.material.young,
-        poisson: scene.pair.body1.material.poisson,
-        h,
-        candidate_radius: zones.candidate_radius,
-        grip: scene.domain.grip,
-        settings: Settings {
-            element: Element::Hex20r,
-            ..case.calculix
-        },
-        approaches: &approaches,
-    };
-    let start = std::time::Instant::now();
-    let results = hex_deck::run(&spec, dir.path(), &chain, std::time::Duration::from_secs(3600)).unwrap();
-    let wall = start.elapsed().as_secs_f64();
-    let reference = solver::run(
-        spherecontact::registry::by_name("mdr-domain").unwrap().as_ref(),
-        scene,
-    )
-    .unwrap();
-    for (&k, r) in positions.iter().zip(&results) {
-        let p_ref = reference.at_position(k).unwrap().normal_force.unwrap();
-        let c_ref = reference.at_position(k).unwrap().contact_radius.unwrap();
-        let (ep, ec) = (r.normal_force / p_ref - 1.0, r.contact_radius / c_ref - 1.0);
-        eprintln!(
-            "C3D20R, {} bricks, h = c_max/4, position {k}: P = {:.3} N ({ep:+.2e}), c = {:.4} mm ({ec:+.2e}), {wall:.0} s in all",
-            mesh.hexahedra.len(),
-            r.normal_force,
-            r.contact_radius * 1e3
-        );
-        // The coarse bricks (c_max/4 at the pole) and the penalty: P within 3 % of the corrected
-        // reference; c is the outermost node in contact, within one brick (h/c ≤ 1/4 beyond
-        // c_max, + the overshoot of a node-based bound).
-        assert!(ep.abs() < 3e-2, "P {} against {p_ref}", r.normal_force);
-        assert!(ec.abs() < 0.3, "c {} against {c_ref}", r.contact_radius);
-    }
 }

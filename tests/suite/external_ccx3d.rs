@@ -7,7 +7,8 @@
 use std::path::Path;
 use std::time::Duration;
 
-use spherecontact::calculix::solid_inp::{SolidDeckSpec, C3D10};
+use spherecontact::calculix::body::Body;
+use spherecontact::calculix::solid_inp::SolidDeckSpec;
 use spherecontact::calculix::solid_read;
 use spherecontact::calculix::{CcxSolid, Settings};
 use spherecontact::case::Case;
@@ -21,7 +22,7 @@ use crate::external_calculix::{failure_of, fake_ccx};
 
 /// One 10-node tetrahedron (gmsh's order) with corners at the pole, 1 mm along x and y, and
 /// 1 mm up: its face on z = 0 is the contact face, the face y = 0 the symmetry plane.
-fn tetrahedron() -> SolidMesh {
+fn tetrahedron() -> Body {
     let corners = [
         [0.0, 0.0, 0.0],
         [1e-3, 0.0, 0.0],
@@ -33,13 +34,13 @@ fn tetrahedron() -> SolidMesh {
     for [a, b] in edges {
         nodes.push([0, 1, 2].map(|k| 0.5 * (corners[a][k] + corners[b][k])));
     }
-    SolidMesh {
+    Body::Tet10(SolidMesh {
         nodes,
         tetrahedra: vec![[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]],
         contact: vec![[0, 1, 2, 4, 5, 6]],
         far: vec![[1, 2, 3, 5, 8, 9]],
         symmetry: vec![[0, 1, 3, 4, 9, 7]],
-    }
+    })
 }
 
 fn steps() -> [ComputedStep; 2] {
@@ -59,7 +60,7 @@ fn steps() -> [ComputedStep; 2] {
     ]
 }
 
-fn spec<'a>(mesh: &'a SolidMesh, steps: &'a [ComputedStep]) -> SolidDeckSpec<'a> {
+fn spec<'a>(mesh: &'a Body, steps: &'a [ComputedStep]) -> SolidDeckSpec<'a> {
     SolidDeckSpec {
         scene: "unit",
         domain: "a tetrahedron".into(),
@@ -71,7 +72,6 @@ fn spec<'a>(mesh: &'a SolidMesh, steps: &'a [ComputedStep]) -> SolidDeckSpec<'a>
         grip: Grip::Rigid,
         candidate_radius: 1.1e-3,
         settings: Settings::default(),
-        keywords: C3D10,
         steps,
     }
 }

@@ -3,6 +3,7 @@
 //! heavy ones with `-- --ignored`.
 
 mod calculix_formulations;
+mod calculix_hex20;
 mod calculix_hex_mesh;
 mod case_solvers;
 mod cli;

@@ -349,7 +349,7 @@ fn defects(name: &str, svg: &str) -> Vec<String> {
 fn report_figures() -> Vec<Figure> {
     let case = common::paper_case_coarse(10);
     let run = verify::run_case(case);
-    paper::document(&run, &Study::none(), &common::root().join("reference"))
+    paper::document(&run, &Study::none(), &common::root().join("reference"), None)
         .expect("report")
         .sections
         .into_iter()

@@ -53,7 +53,7 @@ fn reports_regenerate_identically_apart_from_timings() {
             false => paper_run(),
             true => schedule::run_case(common::paper_case_in_crate(), 2, |_| None, &|_, solve| solve()),
         };
-        paper::document(&run, &Study::none(), &root().join("reference"))
+        paper::document(&run, &Study::none(), &root().join("reference"), None)
             .unwrap()
             .write(dir.path())
             .unwrap();

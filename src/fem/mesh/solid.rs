@@ -8,11 +8,11 @@
 //! y = 0) and a volume [`BODY`]. Elements: 10-node tetrahedra (gmsh type 11) in the body,
 //! 6-node triangles (type 9) on the surfaces (`Mesh.ElementOrder = 2`).
 
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use mshio::mshfile::ElementType;
 
+use super::groups;
 use crate::fem::element::tet10;
 
 /// Physical surface tag of the contact candidate surface.
@@ -87,82 +87,43 @@ pub fn read(path: &Path) -> Result<SolidMesh, SolidMeshError> {
 
 /// Parses MSH 4.1 bytes; the error says what is missing or wrong.
 pub fn parse(bytes: &[u8]) -> Result<SolidMesh, String> {
-    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| format!("not MSH 4.1: {e}"))?;
-    let data = msh.data;
-    let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements) else {
-        return Err("needs $Entities, $Nodes and $Elements sections".into());
+    let kinds = groups::Kinds {
+        element: ElementType::Tet10,
+        face: ElementType::Tri6,
+        skipped: &[
+            ElementType::Tet4,
+            ElementType::Tri3,
+            ElementType::Pnt,
+            ElementType::Lin2,
+            ElementType::Lin3,
+        ],
+        wanted: "10-node tetrahedra and 6-node triangles",
+        body: BODY,
     };
-    let (coords, node) = super::msh::node_table(&nodes, |n| [n.x, n.y, n.z]);
-    let surface_groups: HashMap<i32, Vec<i32>> = entities
-        .surfaces
-        .iter()
-        .map(|s| (s.tag, s.physical_tags.clone()))
-        .collect();
-    let volume_groups: HashMap<i32, Vec<i32>> = entities
-        .volumes
-        .iter()
-        .map(|v| (v.tag, v.physical_tags.clone()))
-        .collect();
-    let mut mesh = SolidMesh {
-        nodes: coords,
-        ..SolidMesh::default()
-    };
-    let mut faces: HashMap<i32, Vec<[usize; 6]>> = HashMap::new();
-    let mut first_order = None;
-    for block in &elements.element_blocks {
-        match block.element_type {
-            ElementType::Tet10 => {
-                if !volume_groups
-                    .get(&block.entity_tag)
-                    .is_some_and(|g| g.contains(&BODY))
-                {
-                    continue;
-                }
-                for e in &block.elements {
-                    let t: Vec<usize> = e.nodes.iter().map(&node).collect::<Result<_, _>>()?;
-                    mesh.tetrahedra.push(std::array::from_fn(|k| t[k]));
-                }
-            }
-            ElementType::Tri6 => {
-                for group in surface_groups.get(&block.entity_tag).into_iter().flatten() {
-                    for e in &block.elements {
-                        let f: Vec<usize> = e.nodes.iter().map(&node).collect::<Result<_, _>>()?;
-                        faces
-                            .entry(*group)
-                            .or_default()
-                            .push(std::array::from_fn(|k| f[k]));
-                    }
-                }
-            }
-            ElementType::Tet4 | ElementType::Tri3 => first_order = Some(block.element_type),
-            ElementType::Pnt | ElementType::Lin2 | ElementType::Lin3 => {}
-            other => {
-                return Err(format!(
-                    "element type {other:?} is not supported (10-node tetrahedra and 6-node triangles)"
-                ))
-            }
+    let mut read = groups::parse::<10, 6>(bytes, &kinds)?;
+    if read.elements.is_empty() {
+        if let Some(kind) = read
+            .skipped
+            .iter()
+            .find(|k| matches!(k, ElementType::Tet4 | ElementType::Tri3))
+        {
+            return Err(format!(
+                "first-order elements ({kind:?}): the model needs quadratic ones (gmsh -order 2, or \
+                 Mesh.ElementOrder = 2)"
+            ));
         }
-    }
-    if let (Some(kind), true) = (first_order, mesh.tetrahedra.is_empty()) {
-        return Err(format!(
-            "first-order elements ({kind:?}): the model needs quadratic ones (gmsh -order 2, or \
-             Mesh.ElementOrder = 2)"
-        ));
-    }
-    if mesh.tetrahedra.is_empty() {
         return Err(format!(
             "no 10-node tetrahedra in physical volume {BODY} (\"body\")"
         ));
     }
-    let mut group = |tag: i32, name: &str| {
-        faces
-            .remove(&tag)
-            .filter(|f| !f.is_empty())
-            .ok_or_else(|| format!("no 6-node triangles in physical surface {tag} (\"{name}\")"))
+    let what = "6-node triangles";
+    let mut mesh = SolidMesh {
+        contact: read.take(CONTACT, "contact", what)?,
+        far: read.take(FAR, "far", what)?,
+        symmetry: read.take(SYMMETRY, "symmetry", what)?,
+        nodes: read.nodes,
+        tetrahedra: read.elements,
     };
-    mesh.contact = group(CONTACT, "contact")?;
-    mesh.far = group(FAR, "far")?;
-    mesh.symmetry = group(SYMMETRY, "symmetry")?;
     orient(&mut mesh).map_err(|e| e.to_string())?;
     Ok(mesh)
 }

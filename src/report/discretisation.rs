@@ -1,0 +1,254 @@
+//! The paper's discretisation in the `reproduce-paper` report: how far the paper's kind of model
+//! — 20-node bricks with face-to-face penalty contact and Coulomb friction, `ccx-3d` with
+//! `[calculix] element = "hex20r"` — is from the corrected reference (mdr-domain) and from fem-3d
+//! at the path positions it ran, from the run of its own case (`cases-heavy/ccx-3d-hex20.toml`,
+//! given to `reproduce-paper --discretisation`). Without that run the section says how to get it.
+
+use super::document::{Cell, Section, Table};
+use crate::history::{History, StepResult};
+use crate::verify::CaseRun;
+
+/// The solver that runs the paper's discretisation.
+pub const SOLVER: &str = "ccx-3d";
+/// The corrected reference.
+pub const REFERENCE: &str = "mdr-domain";
+/// The in-crate 3D FEM beside it.
+pub const FEM: &str = "fem-3d";
+
+/// The section's title.
+const TITLE: &str = "The paper's discretisation: 20-node bricks, face-to-face penalty contact";
+
+/// The section: a sentence and a table of P and Q at every position of `run`, or, without a
+/// run, the command that makes one.
+pub fn section(run: Option<&CaseRun>) -> Section {
+    let Some(run) = run else {
+        return note(
+            "Not run: the paper's kind of model (CalculiX C3D20R bricks, face-to-face penalty contact, \
+             both spheres meshed) takes minutes of CPU, beyond this report's budget. Run it beside \
+             the paper's case with `spherecontact reproduce-paper --discretisation \
+             cases-heavy/ccx-3d-hex20.toml` (CalculiX installed)."
+                .into(),
+        );
+    };
+    let history = |name: &str| run.histories.get(name).and_then(|r| r.as_ref().ok());
+    let (Some(bricks), Some(reference), Some(fem)) = (history(SOLVER), history(REFERENCE), history(FEM))
+    else {
+        let why: Vec<String> = [SOLVER, REFERENCE, FEM]
+            .iter()
+            .filter_map(|name| match run.histories.get(*name) {
+                Some(Ok(_)) => None,
+                Some(Err(e)) => Some(format!("{name}: {e}")),
+                None => Some(format!("{name}: not in the case")),
+            })
+            .collect();
+        return note(format!("{}: not compared ({}).", run.case.name(), why.join("; ")));
+    };
+    let rows = rows(bricks, reference, fem);
+    let worst = |k: usize| rows.iter().map(|r| r.errors[k].abs()).fold(0.0, f64::max);
+    Section {
+        title: TITLE.into(),
+        paragraphs: vec![
+            format!(
+                "The paper's kind of model — {} bricks with face-to-face penalty contact and Coulomb \
+                 friction ({}: {}) — is, at path positions 1–{}, within {:.2} % of the corrected \
+                 reference mdr-domain in P and {:.2} % of its peak in Q; from fem-3d, {:.2} % in P \
+                 and {:.2} % in Q.",
+                bricks
+                    .metadata
+                    .extra
+                    .get("element")
+                    .and_then(|e| e.as_str())
+                    .unwrap_or("20-node"),
+                run.case.name(),
+                bricks.metadata.resolution,
+                rows.len(),
+                100.0 * worst(0),
+                100.0 * worst(2),
+                100.0 * worst(1),
+                100.0 * worst(3),
+            ),
+            "P errors relative to the reference's P; Q errors relative to mdr-domain's largest |Q| over \
+             the positions."
+                .into(),
+        ],
+        tables: vec![table(&rows)],
+        figures: vec![],
+        folded: false,
+    }
+}
+
+/// A section of one paragraph.
+fn note(text: String) -> Section {
+    Section {
+        title: TITLE.into(),
+        paragraphs: vec![text],
+        tables: vec![],
+        figures: vec![],
+        folded: true,
+    }
+}
+
+/// One path position: the three solvers' P and Q, and the bricks' errors (P against mdr-domain,
+/// P against fem-3d, Q against mdr-domain, Q against fem-3d).
+struct Row {
+    at: StepResult,
+    forces: [[f64; 2]; 3],
+    errors: [f64; 4],
+}
+
+/// The positions (after the first) where all three solvers have P and Q.
+fn rows(bricks: &History, reference: &History, fem: &History) -> Vec<Row> {
+    let forces = |h: &History, k: usize| {
+        let s = h.at_position(k)?;
+        Some([s.normal_force?, s.tangential_force?])
+    };
+    let positions: Vec<usize> = bricks
+        .at_positions()
+        .filter_map(|s| s.position)
+        .filter(|&k| k > 0)
+        .collect();
+    let peak_q = positions
+        .iter()
+        .filter_map(|&k| forces(reference, k))
+        .map(|f| f[1].abs())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    positions
+        .into_iter()
+        .filter_map(|k| {
+            let (b, r, f) = (forces(bricks, k)?, forces(reference, k)?, forces(fem, k)?);
+            Some(Row {
+                at: bricks.at_position(k)?.clone(),
+                forces: [b, f, r],
+                errors: [
+                    b[0] / r[0] - 1.0,
+                    b[0] / f[0] - 1.0,
+                    (b[1] - r[1]) / peak_q,
+                    (b[1] - f[1]) / peak_q,
+                ],
+            })
+        })
+        .collect()
+}
+
+/// The table: position, δn, δt, P and Q of each solver, the bricks' errors.
+fn table(rows: &[Row]) -> Table {
+    let header = [
+        "position",
+        "δn [µm]",
+        "δt [µm]",
+        "P bricks [N]",
+        "P fem-3d [N]",
+        "P mdr-domain [N]",
+        "P − mdr-domain",
+        "P − fem-3d",
+        "Q bricks [N]",
+        "Q fem-3d [N]",
+        "Q mdr-domain [N]",
+        "Q − mdr-domain (of peak)",
+        "Q − fem-3d (of peak)",
+    ];
+    let percent = |e: f64| Cell::plain(format!("{:+.2} %", 100.0 * e));
+    let newtons = |x: f64| Cell::plain(format!("{x:.2}"));
+    Table {
+        header: header.map(str::to_owned).to_vec(),
+        rows: rows
+            .iter()
+            .map(|r| {
+                let mut row = vec![
+                    Cell::plain(r.at.position.map_or(String::new(), |k| k.to_string())),
+                    Cell::plain(format!("{:.2}", r.at.delta_n * 1e6)),
+                    Cell::plain(format!("{:.2}", r.at.delta_t * 1e6)),
+                ];
+                row.extend(r.forces.iter().map(|f| newtons(f[0])));
+                row.extend(r.errors[..2].iter().map(|&e| percent(e)));
+                row.extend(r.forces.iter().map(|f| newtons(f[1])));
+                row.extend(r.errors[2..].iter().map(|&e| percent(e)));
+                row
+            })
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::Case;
+
+    /// A history with (P, Q) at positions 0, 1, 2.
+    fn history(forces: [[f64; 2]; 3]) -> History {
+        History {
+            steps: forces
+                .iter()
+                .enumerate()
+                .map(|(k, f)| StepResult {
+                    step: k,
+                    position: Some(k),
+                    delta_n: 1e-5 * k as f64,
+                    delta_t: 1e-6 * k as f64,
+                    normal_force: Some(f[0]),
+                    tangential_force: Some(f[1]),
+                    ..StepResult::default()
+                })
+                .collect(),
+            ..History::default()
+        }
+    }
+
+    fn run(bricks: Option<History>) -> CaseRun {
+        let case = Case::parse(
+            std::path::Path::new("hex.toml"),
+            "friction = 0.2\nsolvers = [\"hertz\"]\n[body1]\nradius = 0.1\nyoung = 70e9\npoisson = 0.3\n\
+             [path]\nunit = \"um\"\ndelta_n = [0, 10, 20]\ndelta_t = [0, 1, 2]\nsubsteps = 1\n",
+        )
+        .unwrap();
+        let mut histories = crate::check::Histories::new();
+        histories.insert(
+            REFERENCE.into(),
+            Ok(history([[0.0; 2], [100.0, 10.0], [200.0, 20.0]])),
+        );
+        histories.insert(FEM.into(), Ok(history([[0.0; 2], [101.0, 11.0], [202.0, 19.0]])));
+        let bricks = bricks.ok_or_else(|| crate::solver::SolveError::Unavailable("no ccx".into()));
+        histories.insert(SOLVER.into(), bricks);
+        CaseRun {
+            case,
+            warnings: vec![],
+            histories,
+            outcomes: vec![],
+        }
+    }
+
+    #[test]
+    fn the_table_gives_the_bricks_errors_against_both_references() {
+        let run = run(Some(history([[0.0; 2], [99.0, 10.5], [204.0, 19.0]])));
+        let section = section(Some(&run));
+        let table = &section.tables[0];
+        // Positions 1 and 2; P against each reference's P, Q against mdr-domain's peak (20 N).
+        assert_eq!(table.rows.len(), 2);
+        let text: Vec<&str> = table.rows[1].iter().map(|c| c.text.as_str()).collect();
+        assert_eq!(
+            text,
+            [
+                "2", "20.00", "2.00", "204.00", "202.00", "200.00", "+2.00 %", "+0.99 %", "19.00", "19.00",
+                "20.00", "-5.00 %", "+0.00 %"
+            ]
+        );
+        // The sentence quotes the worst over the positions.
+        assert!(
+            section.paragraphs[0].contains(
+                "within 2.00 % of the corrected reference mdr-domain in P and 5.00 % of its peak in Q; \
+                 from fem-3d, 1.98 % in P and 2.50 % in Q"
+            ),
+            "{}",
+            section.paragraphs[0]
+        );
+    }
+
+    #[test]
+    fn without_a_run_or_without_ccx_the_section_says_why() {
+        assert!(section(None).paragraphs[0].contains("--discretisation cases-heavy/ccx-3d-hex20.toml"));
+        let missing = section(Some(&run(None)));
+        assert!(missing.tables.is_empty());
+        assert!(missing.paragraphs[0].contains("ccx-3d") && missing.paragraphs[0].contains("no ccx"));
+    }
+}
