@@ -51,6 +51,19 @@ pub fn median(sorted: &[f64]) -> f64 {
     }
 }
 
+/// `value` to three significant figures ("0.0143", "6.04", "130"), "—" when not a number: the
+/// timing tables' cells, whose values span milliseconds to minutes.
+pub fn significant(value: f64) -> String {
+    if !value.is_finite() {
+        return "—".to_owned();
+    }
+    if value == 0.0 {
+        return "0".to_owned();
+    }
+    let digits = (2 - value.abs().log10().floor() as i32).max(0) as usize;
+    format!("{value:.digits$}")
+}
+
 /// The CPU time consumed so far by this process, every thread [s].
 pub fn process_cpu_seconds() -> f64 {
     let mut now = libc::timespec {
