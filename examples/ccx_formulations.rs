@@ -94,29 +94,29 @@ fn cells(history: &History, references: &References) -> Vec<String> {
             } else {
                 Some(references.mdr)
             };
+            // None where the reference has no value or a zero one (Q before the shift); NaN
+            // where the reference has one and the row none.
             let error = |k| match (read(history, k), reference.and_then(|r| read(r, k))) {
-                (Some(x), Some(r)) if r != 0.0 => x / r - 1.0,
-                _ => f64::NAN,
+                (_, None) | (_, Some(0.0)) => None,
+                (Some(x), Some(r)) => Some(x / r - 1.0),
+                (None, Some(_)) => Some(f64::NAN),
             };
+            let at_focus = error(focus).unwrap_or(f64::NAN);
             if *on_map {
                 return if edge_loaded(history) {
                     format!("{:>10}", "edge")
                 } else {
-                    cell(error(focus))
+                    cell(at_focus)
                 };
             }
-            let worst =
-                (1..positions).map(error).fold(
-                    0.0_f64,
-                    |w, e| {
-                        if e.abs() > w.abs() || e.is_nan() {
-                            e
-                        } else {
-                            w
-                        }
-                    },
-                );
-            format!("{} {}", cell(error(focus)), cell(worst))
+            let worst = (1..positions).filter_map(error).fold(0.0_f64, |w, e| {
+                if e.abs() > w.abs() || e.is_nan() {
+                    e
+                } else {
+                    w
+                }
+            });
+            format!("{} {}", cell(at_focus), cell(worst))
         })
         .collect()
 }
@@ -167,13 +167,13 @@ fn main() {
     } else {
         ("ccx-axisym", "fem-axisym", &AXISYMMETRIC)
     };
-    let size = args.get(2).map(|n| format!("c/{n}"));
-    let at_size = |solver: Box<dyn Solver>| match &size {
-        Some(value) => solver
-            .at_resolution(&case.scene, value)
-            .unwrap_or_else(|e| panic!("{e}")),
-        None => solver,
-    };
+    let mut case = case;
+    if let Some(n) = args.get(2) {
+        // The pole size of both meshes, over the case's `[resolution]`.
+        for name in [ccx, fem] {
+            case.resolution.insert(name.to_owned(), format!("c/{n}"));
+        }
+    }
     let mdr = solver::run(case.solver("mdr-domain").expect("built in").as_ref(), &case.scene)
         .expect("mdr-domain solves the case");
     println!(
@@ -214,10 +214,10 @@ fn main() {
         fem: None,
         columns,
     };
-    let fem_solver = at_size(case.solver(fem).expect("built in"));
+    let fem_solver = case.solver(fem).expect("built in");
     let fem_history = row(&format!("{fem} (same mesh)"), fem_solver.as_ref(), &references);
     references.fem = fem_history.as_ref();
-    let ccx_solver = at_size(case.solver(ccx).expect("built in"));
+    let ccx_solver = case.solver(ccx).expect("built in");
     for penalty in penalties {
         for formulation in Formulation::ALL {
             let settings = Settings {

@@ -125,19 +125,16 @@ fn table(
     }
 }
 
-/// The solvers called `names` of `case`, at the pole size `resolution` when given.
-fn solvers(case: &Case, names: &[&str], resolution: Option<&str>) -> Vec<(String, Box<dyn Solver>)> {
+/// The solvers called `names` of `case`, at the pole size `resolution` when given (over the
+/// case's `[resolution]`).
+fn solvers(case: &mut Case, names: &[&str], resolution: Option<&str>) -> Vec<(String, Box<dyn Solver>)> {
     names
         .iter()
         .map(|name| {
-            let solver = case.solver(name).expect("built in");
-            let solver = match resolution {
-                Some(value) => solver
-                    .at_resolution(&case.scene, value)
-                    .unwrap_or_else(|e| panic!("{name} at {value}: {e}")),
-                None => solver,
-            };
-            (name.to_string(), solver)
+            if let Some(value) = resolution {
+                case.resolution.insert(name.to_string(), value.to_owned());
+            }
+            (name.to_string(), case.solver(name).expect("built in"))
         })
         .collect()
 }
@@ -147,19 +144,19 @@ fn main() {
     let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(3).max(1);
     let n: u32 = args.next().and_then(|a| a.parse().ok()).unwrap_or(2);
     let load = |file: &str| Case::load(Path::new(file)).expect("run from the crate root");
-    let solid = load("cases/ccx-3d.toml");
+    let mut solid = load("cases/ccx-3d.toml");
     let size = format!("c/{n}");
     table(
         &format!("{} (3D, pole size c_max/{n})", solid.name()),
-        &solvers(&solid, &["ccx-3d", "fenicsx-3d", "fem-3d"], Some(&size)),
+        &solvers(&mut solid, &["ccx-3d", "fenicsx-3d", "fem-3d"], Some(&size)),
         &solid.scene,
         solid.scene.steps().len() - 1,
         repeats,
     );
-    let axisym = load("cases/ccx-axisym.toml");
+    let mut axisym = load("cases/ccx-axisym.toml");
     table(
         &format!("{} (axisymmetric, the case's mesh)", axisym.name()),
-        &solvers(&axisym, &["ccx-axisym", "fem-axisym"], None),
+        &solvers(&mut axisym, &["ccx-axisym", "fem-axisym"], None),
         &axisym.scene,
         axisym.scene.path.positions().len() - 1,
         repeats,
