@@ -68,10 +68,8 @@ fn the_maps_case_compares_ccx_3d_with_fem_3d_on_one_mesh_at_the_papers_position_
         if let Some(evidence) = &check.known_failure {
             // The evidence the issue asks for: the same mesh, the formulation changed, the
             // in-crate solver right.
-            assert!(
-                evidence.contains("node-to-face") && evidence.contains("fem-3d"),
-                "{evidence}"
-            );
+            let other = ["node-to-face", "mortar"].iter().any(|f| evidence.contains(f));
+            assert!(other && evidence.contains("fem-3d"), "{evidence}");
         }
     }
 }
@@ -89,12 +87,18 @@ fn the_maps_case_verifies_p_q_and_the_stick_zone_with_ccx() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&output.stdout);
-    // The two findings (Q at position 3, the q_y ratio: docs/external-decks.md, "ccx-3d's maps
-    // at c_max/5") are judged and printed; everything else passes.
+    // Everything passes but the known failure (Q at position 3: KNOWN) and the finding not yet
+    // attributed (the q_y ratio: docs/external-decks.md, "ccx-3d's maps at c_max/5").
     let judged: Vec<&str> = stdout.lines().filter(|l| l.contains("| ccx-3d ")).collect();
     assert_eq!(judged.len(), 9, "{stdout}");
     for line in judged {
-        let finding = line.contains("tangential_force at position 3") || line.contains("transverse_ratio");
-        assert!(finding || line.starts_with("OK"), "{line}");
+        let expected = if line.contains("transverse_ratio") {
+            "NOOK"
+        } else if line.contains("tangential_force at position 3 ") {
+            "KNOWN"
+        } else {
+            "OK"
+        };
+        assert!(line.starts_with(expected), "{expected}: {line}");
     }
 }
