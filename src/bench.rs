@@ -320,6 +320,17 @@ mod tests {
     use crate::path::{LoadingPath, Position};
 
     #[test]
+    fn significant_keeps_three_figures_from_milliseconds_to_minutes_and_never_prints_nan() {
+        assert_eq!(significant(0.014_32), "0.0143");
+        assert_eq!(significant(6.04), "6.04");
+        assert_eq!(significant(130.4), "130");
+        assert_eq!(significant(779_242.3), "779242");
+        assert_eq!(significant(0.0), "0");
+        assert_eq!(significant(f64::NAN), "—");
+        assert_eq!(significant(f64::INFINITY), "—");
+    }
+
+    #[test]
     fn median_of_odd_and_even_counts() {
         assert_eq!(median(&[1.0, 2.0, 10.0]), 2.0);
         assert_eq!(median(&[1.0, 2.0, 3.0, 10.0]), 2.5);
