@@ -15,7 +15,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use spherecontact::bench::{median, worst_error};
+use spherecontact::bench::{median, significant, worst_error};
 use spherecontact::case::Case;
 use spherecontact::external::fenicsx3d::{Solid3dDeck, DEFAULT_POLE_FRACTION};
 use spherecontact::fem::solid3d::solver::FemSolid3d;
@@ -45,18 +45,6 @@ fn phases(history: &History, wall_s: f64) -> (f64, f64, f64) {
 
 /// The row of fem-3d, the reference of the P and Q columns.
 const FEM_ROW: usize = 2;
-
-/// `value` to three significant figures ("0.0143", "6.04", "130"), "—" when not a number.
-fn significant(value: f64) -> String {
-    if !value.is_finite() {
-        return "—".to_owned();
-    }
-    if value == 0.0 {
-        return "0".to_owned();
-    }
-    let digits = (2 - value.abs().log10().floor() as i32).max(0) as usize;
-    format!("{value:.digits$}")
-}
 
 fn main() {
     let mut args = std::env::args().skip(1);

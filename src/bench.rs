@@ -51,6 +51,19 @@ pub fn median(sorted: &[f64]) -> f64 {
     }
 }
 
+/// `value` to three significant figures ("0.0143", "6.04", "130"), "—" when not a number: the
+/// timing tables' cells, whose values span milliseconds to minutes.
+pub fn significant(value: f64) -> String {
+    if !value.is_finite() {
+        return "—".to_owned();
+    }
+    if value == 0.0 {
+        return "0".to_owned();
+    }
+    let digits = (2 - value.abs().log10().floor() as i32).max(0) as usize;
+    format!("{value:.digits$}")
+}
+
 /// The CPU time consumed so far by this process, every thread [s].
 pub fn process_cpu_seconds() -> f64 {
     let mut now = libc::timespec {
@@ -305,6 +318,17 @@ pub fn sweepable(
 mod tests {
     use super::*;
     use crate::path::{LoadingPath, Position};
+
+    #[test]
+    fn significant_keeps_three_figures_from_milliseconds_to_minutes_and_never_prints_nan() {
+        assert_eq!(significant(0.014_32), "0.0143");
+        assert_eq!(significant(6.04), "6.04");
+        assert_eq!(significant(130.4), "130");
+        assert_eq!(significant(779_242.3), "779242");
+        assert_eq!(significant(0.0), "0");
+        assert_eq!(significant(f64::NAN), "—");
+        assert_eq!(significant(f64::INFINITY), "—");
+    }
 
     #[test]
     fn median_of_odd_and_even_counts() {

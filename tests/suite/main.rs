@@ -2,6 +2,7 @@
 //! Each module was once its own test file: run one with `cargo test --test suite NAME::`,
 //! heavy ones with `-- --ignored`.
 
+mod calculix_3d_maps;
 mod calculix_formulations;
 mod calculix_hex20;
 mod calculix_hex_mesh;
