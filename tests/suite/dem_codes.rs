@@ -58,6 +58,7 @@ fn solve(solver: &dyn Solver, scene: &Scene) -> History {
 }
 
 #[test]
+#[ignore = "heavy: LAMMPS and YADE runs, 4.4 s on an idle core; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn the_codes_reproduce_hertz_the_initial_stiffness_8gc_and_the_coulomb_cap() {
     let scene = shear_scene();
     let hertz = scene.hertz();
@@ -106,6 +107,7 @@ fn the_codes_reproduce_hertz_the_initial_stiffness_8gc_and_the_coulomb_cap() {
 }
 
 #[test]
+#[ignore = "heavy: LAMMPS and YADE runs at two step lengths, 4.5 s on an idle core; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn the_runs_are_quasi_static_the_step_length_changes_nothing() {
     // A path whose δn varies while it shears, so every law's history matters.
     let scene = common::case("cases/paper-fig7.toml").scene;

@@ -105,6 +105,7 @@ fn gross_sliding_at_once_carries_mu_p() {
 }
 
 #[test]
+#[ignore = "heavy: fem-3d along a path reversed at every increment, 6 s on an idle core; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn reversal_at_every_increment_stays_on_the_masing_branches() {
     if gmsh_missing("reversal_at_every_increment_stays_on_the_masing_branches") {
         return;

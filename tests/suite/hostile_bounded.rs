@@ -39,6 +39,7 @@ fn stderr(output: &Output) -> String {
 // --- Finding: fem-axisym frictional at c/226 … c/320 aborted the process (4.5 GB, exit 134) -----
 
 #[test]
+#[ignore = "heavy: fem-axisym meshed and planned at c_max/320 before its refusal, 10 s on an idle core; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn fem_axisym_frictional_at_the_finest_resolution_is_refused_within_the_budget() {
     let dir = tempfile::tempdir().unwrap();
     let file = case("finest-frictional-axisym.toml");

@@ -184,6 +184,7 @@ fn measure(binary: &Path, page: &Path, profile: &Path) -> Vec<(String, String)> 
 }
 
 #[test]
+#[ignore = "heavy: the paper case and headless Chromium, 5 s on an idle core; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn the_paper_report_reads_at_a_glance_in_chromium_at_laptop_size() {
     let Some(binary) = chromium() else {
         return;
