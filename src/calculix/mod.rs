@@ -483,7 +483,7 @@ fn read_back(dir: &Path, spec: &DeckSpec) -> Result<Run, String> {
             ));
         }
         let time = (k + 1) as f64;
-        let block = frd.contact.iter().rev().find(|b| (b.time - time).abs() < 1e-6);
+        let block = frd.contact_at_step(k);
         let values = match block {
             Some(block) => results::on_meridian(block, &frd.nodes, &points, tolerance)?,
             None if p_far.abs() <= EQUILIBRIUM => vec![(0.0, 0.0); points.len()],

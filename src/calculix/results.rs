@@ -71,6 +71,16 @@ pub struct Frd {
     pub contact: Vec<ContactBlock>,
 }
 
+impl Frd {
+    /// The last contact block of the `*STEP` numbered `k` from 0: the decks give each step a
+    /// total time of 1, so its output is at time k + 1; `None` when the step wrote none (no
+    /// contact).
+    pub fn contact_at_step(&self, k: usize) -> Option<&ContactBlock> {
+        let time = (k + 1) as f64;
+        self.contact.iter().rev().find(|b| (b.time - time).abs() < 1e-6)
+    }
+}
+
 /// A `-1` record of the `.frd` (fixed columns: the key, an I10 number, then E12.5 values): the
 /// number and `count` values.
 fn record(line: &str, count: usize) -> Option<(u64, Vec<f64>)> {

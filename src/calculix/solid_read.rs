@@ -73,8 +73,7 @@ pub fn read_back(
                 ));
             }
         }
-        let time = (k + 1) as f64;
-        let block = frd.contact.iter().rev().find(|b| (b.time - time).abs() < 1e-6);
+        let block = frd.contact_at_step(k);
         let nodes = match block {
             Some(block) => corner_values(block, &surface, mu)?,
             None if on_far[0].abs() <= EQUILIBRIUM => corner_values(&ContactBlock::default(), &surface, mu)?,
