@@ -131,11 +131,15 @@ fn run_solvers(case: Case, jobs: Jobs) -> CaseRun {
 /// judged; its solvers are not run again, and the run says so among its warnings.
 fn stored_run(dirs: &[PathBuf], case: &Case, roots: &ReadRoots) -> Result<CaseRun, InputError> {
     let merged = merge::merge(dirs, roots).map_err(|e| InputError(format!("--from: {e}")))?;
-    let wanted = std::fs::canonicalize(&case.file).ok();
+    // The case was just read from its file, so the file has a canonical path.
+    let wanted =
+        std::fs::canonicalize(&case.file).map_err(|e| InputError(format!("{}: {e}", case.file.display())))?;
     let mut run = schedule::judge(merged.plan, merged.finished)
         .into_iter()
         .find_map(|judged| match judged {
-            Judged::Path(run) if std::fs::canonicalize(&run.case.file).ok() == wanted => Some(run),
+            Judged::Path(run) if std::fs::canonicalize(&run.case.file).is_ok_and(|f| f == wanted) => {
+                Some(run)
+            }
             _ => None,
         })
         .ok_or_else(|| {
