@@ -134,7 +134,17 @@ pub struct CheckSpec {
     /// The evidence of a known defect of the judged code: a failure prints as
     /// [`Verdict::Known`], a pass as [`Verdict::Fixed`].
     pub known_failure: Option<String>,
+    /// The magnitude below which a value or reference counts as zero (SI, the quantity's unit;
+    /// MOOSE's `abs_zero`), and the smallest denominator of a relative error: a zero reference
+    /// then gives a finite error, never +∞ ([`ABS_ZERO`] unless the case sets `abs_zero`).
+    pub abs_zero: f64,
 }
+
+/// The default [`CheckSpec::abs_zero`]: 1e-10 in SI units, MOOSE's default. It is far below any
+/// value a check looks at (a force of 1e-10 N, a radius of 1e-10 m, a pressure of 1e-10 Pa,
+/// a ratio of 1e-10) and far above the round-off of a zero that a solver computes as a difference
+/// (the mortar's −8.8e-22 N at the unloaded step).
+pub const ABS_ZERO: f64 = 1e-10;
 
 /// The judgement of one check.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -374,21 +384,19 @@ impl CheckSpec {
     }
 
     /// The error of `value` against `reference`, `peak` being max |r| over the looked-at steps.
-    /// A zero denominator gives 0 when the difference is zero and +∞ otherwise, never NaN.
+    ///
+    /// As MOOSE's CSVDiff does, a value or reference of magnitude below `abs_zero` is zero, and a
+    /// relative error divides by at least `abs_zero`: against a zero reference a value v gives
+    /// |v| / abs_zero, finite (and large, so a nonzero value still fails), never +∞ or NaN.
     fn error(&self, value: f64, reference: f64, peak: f64) -> f64 {
-        let difference = (value - reference).abs();
+        let zeroed = |x: f64| if x.abs() < self.abs_zero { 0.0 } else { x };
+        let difference = (zeroed(value) - zeroed(reference)).abs();
         let scale = match self.measure {
             ErrorMeasure::Absolute => return difference,
-            ErrorMeasure::Relative => reference.abs(),
-            ErrorMeasure::RelativeToPeak => peak,
+            ErrorMeasure::Relative => zeroed(reference).abs(),
+            ErrorMeasure::RelativeToPeak => zeroed(peak),
         };
-        if difference == 0.0 {
-            0.0
-        } else if scale == 0.0 {
-            f64::INFINITY
-        } else {
-            difference / scale
-        }
+        difference / scale.max(self.abs_zero)
     }
 
     fn outcome_without_error(&self, verdict: Verdict, message: String) -> Outcome {
@@ -449,6 +457,7 @@ mod tests {
             tolerance,
             reason: "test".into(),
             known_failure: None,
+            abs_zero: ABS_ZERO,
         }
     }
 
@@ -478,11 +487,31 @@ mod tests {
     }
 
     #[test]
-    fn zero_reference_gives_infinite_not_nan() {
+    fn against_a_zero_reference_the_error_is_finite_and_round_off_is_zero() {
+        // Requirement: no check prints inf or NaN. Reference: MOOSE's abs_zero. A value of 1e-9
+        // against 0 is 10 abs_zero: error 10, NOOK at any tolerance below it.
         let h = histories(&[Some(1e-9)], &[Some(0.0)]);
         let outcome = spec(ErrorMeasure::Relative, Some(0.1)).evaluate(&h);
-        assert_eq!(outcome.error, Some(f64::INFINITY));
+        assert!((outcome.error.unwrap() - 10.0).abs() < 1e-9, "{outcome:?}");
         assert_eq!(outcome.verdict, Verdict::Nook);
+        // The mortar's unloaded step: −8.8e-22 N against 0 is a zero, error 0 (was +∞).
+        let h = histories(&[Some(-8.8e-22)], &[Some(0.0)]);
+        for measure in [ErrorMeasure::Relative, ErrorMeasure::RelativeToPeak] {
+            let outcome = spec(measure, Some(1e-3)).evaluate(&h);
+            assert_eq!((outcome.error, outcome.verdict), (Some(0.0), Verdict::Ok));
+        }
+        // A case's own abs_zero moves the floor.
+        let h = histories(&[Some(2e-6)], &[Some(0.0)]);
+        let coarse = CheckSpec {
+            abs_zero: 1e-3,
+            ..spec(ErrorMeasure::Relative, Some(0.01))
+        };
+        assert_eq!(coarse.evaluate(&h).error, Some(0.0));
+        assert!(spec(ErrorMeasure::Relative, None)
+            .evaluate(&h)
+            .error
+            .unwrap()
+            .is_finite());
     }
 
     #[test]

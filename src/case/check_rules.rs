@@ -82,6 +82,15 @@ impl Validator<'_> {
             ));
         }
         let known_failure = self.known_failure(raw, field, tolerance)?;
+        let abs_zero = match &raw.abs_zero {
+            None => crate::check::ABS_ZERO,
+            Some(z) => self.number(
+                z,
+                &format!("{field}.abs_zero"),
+                |z| z.is_finite() && z > 0.0,
+                "finite abs_zero > 0 (SI, the quantity's unit)",
+            )?,
+        };
         Ok(CheckSpec {
             solver,
             quantity,
@@ -91,6 +100,7 @@ impl Validator<'_> {
             tolerance,
             reason,
             known_failure,
+            abs_zero,
         })
     }
 
@@ -345,5 +355,18 @@ mod tests {
             e.to_string().contains("an informational check is never judged"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn abs_zero_defaults_to_mooses_and_must_be_positive() {
+        let base = "quantity = \"normal_force\"\nat = \"every-position\"\n";
+        assert_eq!(check(base).unwrap().checks[0].abs_zero, crate::check::ABS_ZERO);
+        let set = check(&format!("{base}abs_zero = 1e-6")).unwrap();
+        assert_eq!(set.checks[0].abs_zero, 1e-6);
+        for bad in ["0.0", "-1e-6", "inf", "nan"] {
+            let e = check(&format!("{base}abs_zero = {bad}")).unwrap_err();
+            assert_eq!(e.field, "checks[0].abs_zero", "{e}");
+            assert!(e.to_string().contains("finite abs_zero > 0"), "{e}");
+        }
     }
 }

@@ -60,6 +60,8 @@
 //! error = "relative"                    # "relative-to-peak", "absolute"
 //! tolerance = 1e-6
 //! reason = "why this tolerance"         # required unless informational = true
+//! known_failure = "evidence …"          # optional: a code's shown defect (KNOWN, FIXED?)
+//! abs_zero = 1e-10                      # optional, SI: below it a value is zero (src/check.rs)
 //! ```
 //!
 //! A case may also define solvers of its own: a program run as a solver (`[[command_solvers]]`)

@@ -113,6 +113,7 @@ pub struct RawCheck {
     #[serde(default)]
     pub informational: bool,
     pub known_failure: Option<Spanned<String>>,
+    pub abs_zero: Option<Spanned<f64>>,
 }
 
 /// One stored reference value in a `reference/*.toml` file.

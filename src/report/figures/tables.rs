@@ -268,6 +268,7 @@ mod tests {
                 tolerance: Some(0.01),
                 reason: format!("{solver} {}", verdict.label()),
                 known_failure: None,
+                abs_zero: crate::check::ABS_ZERO,
             },
             verdict,
             value: None,

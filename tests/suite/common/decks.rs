@@ -35,6 +35,7 @@ pub fn any_force_check(solver: &str) -> spherecontact::check::CheckSpec {
         tolerance: Some(1.0),
         reason: "any value".into(),
         known_failure: None,
+        abs_zero: spherecontact::check::ABS_ZERO,
     }
 }
 
