@@ -80,6 +80,23 @@ impl std::fmt::Display for Reference {
     }
 }
 
+/// `x`, or 0 when |x| < `abs_zero`.
+fn zeroed(x: f64, abs_zero: f64) -> f64 {
+    if x.abs() < abs_zero {
+        0.0
+    } else {
+        x
+    }
+}
+
+/// |v − r| / |scale| with MOOSE's `abs_zero`: magnitudes below it are zero, and the denominator
+/// is at least it, so the error is finite whatever the reference (never +∞ or NaN); a nonzero
+/// value against a zero reference gives |v| / abs_zero, large.
+pub fn relative_error(value: f64, reference: f64, scale: f64, abs_zero: f64) -> f64 {
+    let difference = (zeroed(value, abs_zero) - zeroed(reference, abs_zero)).abs();
+    difference / zeroed(scale, abs_zero).abs().max(abs_zero)
+}
+
 /// How the difference between value and reference is measured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -389,14 +406,11 @@ impl CheckSpec {
     /// relative error divides by at least `abs_zero`: against a zero reference a value v gives
     /// |v| / abs_zero, finite (and large, so a nonzero value still fails), never +∞ or NaN.
     fn error(&self, value: f64, reference: f64, peak: f64) -> f64 {
-        let zeroed = |x: f64| if x.abs() < self.abs_zero { 0.0 } else { x };
-        let difference = (zeroed(value) - zeroed(reference)).abs();
-        let scale = match self.measure {
-            ErrorMeasure::Absolute => return difference,
-            ErrorMeasure::Relative => zeroed(reference).abs(),
-            ErrorMeasure::RelativeToPeak => zeroed(peak),
-        };
-        difference / scale.max(self.abs_zero)
+        match self.measure {
+            ErrorMeasure::Absolute => (zeroed(value, self.abs_zero) - zeroed(reference, self.abs_zero)).abs(),
+            ErrorMeasure::Relative => relative_error(value, reference, reference, self.abs_zero),
+            ErrorMeasure::RelativeToPeak => relative_error(value, reference, peak, self.abs_zero),
+        }
     }
 
     fn outcome_without_error(&self, verdict: Verdict, message: String) -> Outcome {

@@ -8,7 +8,7 @@ use super::case::{ImpactCase, ImpactCheck, ImpactReference, Point, Quantity, Var
 use super::closed_form::HertzImpact;
 use super::outcome::Outcome;
 use super::run::SolverRun;
-use crate::check::{Drift, Verdict};
+use crate::check::{relative_error, Drift, Verdict, ABS_ZERO};
 use crate::hertz::Hertz;
 use crate::report::format_value;
 
@@ -141,13 +141,12 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
                 ))
             }
         };
+        // Against a zero reference the relative error is finite ([`relative_error`]'s abs_zero).
         let error = if check.relative {
-            (value - reference).abs() / reference.abs()
+            relative_error(value, reference, reference, ABS_ZERO)
         } else {
             (value - reference).abs()
         };
-        // A NaN (0/0: both zero) is no error; an infinite one (reference 0) is the worst.
-        let error = if error.is_nan() { 0.0 } else { error };
         if worst.is_none_or(|w| error > w.error) {
             worst = Some(Worst {
                 index,

@@ -46,7 +46,7 @@ pub fn worst_distance(
         .filter_map(|((at, v), (_, r))| {
             let (v, r) = (v?, r?);
             let d = if relative {
-                (v - r).abs() / r.abs()
+                crate::check::relative_error(v, r, r, crate::check::ABS_ZERO)
             } else {
                 (v - r).abs()
             };
