@@ -30,16 +30,13 @@
 //! a product carries a relative error of about 1e-7 · log₂(2n) of its largest value.
 
 use std::ops::Range;
-use std::sync::Arc;
 
-use realfft::num_complex::Complex;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustfft::{Fft, FftNum, FftPlanner};
+use fft_plans::{Complex, Planned, Plans};
 
 use crate::team::{self, Team};
 
 /// The floating-point type the transforms run in: f64 or f32.
-pub trait Precision: FftNum + Default + Into<f64> {
+pub trait Precision: Planned + Default + Into<f64> {
     /// The nearest value of this type.
     fn of(value: f64) -> Self;
 }
@@ -75,8 +72,8 @@ impl<T: Precision> Symbol<T> {
     /// are round-off).
     pub fn of_kernel(n: usize, kernel: &[f64]) -> Self {
         let m = 2 * n;
-        let rows = RealFftPlanner::<f64>::new().plan_fft_forward(m);
-        let columns = FftPlanner::<f64>::new().plan_fft_forward(m);
+        let plans = f64::plans(m);
+        let (rows, columns) = (plans.real_forward, plans.forward);
         let mut spectrum = vec![Complex::default(); (n + 1) * m];
         let mut row_in = vec![0.0; m];
         let mut row_out = vec![Complex::default(); n + 1];
@@ -101,14 +98,6 @@ impl<T: Precision> Symbol<T> {
     pub fn values(&self) -> &[T] {
         &self.0
     }
-}
-
-/// The FFT plans of one grid size: rows and columns of the padded grid, both of length 2n.
-struct Plans<T: Precision> {
-    rows_forward: Arc<dyn RealToComplex<T>>,
-    rows_inverse: Arc<dyn ComplexToReal<T>>,
-    columns_forward: Arc<dyn Fft<T>>,
-    columns_inverse: Arc<dyn Fft<T>>,
 }
 
 /// Work buffers.
@@ -139,14 +128,8 @@ impl<T: Precision> Convolver<T> {
     /// Plans for an n × n field (padded to 2n × 2n).
     pub fn new(n: usize) -> Self {
         let m = 2 * n;
-        let mut real = RealFftPlanner::<T>::new();
-        let mut complex = FftPlanner::<T>::new();
-        let plans = Plans {
-            rows_forward: real.plan_fft_forward(m),
-            rows_inverse: real.plan_fft_inverse(m),
-            columns_forward: complex.plan_fft_forward(m),
-            columns_inverse: complex.plan_fft_inverse(m),
-        };
+        // Rows and columns of the padded grid are both of length 2n: one set of plans.
+        let plans = T::plans(m);
         let blocks = n.div_ceil(ROW_BLOCK);
         Self {
             n,
@@ -272,10 +255,10 @@ fn split<'a, B, X>(
 impl<T: Precision> Buffers<T> {
     fn new(plans: &Plans<T>, n: usize) -> Self {
         let scratch_len = [
-            plans.rows_forward.get_scratch_len(),
-            plans.rows_inverse.get_scratch_len(),
-            plans.columns_forward.get_inplace_scratch_len(),
-            plans.columns_inverse.get_inplace_scratch_len(),
+            plans.real_forward.get_scratch_len(),
+            plans.real_inverse.get_scratch_len(),
+            plans.forward.get_inplace_scratch_len(),
+            plans.inverse.get_inplace_scratch_len(),
         ]
         .into_iter()
         .max()
@@ -316,7 +299,7 @@ impl<T: Precision> Buffers<T> {
                     continue;
                 }
                 self.real_row[n..].fill(T::zero());
-                (plans.rows_forward)
+                (plans.real_forward)
                     .process_with_scratch(&mut self.real_row, spectrum_row, &mut self.scratch)
                     .expect("row lengths match the plan");
             }
@@ -343,12 +326,12 @@ impl<T: Precision> Buffers<T> {
                 column[first..first + count].copy_from_slice(&block[kx * ROW_BLOCK..][..count]);
             }
             column[n..].fill(Complex::default());
-            (plans.columns_forward).process_with_scratch(column, &mut self.scratch);
+            (plans.forward).process_with_scratch(column, &mut self.scratch);
         }
         let [x, y] = &mut self.column;
         multiply([x, y]);
         for (out, column) in columns.iter_mut().zip(&mut self.column) {
-            (plans.columns_inverse).process_with_scratch(column, &mut self.scratch);
+            (plans.inverse).process_with_scratch(column, &mut self.scratch);
             out[local * n..(local + 1) * n].copy_from_slice(&column[..n]);
         }
     }
@@ -373,7 +356,7 @@ impl<T: Precision> Buffers<T> {
                 // The zero and Nyquist frequencies of a real row are real: drop rounding residue.
                 row[0].im = zero;
                 row[n].im = zero;
-                (plans.rows_inverse)
+                (plans.real_inverse)
                     .process_with_scratch(row, &mut self.real_row, &mut self.scratch)
                     .expect("row lengths match the plan");
                 for (o, &v) in out_row.iter_mut().zip(&self.real_row[..n]) {
