@@ -78,24 +78,41 @@ pub fn execute_around(
     .collect()
 }
 
-/// A path case run as `verify` runs it ([`execute_around`] over its solvers, costed by
-/// `recorded(solver)` where known), judged: the same [`CaseRun`] as
-/// [`verify::run_case`]'s, whatever the cores.
-pub fn run_case(
-    case: crate::case::Case,
+/// Path cases run as `verify` runs them: every (case, solver) run of them in one plan,
+/// concurrently within `cores` ([`execute_around`], costed by `recorded(case, solver)` where
+/// known), each case judged: one [`CaseRun`] a case, in the given order, the same as
+/// [`verify::run_case`]'s whatever the cores (a case without solvers is judged on none).
+pub fn run_cases(
+    cases: Vec<crate::case::Case>,
     cores: usize,
-    recorded: impl Fn(&str) -> Option<f64>,
+    recorded: impl Fn(&crate::case::Case, &str) -> Option<f64>,
     around: &(dyn Fn(&Run, &dyn Fn() -> Output) -> Output + Sync),
-) -> CaseRun {
-    if case.required_solvers().is_empty() {
-        return verify::judge(case, Vec::new());
-    }
-    let plan = Plan::new(vec![Member::Path(case)], |_, solver| recorded(solver));
+) -> Vec<CaseRun> {
+    // A case without solvers has no run in a plan ([`judge`] leaves it out): judged here.
+    let mut planned = Vec::new();
+    let slots: Vec<Option<CaseRun>> = cases
+        .into_iter()
+        .map(|case| match case.required_solvers().is_empty() {
+            true => Some(verify::judge(case, Vec::new())),
+            false => {
+                planned.push(Member::Path(case));
+                None
+            }
+        })
+        .collect();
+    let plan = Plan::new(planned, |member, solver| match member {
+        Member::Path(case) => recorded(case, solver),
+        Member::Impact(_) => None,
+    });
     let finished = execute_around(&plan, cores, around);
-    match judge(plan, finished).pop() {
-        Some(Judged::Path(run)) => run,
-        _ => unreachable!("a plan of one path case with runs judges one path case"),
-    }
+    let mut judged = judge(plan, finished).into_iter().map(|j| match j {
+        Judged::Path(run) => run,
+        Judged::Impact(_) => unreachable!("a plan of path cases judges path cases"),
+    });
+    slots
+        .into_iter()
+        .map(|slot| slot.unwrap_or_else(|| judged.next().expect("each planned case has runs, so is judged")))
+        .collect()
 }
 
 /// A case judged on its finished runs.
@@ -167,4 +184,47 @@ pub fn judge(plan: Plan, finished: Vec<Finished>) -> Vec<Judged> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::Case;
+
+    fn case(name: &str, solvers: &str) -> Case {
+        let text = format!(
+            "name = \"{name}\"\nfriction = 0.2\nsolvers = [{solvers}]\n[body1]\nradius = 0.1\nyoung = 70e9\n\
+             poisson = 0.3\n[path]\nunit = \"um\"\ndelta_n = [0, 10, 10]\ndelta_t = [0, 0, 1]\nsubsteps = 2\n"
+        );
+        Case::parse(std::path::Path::new(&format!("{name}.toml")), &text).unwrap()
+    }
+
+    /// Requirement: cases run in one schedule come back one judged run a case, in the given
+    /// order, each with the histories its own serial run gives (bit for bit: the same solvers on
+    /// the same scenes).
+    #[test]
+    fn cases_in_one_schedule_come_back_in_order_as_their_serial_runs() {
+        let cases = || {
+            vec![
+                case("a", "\"hertz\", \"mdr\""),
+                case("b", "\"cattaneo-mindlin\""),
+                case("c", "\"hertz\""),
+            ]
+        };
+        let together = run_cases(cases(), 2, |_, _| None, &|_, solve| solve());
+        let names: Vec<&str> = together.iter().map(|r| r.case.name()).collect();
+        assert_eq!(names, ["a", "b", "c"]);
+        for (run, case) in together.iter().zip(cases()) {
+            let serial = verify::run_case(case);
+            let solvers: Vec<&String> = run.histories.keys().collect();
+            assert_eq!(solvers, serial.histories.keys().collect::<Vec<_>>());
+            for (name, history) in &run.histories {
+                let (a, b) = (
+                    history.as_ref().unwrap(),
+                    serial.histories[name].as_ref().unwrap(),
+                );
+                assert_eq!(a.steps, b.steps, "{name}");
+            }
+        }
+    }
 }

@@ -34,7 +34,7 @@ impl CaseRun {
 /// Runs every solver the case needs and judges its checks. A solver that fails does not stop
 /// the others; the checks that need it are NOOK (or N/A when it is not installed). The solvers
 /// run one after another, each long run announced and metered on stderr ([`crate::progress`]);
-/// `crate::schedule::run_case` runs them concurrently.
+/// `crate::schedule::run_cases` runs them concurrently.
 pub fn run_case(case: Case) -> CaseRun {
     let results = case
         .required_solvers()

@@ -6,6 +6,8 @@ use std::process::ExitCode;
 use spherecontact::case::Case;
 use spherecontact::case::ReadRoots;
 use spherecontact::external::permission::CommandPermission;
+use spherecontact::external::toolchain::Toolchain;
+use spherecontact::report::discretisation;
 use spherecontact::report::{history_files, summary};
 use spherecontact::schedule::Judged;
 use spherecontact::verify::CaseRun;
@@ -99,23 +101,35 @@ fn printer(bar: &indicatif::ProgressBar) -> Box<dyn Fn(&str)> {
     }
 }
 
-/// Runs the case's solvers concurrently within the cores (verify's schedule, costed by the case's
-/// baseline where there is one: the costs only order the runs), a bar counting the runs done.
-fn run_solvers(case: Case, jobs: Jobs) -> CaseRun {
-    let bar = indicatif::ProgressBar::new(case.required_solvers().len() as u64);
+/// Runs the cases' solvers concurrently within the cores, all in one schedule (verify's, costed
+/// by each case's baseline where there is one: the costs only order the runs), a bar counting
+/// the runs done; one judged run a case, in order.
+fn run_solvers(cases: Vec<Case>, jobs: Jobs) -> Vec<CaseRun> {
+    let total: usize = cases.iter().map(|c| c.required_solvers().len()).sum();
+    let bar = indicatif::ProgressBar::new(total as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg}")
             .expect("a valid template")
             .progress_chars("=> "),
     );
-    bar.set_prefix(case.name().to_owned());
-    let recorded = baseline::Baseline::load(Path::new(baseline::DIR), case.name())
-        .ok()
-        .flatten();
-    let run = schedule::run_case(
-        case,
+    let names: Vec<&str> = cases.iter().map(Case::name).collect();
+    bar.set_prefix(names.join(" + "));
+    let recorded: Vec<(String, baseline::Baseline)> = cases
+        .iter()
+        .filter_map(|case| {
+            let found = baseline::Baseline::load(Path::new(baseline::DIR), case.name())
+                .ok()
+                .flatten()?;
+            Some((case.name().to_owned(), found))
+        })
+        .collect();
+    let runs = schedule::run_cases(
+        cases,
         jobs.cores(),
-        |solver| recorded.as_ref()?.wall_s(solver),
+        |case, solver| {
+            let (_, found) = recorded.iter().find(|(name, _)| name == case.name())?;
+            found.wall_s(solver)
+        },
         &|run, solve| {
             bar.set_message(run.solver.clone());
             let output = progress::printing_through(printer(&bar), solve);
@@ -124,7 +138,7 @@ fn run_solvers(case: Case, jobs: Jobs) -> CaseRun {
         },
     );
     bar.finish_and_clear();
-    run
+    runs
 }
 
 /// The case's run read from the run files of `verify --out` folders ([`merge::merge`]) and
@@ -163,10 +177,33 @@ fn stored_run(dirs: &[PathBuf], case: &Case, roots: &ReadRoots) -> Result<CaseRu
 /// Which report to write.
 pub(crate) enum Report {
     Compare,
-    /// The paper's, with the case of its discretisation (`--discretisation`) run beside.
+    /// The paper's, with the case of its discretisation run beside.
     Paper {
-        discretisation: Option<PathBuf>,
+        discretisation: Discretisation,
     },
+}
+
+/// Which case of the paper's discretisation `reproduce-paper` runs beside the paper's.
+pub(crate) enum Discretisation {
+    /// [`discretisation::DEFAULT_CASE`] when CalculiX and gmsh are installed, none (the report
+    /// says why) when not.
+    Default,
+    /// This case (`--discretisation CASE`).
+    Case(PathBuf),
+    /// None (`--no-discretisation`).
+    Skip,
+}
+
+impl Discretisation {
+    /// The case file to run beside the paper's case `paper`, or why none is run. The default is
+    /// looked for beside the paper case's folder (`cases/` → `cases-heavy/`).
+    fn file(self, paper: &Path) -> Result<PathBuf, String> {
+        match self {
+            Discretisation::Case(file) => Ok(file),
+            Discretisation::Skip => Err("not asked for (--no-discretisation)".into()),
+            Discretisation::Default => discretisation::default_case(paper, &Toolchain::default()),
+        }
+    }
 }
 
 /// The options `compare` and `reproduce-paper` share.
@@ -225,11 +262,15 @@ pub(crate) fn report(
         Report::Compare => None,
     };
     // The discretisation case is read before anything is written or run: bad input exits 2.
-    let discretisation = match kind {
-        Report::Paper {
-            discretisation: Some(file),
-        } => Some(load_case(&file, None, &[], roots, permission)?),
-        _ => None,
+    let (discretisation, not_run) = match kind {
+        Report::Paper { discretisation } => match discretisation.file(&case.file) {
+            Ok(file) => (
+                Some(load_case(&file, None, &[], roots, permission)?),
+                String::new(),
+            ),
+            Err(why) => (None, why),
+        },
+        Report::Compare => (None, String::new()),
     };
     // Stored runs are read and checked before anything is written.
     let stored = match from.is_empty() {
@@ -237,20 +278,37 @@ pub(crate) fn report(
         false => Some(stored_run(&from, &case, roots)?),
     };
     let folder = claim(&out, force)?;
+    // The case's solvers (unless read) and the discretisation's, in one schedule: the
+    // discretisation's CalculiX run takes one core while the paper's solvers share the other.
+    let asked = discretisation.is_some();
+    let mut to_run: Vec<Case> = Vec::new();
+    let stored = match stored {
+        Some(run) => Some(run),
+        None => {
+            to_run.push(case);
+            None
+        }
+    };
+    if let Some(case) = discretisation {
+        eprintln!("{}: the paper's discretisation, beside", case.name());
+        to_run.push(case);
+    }
+    let mut runs = run_solvers(to_run, jobs).into_iter();
     let run = match stored {
         Some(run) => run,
-        None => run_solvers(case, jobs),
+        None => runs.next().expect("the case was run"),
     };
-    let discretisation = discretisation.map(|case| {
-        eprintln!("{}: the paper's discretisation", case.name());
-        run_solvers(case, jobs)
-    });
+    let discretisation = asked.then(|| runs.next().expect("the discretisation was run"));
     let document = match paper_references {
         None => spherecontact::report::compare::document(&run),
         Some(reference_dir) => {
             // The surface-field claims at the finest rungs of each map solver's ladder.
             let study = spherecontact::report::claims::Study::of_ladders(&run, jobs.cores());
-            spherecontact::report::paper::document(&run, &study, &reference_dir, discretisation.as_ref())
+            let section = match &discretisation {
+                Some(run) => discretisation::Discretisation::Run(run),
+                None => discretisation::Discretisation::NotRun(not_run),
+            };
+            spherecontact::report::paper::document(&run, &study, &reference_dir, &section)
         }
     }
     .map_err(|e| InputError(format!("building the report: {e}")))?;

@@ -1,10 +1,14 @@
 //! The paper's discretisation in the `reproduce-paper` report: how far the paper's kind of model
 //! — 20-node bricks with face-to-face penalty contact and Coulomb friction, `ccx-3d` with
 //! `[calculix] element = "hex20r"` — is from the corrected reference (mdr-domain) and from fem-3d
-//! at the path positions it ran, from the run of its own case (`cases-heavy/ccx-3d-hex20.toml`,
-//! given to `reproduce-paper --discretisation`). Without that run the section says how to get it.
+//! at the path positions it ran, from the run of its own case ([`DEFAULT_CASE`], which
+//! `reproduce-paper` runs beside the paper's case when CalculiX is installed, or another given to
+//! `--discretisation`). Without that run the section says why and how to get it.
+
+use std::path::{Path, PathBuf};
 
 use super::document::{Cell, Section, Table};
+use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, StepResult};
 use crate::verify::CaseRun;
 
@@ -15,20 +19,60 @@ pub const REFERENCE: &str = "mdr-domain";
 /// The in-crate 3D FEM beside it.
 pub const FEM: &str = "fem-3d";
 
+/// The case `reproduce-paper` runs by default, relative to the folder that holds the paper case's
+/// folder (`cases/paper-fig7.toml` → `cases-heavy/ccx-3d-hex20.toml`).
+pub const DEFAULT_CASE: &str = "cases-heavy/ccx-3d-hex20.toml";
+
+/// The default case of the paper's discretisation beside the paper case `paper` ([`DEFAULT_CASE`]
+/// under the folder that holds `paper`'s folder), when `toolchain` has CalculiX and gmsh (each
+/// asked for its version once); otherwise why it is not run.
+pub fn default_case(paper: &Path, toolchain: &Toolchain) -> Result<PathBuf, String> {
+    let missing: Vec<String> = [Tool::Ccx, Tool::Gmsh]
+        .map(|tool| toolchain.probe(tool))
+        .into_iter()
+        .filter_map(|p| p.version.err().map(|why| format!("{}: {why}", p.tool.name())))
+        .collect();
+    if !missing.is_empty() {
+        return Err(format!("CalculiX and gmsh are needed ({})", missing.join("; ")));
+    }
+    let file = paper
+        .parent()
+        .and_then(Path::parent)
+        .unwrap_or(Path::new(""))
+        .join(DEFAULT_CASE);
+    match file.is_file() {
+        true => Ok(file),
+        false => Err(format!(
+            "no case of it at {} (beside the paper case's folder)",
+            file.display()
+        )),
+    }
+}
+
+/// The paper's discretisation as the report has it.
+pub enum Discretisation<'a> {
+    /// The run of its case.
+    Run(&'a CaseRun),
+    /// Not run, and why (e.g. CalculiX is not installed; `--no-discretisation`).
+    NotRun(String),
+}
+
 /// The section's title.
 const TITLE: &str = "The paper's discretisation: 20-node bricks, face-to-face penalty contact";
 
-/// The section: a sentence and a table of P and Q at every position of `run`, or, without a
-/// run, the command that makes one.
-pub fn section(run: Option<&CaseRun>) -> Section {
-    let Some(run) = run else {
-        return note(
-            "Not run: the paper's kind of model (CalculiX C3D20R bricks, face-to-face penalty contact, \
-             both spheres meshed) takes minutes of CPU, beyond this report's budget. Run it beside \
-             the paper's case with `spherecontact reproduce-paper --discretisation \
-             cases-heavy/ccx-3d-hex20.toml` (CalculiX installed)."
-                .into(),
-        );
+/// The section: a sentence and a table of P and Q at every position of the run, or, without a
+/// run, why and the command that makes one.
+pub fn section(discretisation: &Discretisation) -> Section {
+    let run = match discretisation {
+        Discretisation::Run(run) => *run,
+        Discretisation::NotRun(why) => {
+            return note(format!(
+                "Not run: {why}. The paper's kind of model (CalculiX C3D20R bricks, face-to-face \
+                 penalty contact, both spheres meshed: about 140 s of CPU) is run beside the paper's \
+                 case by `spherecontact reproduce-paper` when CalculiX is installed ({DEFAULT_CASE}; \
+                 `--discretisation CASE` for another case)."
+            ))
+        }
     };
     let history = |name: &str| run.histories.get(name).and_then(|r| r.as_ref().ok());
     let (Some(bricks), Some(reference), Some(fem)) = (history(SOLVER), history(REFERENCE), history(FEM))
@@ -221,7 +265,7 @@ mod tests {
     #[test]
     fn the_table_gives_the_bricks_errors_against_both_references() {
         let run = run(Some(history([[0.0; 2], [99.0, 10.5], [204.0, 19.0]])));
-        let section = section(Some(&run));
+        let section = section(&Discretisation::Run(&run));
         let table = &section.tables[0];
         // Positions 1 and 2; P against each reference's P, Q against mdr-domain's peak (20 N).
         assert_eq!(table.rows.len(), 2);
@@ -246,9 +290,63 @@ mod tests {
 
     #[test]
     fn without_a_run_or_without_ccx_the_section_says_why() {
-        assert!(section(None).paragraphs[0].contains("--discretisation cases-heavy/ccx-3d-hex20.toml"));
-        let missing = section(Some(&run(None)));
+        let not_run = section(&Discretisation::NotRun(
+            "not asked for (--no-discretisation)".into(),
+        ));
+        assert!(
+            not_run.paragraphs[0].starts_with("Not run: not asked for (--no-discretisation).")
+                && not_run.paragraphs[0].contains("(cases-heavy/ccx-3d-hex20.toml; `--discretisation CASE`"),
+            "{}",
+            not_run.paragraphs[0]
+        );
+        let missing = section(&Discretisation::Run(&run(None)));
         assert!(missing.tables.is_empty());
         assert!(missing.paragraphs[0].contains("ccx-3d") && missing.paragraphs[0].contains("no ccx"));
+    }
+
+    /// A toolchain whose ccx is a script answering `-v` as CalculiX 2.20 does, and the machine's
+    /// gmsh (the probe asks each for its version).
+    fn toolchain_with_ccx(dir: &Path, gmsh: &str) -> Toolchain {
+        let ccx = dir.join("ccx");
+        std::fs::write(&ccx, "#!/bin/sh\necho\necho This is Version 2.20\n").unwrap();
+        std::fs::set_permissions(&ccx, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
+        Toolchain {
+            ccx,
+            gmsh: gmsh.into(),
+            ..Toolchain::default()
+        }
+    }
+
+    #[test]
+    fn the_default_case_is_beside_the_paper_cases_folder_when_calculix_and_gmsh_answer() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let paper = root.join("cases/paper-fig7.toml");
+        // Missing tools: not run, naming each.
+        let none = Toolchain {
+            ccx: "/nonexistent/ccx".into(),
+            gmsh: "/nonexistent/gmsh".into(),
+            ..Toolchain::default()
+        };
+        let why = default_case(&paper, &none).unwrap_err();
+        assert!(
+            why.starts_with("CalculiX and gmsh are needed (CalculiX: /nonexistent/ccx")
+                && why.contains("; gmsh: /nonexistent/gmsh"),
+            "{why}"
+        );
+        // gmsh is a dependency of the whole crate's 3D path; where it is missing, only the
+        // refusal above can be checked.
+        if !Toolchain::default().probe(Tool::Gmsh).available() {
+            return;
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let tools = toolchain_with_ccx(dir.path(), "gmsh");
+        assert_eq!(default_case(&paper, &tools), Ok(root.join(DEFAULT_CASE)));
+        // A paper case elsewhere has no discretisation case beside it: not run, and where it was looked for.
+        let elsewhere = dir.path().join("cases/paper.toml");
+        let why = default_case(&elsewhere, &tools).unwrap_err();
+        assert!(
+            why.contains(&dir.path().join(DEFAULT_CASE).display().to_string()),
+            "{why}"
+        );
     }
 }

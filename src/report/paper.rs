@@ -236,12 +236,12 @@ pub fn paper_numbers(run: &CaseRun, quoted: &Quoted) -> Result<Section> {
 
 /// The reproduce-paper report; `study` resolves the surface-field claims ([`Study::of_ladders`],
 /// or [`Study::none`] for the run's own fields only); `discretisation` is the run of the paper's
-/// discretisation case, if one was asked for ([`super::discretisation`]).
+/// discretisation case, or why there is none ([`super::discretisation`]).
 pub fn document(
     run: &CaseRun,
     study: &Study,
     reference_dir: &Path,
-    discretisation: Option<&CaseRun>,
+    discretisation: &super::discretisation::Discretisation,
 ) -> Result<Document> {
     let focus = run.case.focus;
     let quoted = Quoted::load(reference_dir)?;

@@ -167,7 +167,9 @@ fn the_shipped_brick_case_passes_its_checks_against_fem_3d_and_mdr_domain() {
         "{}",
         bricks.metadata.model
     );
-    let section = spherecontact::report::discretisation::section(Some(&run));
+    let section = spherecontact::report::discretisation::section(
+        &spherecontact::report::discretisation::Discretisation::Run(&run),
+    );
     eprintln!("{}", section.paragraphs[0]);
     for row in &section.tables[0].rows {
         eprintln!(

@@ -349,12 +349,17 @@ fn defects(name: &str, svg: &str) -> Vec<String> {
 fn report_figures() -> Vec<Figure> {
     let case = common::paper_case_coarse(10);
     let run = verify::run_case(case);
-    paper::document(&run, &Study::none(), &common::root().join("reference"), None)
-        .expect("report")
-        .sections
-        .into_iter()
-        .flat_map(|s| s.figures)
-        .collect()
+    paper::document(
+        &run,
+        &Study::none(),
+        &common::root().join("reference"),
+        &common::no_discretisation(),
+    )
+    .expect("report")
+    .sections
+    .into_iter()
+    .flat_map(|s| s.figures)
+    .collect()
 }
 
 #[test]

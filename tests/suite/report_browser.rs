@@ -67,10 +67,15 @@ fn write_report(dir: &Path) -> PathBuf {
     case.solvers.retain(|s| s != "fem-3d");
     case.checks.retain(|c| c.solver != "fem-3d");
     let run = verify::run_case(case);
-    paper::document(&run, &Study::none(), &common::root().join("reference"), None)
-        .expect("report")
-        .write(dir)
-        .expect("written");
+    paper::document(
+        &run,
+        &Study::none(),
+        &common::root().join("reference"),
+        &common::no_discretisation(),
+    )
+    .expect("report")
+    .write(dir)
+    .expect("written");
     dir.join("report.html")
 }
 

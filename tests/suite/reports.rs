@@ -52,12 +52,24 @@ fn reports_regenerate_identically_apart_from_timings() {
     for (dir, concurrent) in dirs.iter().zip([false, true]) {
         let run = match concurrent {
             false => paper_run(),
-            true => schedule::run_case(common::paper_case_in_crate(), 2, |_| None, &|_, solve| solve()),
+            true => schedule::run_cases(
+                vec![common::paper_case_in_crate()],
+                2,
+                |_, _| None,
+                &|_, solve| solve(),
+            )
+            .pop()
+            .unwrap(),
         };
-        paper::document(&run, &Study::none(), &root().join("reference"), None)
-            .unwrap()
-            .write(dir.path())
-            .unwrap();
+        paper::document(
+            &run,
+            &Study::none(),
+            &root().join("reference"),
+            &common::no_discretisation(),
+        )
+        .unwrap()
+        .write(dir.path())
+        .unwrap();
     }
     let read = |dir: &Path, file: &str| without_timings(&std::fs::read_to_string(dir.join(file)).unwrap());
     for file in [

@@ -207,3 +207,9 @@ pub fn paper_case_in_crate() -> Case {
     });
     case
 }
+
+/// The paper report's discretisation section without its run (the report tests do not run
+/// CalculiX's bricks: `calculix_hex20::` does).
+pub fn no_discretisation() -> spherecontact::report::discretisation::Discretisation<'static> {
+    spherecontact::report::discretisation::Discretisation::NotRun("not run by this test".into())
+}
