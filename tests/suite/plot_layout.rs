@@ -13,9 +13,7 @@ use crate::common;
 
 use ab_glyph::{Font, FontRef};
 use roxmltree::{Document, Node};
-use spherecontact::report::claims::Study;
 use spherecontact::report::document::Figure;
-use spherecontact::report::paper;
 use spherecontact::report::plot::{fonts, Axes, LinePlot, Series, Style, DATA_STROKE};
 use spherecontact::verify;
 
@@ -349,17 +347,11 @@ fn defects(name: &str, svg: &str) -> Vec<String> {
 fn report_figures() -> Vec<Figure> {
     let case = common::paper_case_coarse(10);
     let run = verify::run_case(case);
-    paper::document(
-        &run,
-        &Study::none(),
-        &common::root().join("reference"),
-        &common::no_discretisation(),
-    )
-    .expect("report")
-    .sections
-    .into_iter()
-    .flat_map(|s| s.figures)
-    .collect()
+    common::paper_document(&run)
+        .sections
+        .into_iter()
+        .flat_map(|s| s.figures)
+        .collect()
 }
 
 #[test]

@@ -16,8 +16,6 @@ use crate::common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use spherecontact::report::claims::Study;
-use spherecontact::report::paper;
 use spherecontact::verify;
 
 /// A laptop's viewport [px].
@@ -67,15 +65,7 @@ fn write_report(dir: &Path) -> PathBuf {
     case.solvers.retain(|s| s != "fem-3d");
     case.checks.retain(|c| c.solver != "fem-3d");
     let run = verify::run_case(case);
-    paper::document(
-        &run,
-        &Study::none(),
-        &common::root().join("reference"),
-        &common::no_discretisation(),
-    )
-    .expect("report")
-    .write(dir)
-    .expect("written");
+    common::paper_document(&run).write(dir).expect("written");
     dir.join("report.html")
 }
 

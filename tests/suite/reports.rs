@@ -10,9 +10,7 @@ use crate::common;
 
 use std::path::Path;
 
-use common::root;
-use spherecontact::report::claims::Study;
-use spherecontact::report::{compare, paper};
+use spherecontact::report::compare;
 use spherecontact::schedule;
 use spherecontact::solver::SolveError;
 use spherecontact::verify::{self, CaseRun};
@@ -61,15 +59,7 @@ fn reports_regenerate_identically_apart_from_timings() {
             .pop()
             .unwrap(),
         };
-        paper::document(
-            &run,
-            &Study::none(),
-            &root().join("reference"),
-            &common::no_discretisation(),
-        )
-        .unwrap()
-        .write(dir.path())
-        .unwrap();
+        common::paper_document(&run).write(dir.path()).unwrap();
     }
     let read = |dir: &Path, file: &str| without_timings(&std::fs::read_to_string(dir.join(file)).unwrap());
     for file in [

@@ -208,8 +208,16 @@ pub fn paper_case_in_crate() -> Case {
     case
 }
 
-/// The paper report's discretisation section without its run (the report tests do not run
-/// CalculiX's bricks: `calculix_hex20::` does).
-pub fn no_discretisation() -> spherecontact::report::discretisation::Discretisation<'static> {
-    spherecontact::report::discretisation::Discretisation::NotRun("not run by this test".into())
+/// The reproduce-paper report of `run` without the resolution study's rungs (`Study::none`) and
+/// without the paper's discretisation run (the report tests do not run CalculiX's bricks:
+/// `calculix_hex20::` does).
+pub fn paper_document(run: &spherecontact::verify::CaseRun) -> spherecontact::report::document::Document {
+    use spherecontact::report::discretisation::Discretisation;
+    spherecontact::report::paper::document(
+        run,
+        &spherecontact::report::claims::Study::none(),
+        &root().join("reference"),
+        &Discretisation::NotRun("not run by this test".into()),
+    )
+    .expect("the paper report")
 }
