@@ -11,7 +11,7 @@ mod cli;
 
 use clap::{Parser, Subcommand};
 use cli::deck::{deck, DeckAction};
-use cli::report::{bench, report, Discretisation, Report, ReportOptions};
+use cli::report::{bench, report, DiscretisationChoice, Report, ReportOptions};
 use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
 };
@@ -300,9 +300,9 @@ fn main() -> ExitCode {
             options,
         } => {
             let discretisation = match (discretisation, no_discretisation) {
-                (Some(file), _) => Discretisation::Case(file),
-                (None, true) => Discretisation::Skip,
-                (None, false) => Discretisation::Default,
+                (Some(file), _) => DiscretisationChoice::Case(file),
+                (None, true) => DiscretisationChoice::Skip,
+                (None, false) => DiscretisationChoice::Default,
             };
             report(&case, Some(out), Report::Paper { discretisation }, options, roots)
         }

@@ -179,12 +179,12 @@ pub(crate) enum Report {
     Compare,
     /// The paper's, with the case of its discretisation run beside.
     Paper {
-        discretisation: Discretisation,
+        discretisation: DiscretisationChoice,
     },
 }
 
 /// Which case of the paper's discretisation `reproduce-paper` runs beside the paper's.
-pub(crate) enum Discretisation {
+pub(crate) enum DiscretisationChoice {
     /// [`discretisation::DEFAULT_CASE`] when CalculiX and gmsh are installed, none (the report
     /// says why) when not.
     Default,
@@ -194,14 +194,14 @@ pub(crate) enum Discretisation {
     Skip,
 }
 
-impl Discretisation {
+impl DiscretisationChoice {
     /// The case file to run beside the paper's case `paper`, or why none is run. The default is
     /// looked for beside the paper case's folder (`cases/` → `cases-heavy/`).
     fn file(self, paper: &Path) -> Result<PathBuf, String> {
         match self {
-            Discretisation::Case(file) => Ok(file),
-            Discretisation::Skip => Err("not asked for (--no-discretisation)".into()),
-            Discretisation::Default => discretisation::default_case(paper, &Toolchain::default()),
+            DiscretisationChoice::Case(file) => Ok(file),
+            DiscretisationChoice::Skip => Err("not asked for (--no-discretisation)".into()),
+            DiscretisationChoice::Default => discretisation::default_case(paper, &Toolchain::default()),
         }
     }
 }
