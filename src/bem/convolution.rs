@@ -25,6 +25,9 @@
 //! `examples/bem_timing.rs`, medians of 5 side by side): 1.66 s wall on two threads (3.19 s CPU,
 //! the worker's spinning included) against 2.14 s on one.
 //!
+//! The plans are rustfft's and realfft's, built by the workspace crate `fft-plans`
+//! (`crates/fft-plans`): their planners are monomorphised there once, not in this library.
+//!
 //! The transforms run in a chosen [`Precision`] (f64 or f32); fields and kernels are f64 on both
 //! sides. In f32 a transform is about twice as fast (twice the SIMD lanes, half the memory) and
 //! a product carries a relative error of about 1e-7 · log₂(2n) of its largest value.
