@@ -15,7 +15,8 @@ mod measure;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-pub use measure::{relative_error, zeroed, ErrorMeasure, ABS_ZERO};
+use measure::zeroed;
+pub use measure::{relative_error, ErrorMeasure, ABS_ZERO};
 
 use crate::history::{History, Quantity, StepResult};
 use crate::solver::SolveError;

@@ -10,7 +10,7 @@ use serde::Serialize;
 pub const ABS_ZERO: f64 = 1e-10;
 
 /// `x`, or 0 when |x| < `abs_zero`.
-pub fn zeroed(x: f64, abs_zero: f64) -> f64 {
+pub(super) fn zeroed(x: f64, abs_zero: f64) -> f64 {
     if x.abs() < abs_zero {
         0.0
     } else {

@@ -261,16 +261,14 @@ pub(crate) fn report(
         ),
         Report::Compare => None,
     };
-    // The discretisation case is read before anything is written or run: bad input exits 2.
-    let (discretisation, not_run) = match kind {
+    // The discretisation case, or why none runs, is read before anything is written or run: bad
+    // input exits 2. (`compare` has no such section: its reason is never shown.)
+    let discretisation: Result<Case, String> = match kind {
         Report::Paper { discretisation } => match discretisation.file(&case.file) {
-            Ok(file) => (
-                Some(load_case(&file, None, &[], roots, permission)?),
-                String::new(),
-            ),
-            Err(why) => (None, why),
+            Ok(file) => Ok(load_case(&file, None, &[], roots, permission)?),
+            Err(why) => Err(why),
         },
-        Report::Compare => (None, String::new()),
+        Report::Compare => Err("not a paper report".into()),
     };
     // Stored runs are read and checked before anything is written.
     let stored = match from.is_empty() {
@@ -280,33 +278,32 @@ pub(crate) fn report(
     let folder = claim(&out, force)?;
     // The case's solvers (unless read) and the discretisation's, in one schedule: the
     // discretisation's CalculiX run takes one core while the paper's solvers share the other.
-    let asked = discretisation.is_some();
     let mut to_run: Vec<Case> = Vec::new();
-    let stored = match stored {
-        Some(run) => Some(run),
-        None => {
+    if stored.is_none() {
+        to_run.push(case);
+    }
+    let not_run = match discretisation {
+        Ok(case) => {
+            eprintln!("{}: the paper's discretisation, beside", case.name());
             to_run.push(case);
             None
         }
+        Err(why) => Some(why),
     };
-    if let Some(case) = discretisation {
-        eprintln!("{}: the paper's discretisation, beside", case.name());
-        to_run.push(case);
-    }
     let mut runs = run_solvers(to_run, jobs).into_iter();
-    let run = match stored {
-        Some(run) => run,
-        None => runs.next().expect("the case was run"),
+    let run = stored.unwrap_or_else(|| runs.next().expect("the case was run"));
+    let discretisation: Result<CaseRun, String> = match not_run {
+        None => Ok(runs.next().expect("the discretisation was run")),
+        Some(why) => Err(why),
     };
-    let discretisation = asked.then(|| runs.next().expect("the discretisation was run"));
     let document = match paper_references {
         None => spherecontact::report::compare::document(&run),
         Some(reference_dir) => {
             // The surface-field claims at the finest rungs of each map solver's ladder.
             let study = spherecontact::report::claims::Study::of_ladders(&run, jobs.cores());
             let section = match &discretisation {
-                Some(run) => discretisation::Discretisation::Run(run),
-                None => discretisation::Discretisation::NotRun(not_run),
+                Ok(run) => discretisation::Discretisation::Run(run),
+                Err(why) => discretisation::Discretisation::NotRun(why),
             };
             spherecontact::report::paper::document(&run, &study, &reference_dir, &section)
         }
@@ -314,18 +311,18 @@ pub(crate) fn report(
     .map_err(|e| InputError(format!("building the report: {e}")))?;
     history_files::write_all(&folder.path().join("solvers"), &run)
         .and_then(|()| match &discretisation {
-            Some(d) => history_files::write_all(&folder.path().join("discretisation"), d),
-            None => Ok(()),
+            Ok(d) => history_files::write_all(&folder.path().join("discretisation"), d),
+            Err(_) => Ok(()),
         })
         .and_then(|()| document.write(folder.path()))
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     print!("{}", summary::screen(&run));
-    if let Some(d) = &discretisation {
+    if let Ok(d) = &discretisation {
         print!("{}", summary::screen(d));
     }
     println!("report: {}", out.join("report.html").display());
     Ok(
-        if run.passed() && discretisation.as_ref().is_none_or(CaseRun::passed) {
+        if run.passed() && discretisation.as_ref().map_or(true, CaseRun::passed) {
             ExitCode::SUCCESS
         } else {
             ExitCode::FAILURE

@@ -54,7 +54,7 @@ pub enum Discretisation<'a> {
     /// The run of its case.
     Run(&'a CaseRun),
     /// Not run, and why (e.g. CalculiX is not installed; `--no-discretisation`).
-    NotRun(String),
+    NotRun(&'a str),
 }
 
 /// The section's title.
@@ -290,9 +290,7 @@ mod tests {
 
     #[test]
     fn without_a_run_or_without_ccx_the_section_says_why() {
-        let not_run = section(&Discretisation::NotRun(
-            "not asked for (--no-discretisation)".into(),
-        ));
+        let not_run = section(&Discretisation::NotRun("not asked for (--no-discretisation)"));
         assert!(
             not_run.paragraphs[0].starts_with("Not run: not asked for (--no-discretisation).")
                 && not_run.paragraphs[0].contains("(cases-heavy/ccx-3d-hex20.toml; `--discretisation CASE`"),

@@ -217,7 +217,7 @@ pub fn paper_document(run: &spherecontact::verify::CaseRun) -> spherecontact::re
         run,
         &spherecontact::report::claims::Study::none(),
         &root().join("reference"),
-        &Discretisation::NotRun("not run by this test".into()),
+        &Discretisation::NotRun("not run by this test"),
     )
     .expect("the paper report")
 }
