@@ -103,19 +103,33 @@ pub fn serendipity<const D: usize>(node: [f64; D], x: [f64; D]) -> (f64, [f64; D
     }
 }
 
+/// The reference gradients ∂N/∂ξ of the 20 shape functions at `xi`.
+fn reference_gradients(xi: [f64; 3]) -> [[f64; 3]; 20] {
+    NODES.map(|node| serendipity(node, xi).1)
+}
+
 /// The determinant of the brick's Jacobian ∂x/∂ξ at `xi` for nodes at `coords`.
 pub fn jacobian(coords: &[[f64; 3]; 20], xi: [f64; 3]) -> f64 {
-    let mut j = [[0.0; 3]; 3];
-    for (node, x) in NODES.iter().zip(coords) {
-        let (_, grad) = serendipity(*node, xi);
-        for (row, xr) in j.iter_mut().zip(x) {
-            for (entry, g) in row.iter_mut().zip(grad) {
-                *entry += xr * g;
-            }
-        }
-    }
+    let j = crate::fem::element::jacobian(coords, &reference_gradients(xi));
     j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1]) - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
         + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0])
+}
+
+/// The physical gradients ∂N/∂x of the 20 shape functions at `xi` and the Jacobian's
+/// determinant; `None` where the brick is folded (det J ≤ 0).
+pub fn gradients(coords: &[[f64; 3]; 20], xi: [f64; 3]) -> Option<([[f64; 3]; 20], f64)> {
+    crate::fem::element::physical_gradients(coords, &reference_gradients(xi))
+}
+
+/// The 8 Gauss points of the reduced rule (C3D20R's, 2 × 2 × 2 at ±1/√3) with their weights.
+pub fn reduced_gauss_points() -> impl Iterator<Item = ([f64; 3], f64)> {
+    let g = 1.0 / 3.0_f64.sqrt();
+    (0..8).map(move |k| {
+        (
+            [k & 1, (k >> 1) & 1, (k >> 2) & 1].map(|bit| if bit == 0 { -g } else { g }),
+            1.0,
+        )
+    })
 }
 
 /// The 27 Gauss points of the full rule (C3D20's) with their weights.
@@ -293,6 +307,60 @@ mod tests {
                 w.iter().all(|w| (w - area / 4.0).abs() < 1e-12),
                 "{w:?} of {area}"
             );
+        }
+    }
+
+    /// Requirement: the physical gradients make the brick's nodal forces under a uniform stress
+    /// the resultants of the stress on its faces: the forces of a face's nodes sum to σ n times
+    /// its area, on the full rule (C3D20's 27 points) and on the reduced one (C3D20R's 8), and
+    /// all forces sum to zero. Reference: σ_xx · 15 on the faces x = 0, 2 of the box
+    /// [0, 2] × [0, 3] × [0, 5] under u = (ε x, 0, 0), σ_yy · 10 on y = 0, 3; tolerance 1e-12 of
+    /// the resultant, round-off (both rules integrate the box's gradients exactly).
+    #[test]
+    fn a_uniform_stress_loads_a_boxs_faces_with_their_resultants_on_both_rules() {
+        use crate::fem::element::internal_force::{internal_forces, GradientPoint};
+        use crate::fem::element::tri6::Lame;
+        let coords = NODES.map(|[a, b, c]| [1.0 + a, 1.5 * (1.0 + b), 2.5 * (1.0 + c)]);
+        let lame = Lame { lambda: 2.0, mu: 1.5 };
+        let epsilon = 1e-3;
+        let u: Vec<[f64; 3]> = coords.iter().map(|x| [epsilon * x[0], 0.0, 0.0]).collect();
+        let (sxx, syy) = ((lame.lambda + 2.0 * lame.mu) * epsilon, lame.lambda * epsilon);
+        for rule in [
+            gauss_points().collect::<Vec<_>>(),
+            reduced_gauss_points().collect(),
+        ] {
+            let points: Vec<GradientPoint> = rule
+                .iter()
+                .map(|&(xi, w)| {
+                    let (grad, det) = gradients(&coords, xi).unwrap();
+                    GradientPoint {
+                        grad: grad.to_vec(),
+                        volume: w * det,
+                    }
+                })
+                .collect();
+            let f = internal_forces(&points, &u, lame);
+            let on = |axis: usize, side: f64, component: usize| -> f64 {
+                (0..20)
+                    .filter(|&k| NODES[k][axis] == side)
+                    .map(|k| f[k][component])
+                    .sum()
+            };
+            for (got, want) in [
+                (on(0, 1.0, 0), 15.0 * sxx),
+                (on(0, -1.0, 0), -15.0 * sxx),
+                (on(1, 1.0, 1), 10.0 * syy),
+                (on(1, -1.0, 1), -10.0 * syy),
+            ] {
+                assert!(
+                    (got - want).abs() <= 1e-12 * want.abs(),
+                    "{got} against {want} ({} points)",
+                    rule.len()
+                );
+            }
+            let total: f64 = f.iter().flatten().map(|v| v.abs()).fold(0.0, f64::max);
+            let sum: [f64; 3] = std::array::from_fn(|a| f.iter().map(|fi| fi[a]).sum());
+            assert!(sum.iter().all(|s| s.abs() <= 1e-12 * total), "{sum:?}");
         }
     }
 

@@ -12,6 +12,7 @@ pub mod body;
 pub mod hex20;
 pub mod hex_mesh;
 pub mod inp;
+pub mod nodal_forces;
 pub mod results;
 pub mod solid;
 pub mod solid_inp;

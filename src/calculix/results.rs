@@ -51,24 +51,41 @@ fn finite(text: &str) -> Option<f64> {
     text.parse::<f64>().ok().filter(|v| v.is_finite())
 }
 
-/// One `CONTACT` block of a `.frd`: its output time and, per slave node, (COPEN, CSLIP1, CSLIP2,
-/// CPRESS, CSHEAR1, CSHEAR2) [mm, MPa].
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ContactBlock {
+/// One result block of a `.frd` with `N` values a node: its output time and, per node, the values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Block<const N: usize> {
     /// The output (total) time.
     pub time: f64,
-    /// Node number → the six values.
-    pub values: HashMap<u64, [f64; 6]>,
+    /// Node number → the values.
+    pub values: HashMap<u64, [f64; N]>,
 }
 
-/// What the `.frd` holds that the deck reads: the node coordinates (all of them, the expanded
-/// 3D nodes included under `OUTPUT=3D`) and the contact blocks in order.
+impl<const N: usize> Default for Block<N> {
+    fn default() -> Self {
+        Self {
+            time: 0.0,
+            values: HashMap::new(),
+        }
+    }
+}
+
+/// A `CONTACT` block: per slave node (COPEN, CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2) [mm, MPa].
+pub type ContactBlock = Block<6>;
+
+/// A `DISP` block: per node (u_x, u_y, u_z) [mm].
+pub type DisplacementBlock = Block<3>;
+
+/// What the `.frd` holds that the decks read: the node coordinates (all of them, the expanded
+/// 3D nodes included under `OUTPUT=3D`), the contact blocks and the displacement blocks, each in
+/// output order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Frd {
     /// Node number → (x, y, z) [mm].
     pub nodes: HashMap<u64, [f64; 3]>,
     /// The contact blocks, in output order.
     pub contact: Vec<ContactBlock>,
+    /// The displacement blocks, in output order.
+    pub displacement: Vec<DisplacementBlock>,
 }
 
 impl Frd {
@@ -76,9 +93,19 @@ impl Frd {
     /// total time of 1, so its output is at time k + 1; `None` when the step wrote none (no
     /// contact).
     pub fn contact_at_step(&self, k: usize) -> Option<&ContactBlock> {
-        let time = (k + 1) as f64;
-        self.contact.iter().rev().find(|b| (b.time - time).abs() < 1e-6)
+        at_step(&self.contact, k)
     }
+
+    /// The last displacement block of the `*STEP` numbered `k` from 0 (as [`Frd::contact_at_step`]).
+    pub fn displacement_at_step(&self, k: usize) -> Option<&DisplacementBlock> {
+        at_step(&self.displacement, k)
+    }
+}
+
+/// The last of `blocks` at the output time of step `k` (from 0): k + 1.
+fn at_step<const N: usize>(blocks: &[Block<N>], k: usize) -> Option<&Block<N>> {
+    let time = (k + 1) as f64;
+    blocks.iter().rev().find(|b| (b.time - time).abs() < 1e-6)
 }
 
 /// A `-1` record of the `.frd` (fixed columns: the key, an I10 number, then E12.5 values): the
@@ -91,50 +118,84 @@ fn record(line: &str, count: usize) -> Option<(u64, Vec<f64>)> {
     Some((id, values))
 }
 
-/// Parses an ASCII `.frd` (its node block and contact blocks).
+/// Parses an ASCII `.frd` (its node block, contact blocks and displacement blocks).
 pub fn parse_frd(text: &str) -> Result<Frd, String> {
     let lines: Vec<&str> = text.lines().collect();
     let mut frd = Frd::default();
     let mut time = None;
     let mut i = 0;
-    let at = |i: usize, what: &str| format!("job.frd line {}: {what}", i + 1);
     while i < lines.len() {
         let line = lines[i];
         if line.starts_with("    2C") {
             i += 1;
             while i < lines.len() && !lines[i].starts_with(" -3") {
-                let (id, xyz) = record(lines[i], 3).ok_or_else(|| at(i, "not a node record"))?;
+                let (id, xyz) = record(lines[i], 3).ok_or_else(|| at_line(i, "not a node record"))?;
                 frd.nodes.insert(id, [xyz[0], xyz[1], xyz[2]]);
                 i += 1;
             }
         } else if line.starts_with("  100C") {
             time = line.get(12..24).and_then(|t| finite(t.trim()));
             if time.is_none() {
-                return Err(at(i, "a result block without its time"));
+                return Err(at_line(i, "a result block without its time"));
             }
         } else if line.starts_with(" -4  CONTACT") {
-            let mut block = ContactBlock {
-                time: time.ok_or_else(|| at(i, "a contact block without its time"))?,
-                ..ContactBlock::default()
-            };
-            i += 1;
-            while i < lines.len() && lines[i].starts_with(" -5") {
-                i += 1;
-            }
-            while i < lines.len() && !lines[i].starts_with(" -3") {
-                let (id, v) =
-                    record(lines[i], 6).ok_or_else(|| at(i, "not a contact record of six finite values"))?;
-                block.values.insert(id, [v[0], v[1], v[2], v[3], v[4], v[5]]);
-                i += 1;
-            }
-            if i == lines.len() {
-                return Err(at(i, "the contact block is not closed (truncated output)"));
-            }
+            let block;
+            (block, i) = result_block(&lines, i, time, "contact")?;
             frd.contact.push(block);
+        } else if line.starts_with(" -4  DISP") {
+            let block;
+            (block, i) = result_block(&lines, i, time, "displacement")?;
+            frd.displacement.push(block);
         }
         i += 1;
     }
     Ok(frd)
+}
+
+/// `job.frd line <i + 1>: <what>`.
+fn at_line(i: usize, what: &str) -> String {
+    format!("job.frd line {}: {what}", i + 1)
+}
+
+/// The result block (`what`: its name in errors) whose `-4` line is `lines[i]`, at output
+/// `time`, and the index of its closing `-3` line.
+fn result_block<const N: usize>(
+    lines: &[&str],
+    mut i: usize,
+    time: Option<f64>,
+    what: &str,
+) -> Result<(Block<N>, usize), String> {
+    let time = time.ok_or_else(|| at_line(i, &format!("a {what} block without its time")))?;
+    let mut block = Block {
+        time,
+        values: HashMap::new(),
+    };
+    i += 1;
+    while i < lines.len() && lines[i].starts_with(" -5") {
+        i += 1;
+    }
+    while i < lines.len() && !lines[i].starts_with(" -3") {
+        let (id, v) = record(lines[i], N)
+            .ok_or_else(|| at_line(i, &format!("not a {what} record of {} finite values", words(N))))?;
+        block.values.insert(id, std::array::from_fn(|k| v[k]));
+        i += 1;
+    }
+    if i == lines.len() {
+        return Err(at_line(
+            i,
+            &format!("the {what} block is not closed (truncated output)"),
+        ));
+    }
+    Ok((block, i))
+}
+
+/// A record's value count in words.
+fn words(n: usize) -> String {
+    match n {
+        3 => "three".into(),
+        6 => "six".into(),
+        n => n.to_string(),
+    }
 }
 
 /// The last of `items` at each output time 1, 2, …, `steps` (one step of unit time per path

@@ -13,9 +13,10 @@
 //! move alike and do not slip against each other; the symmetry of the contact plane holds for
 //! the normal problem only.
 //!
-//! P and Q from the far face's reaction, the maps from the contact output at the candidate
-//! faces' corners, all read from CalculiX's own output ([`super::solid_read`]), in fem-3d's
-//! surface layout. The `.inp` ([`super::solid_inp`], template `templates/calculix_3d.inp`) is
+//! P and Q from the far face's reaction, the maps at the candidate faces' corners (pressure and
+//! traction from the contact's nodal forces, recovered from the displacements CalculiX writes;
+//! gap, slip and stick from its contact output), all read from CalculiX's own output
+//! ([`super::solid_read`], [`super::nodal_forces`]), in fem-3d's surface layout. The `.inp` ([`super::solid_inp`], template `templates/calculix_3d.inp`) is
 //! self-contained.
 //!
 //! Model and findings: docs/external-decks.md, "CalculiX 3D".
@@ -118,7 +119,7 @@ struct Run {
     slave_faces: usize,
     stiffness: f64,
     stick_slope: f64,
-    /// The steps whose outermost candidate ring carries pressure ([`edge_loaded`]).
+    /// The steps whose outermost candidate ring carries the contact's force ([`edge_loaded`]).
     edge_steps: Vec<usize>,
     /// Wall seconds of gmsh, ccx and the reading back.
     wall_s: [f64; 3],
@@ -247,12 +248,11 @@ impl CcxSolid {
     ) -> Result<Run, SolveError> {
         let start = Instant::now();
         let spec = self.spec(scene, plan, h, mesh);
-        let read = solid_read::read_back(dir, mesh, plan.candidate_radius, spec.friction, &plan.steps)
-            .map_err(SolveError::Failed)?;
+        let read = solid_read::read_back(dir, &spec).map_err(SolveError::Failed)?;
         let edge_steps = read
             .surfaces
             .iter()
-            .filter(|surface| edge_loaded(surface, h))
+            .filter(|surface| edge_loaded(surface, &read.triangles, h))
             .map(|surface| surface.step)
             .collect();
         Ok(Run {
@@ -299,8 +299,10 @@ impl CcxSolid {
             model: format!(
                 "3D, the halves (y ≥ 0) of both spheres ({}; the second mirrored through the \
                  contact plane); {} on gmsh's {}; {} penalty contact \
-                 K = {:e} E/h; {friction}; P and Q from the far face's reaction × 2, the maps from \
-                 CalculiX's contact output at the candidate faces' corners",
+                 K = {:e} E/h; {friction}; P and Q from the far face's reaction × 2, the maps at the \
+                 candidate faces' corners: p and q from the contact's nodal forces (sphere 1's \
+                 internal forces from CalculiX's displacements, on its elements' own rules), gap, \
+                 slip and stick from its contact output",
                 scene.domain.describe(),
                 self.settings.element.keyword(),
                 run.mesh,
@@ -321,10 +323,9 @@ impl CcxSolid {
         };
         if !run.edge_steps.is_empty() {
             metadata.warnings.push(format!(
-                "CalculiX's nodal contact pressure reaches the outermost candidate ring at steps {:?}: \
-                 on a coarse mesh its extrapolation from the faces' integration points loads corners \
-                 beyond the contact, so c, p0 and the maps are not the contact's there (P and Q come \
-                 from the reactions)",
+                "the contact's forces (recovered from CalculiX's displacements) reach the outermost \
+                 candidate ring at steps {:?}: the contact may extend beyond the candidate faces, \
+                 which c, p0 and the maps do not see (P and Q come from the reactions); refine the mesh",
                 run.edge_steps
             ));
         }
@@ -336,7 +337,7 @@ impl CcxSolid {
         extra.insert(
             "stick_rule".into(),
             json!(format!(
-                "a loaded corner node sticks when |q| < μ p (1 − {STICK_MARGIN})"
+                "a corner node sticks when CalculiX's own |CSHEAR| < μ CPRESS (1 − {STICK_MARGIN}) there"
             )),
         );
         extra.insert("grip".into(), json!(plan.grip.name()));
@@ -358,22 +359,27 @@ impl CcxSolid {
     }
 }
 
-/// Fraction of the peak nodal pressure above which a node of the outermost candidate ring counts
-/// as loaded: CalculiX extrapolates its contact pressure from the faces' integration points to
-/// their nodes, so corners of faces partly in contact carry pressure beyond the contact
-/// (measured at c_max/2, δn = 17 µm: 237 MPa at r = 1.19 mm, 36 MPa at 1.38 mm, where Hertz's c
-/// is 0.92 mm and p0 450 MPa).
+/// Fraction of the peak hat-averaged pressure above which a corner of the outermost candidate
+/// ring counts as loaded: the contact's recovered forces there are its own (exact, not an
+/// extrapolation), so a corner above the recovery's noise (about 1e-5 of the peak,
+/// [`super::nodal_forces`]) is loaded; 5 % keeps the warning for loads that move c and p0.
 const EDGE_PRESSURE: f64 = 0.05;
 
-/// Whether a node within half an element of the outermost candidate ring carries more than
-/// [`EDGE_PRESSURE`] of the peak: the contact may reach beyond the candidate zone.
-fn edge_loaded(surface: &surface3d::Surface3, h: f64) -> bool {
-    let peak = surface.nodes.iter().map(|n| n.pressure).fold(0.0, f64::max);
+/// Whether a corner within half an element of the outermost candidate ring carries more than
+/// [`EDGE_PRESSURE`] of the peak, on the pressure's hat averages (the recovered forces per hat
+/// area, what the measures read; the corner values themselves undershoot and overshoot beside a
+/// sharp edge): the contact may reach beyond the candidate zone.
+fn edge_loaded(surface: &surface3d::Surface3, triangles: &[[usize; 3]], h: f64) -> bool {
+    let points: Vec<[f64; 2]> = surface.nodes.iter().map(|n| n.point).collect();
+    let pressures: Vec<f64> = surface.nodes.iter().map(|n| n.pressure).collect();
+    let averages = crate::fit::recovery::hat_averages(&points, triangles, &pressures);
+    let peak = averages.iter().copied().fold(0.0, f64::max);
     let outer = surface.nodes.iter().map(|n| n.r()).fold(0.0, f64::max);
     surface
         .nodes
         .iter()
-        .any(|n| n.pressure > EDGE_PRESSURE * peak && n.r() >= outer - 0.5 * h)
+        .zip(&averages)
+        .any(|(n, &p)| p > EDGE_PRESSURE * peak && n.r() >= outer - 0.5 * h)
 }
 
 /// Why the model does not apply to `scene`, if it does not: identical spheres (one body by the

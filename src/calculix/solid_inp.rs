@@ -13,6 +13,7 @@ use std::fmt::Write;
 
 use super::body::Body;
 use super::inp::{node_set, num, surface_behavior};
+use super::nodal_forces;
 use crate::calculix_settings::{MeshKind, Settings};
 use crate::domain::Grip;
 use crate::external::deck::ComputedStep;
@@ -98,7 +99,7 @@ impl SolidDeckSpec<'_> {
         } else {
             "** frictionless (the path has no tangential motion)".to_owned()
         };
-        let keys: [(&str, String); 25] = [
+        let keys: [(&str, String); 26] = [
             ("@SCENE@", self.scene.replace(['\n', '`'], " ")),
             ("@DOMAIN@", self.domain.clone()),
             ("@GRIP@", self.grip.name().to_owned()),
@@ -118,6 +119,10 @@ impl SolidDeckSpec<'_> {
             ("@SYMMETRY_NODES@", self.node_sets(&self.mesh.symmetry_nodes())),
             ("@FAR1_NODES@", node_set(&self.of_body(&self.mesh.far_nodes(), 1))),
             ("@FAR2_NODES@", node_set(&self.of_body(&self.mesh.far_nodes(), 2))),
+            (
+                "@READ_NODES@",
+                node_set(&nodal_forces::read_nodes(self.mesh, &self.slave_faces())),
+            ),
             ("@SLAVE_FACES@", slave),
             ("@MASTER_FACES@", master),
             ("@E_MPA@", num(self.young * 1e-6)),
@@ -221,8 +226,8 @@ impl SolidDeckSpec<'_> {
     }
 
     /// One `*STEP` per computed step: the far face's approach and shift (total values), the
-    /// reaction totals of both far faces in the `.dat`, the contact output in the
-    /// `.frd`.
+    /// reaction totals of both far faces in the `.dat`, the contact output and the displacements
+    /// of `NREAD1` in the `.frd`.
     fn steps_text(&self) -> String {
         let mut text = String::new();
         for s in self.steps {
@@ -243,7 +248,7 @@ impl SolidDeckSpec<'_> {
                  u_z = -+{} mm, u_x = +-{} mm\n\
                  *STEP, INC=200\n*STATIC\n1., 1.\n*BOUNDARY\n{grip}NFAR1, 3, 3, {}\nNFAR2, 3, 3, {}\n\
                  *NODE PRINT, NSET=NFAR1, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NFAR2, TOTALS=ONLY\nRF\n\
-                 *CONTACT FILE\nCDIS, CSTR\n*END STEP\n",
+                 *NODE FILE, NSET=NREAD1\nU\n*CONTACT FILE\nCDIS, CSTR\n*END STEP\n",
                 s.step,
                 num(2.0 * s.d * 1e3),
                 num(2.0 * s.t * 1e3),

@@ -1,17 +1,24 @@
 //! Reading back a `ccx-3d` run: P and Q at every computed step from the reaction totals of the
-//! far face in `job.dat` (checked against the plate's), and the contact surface from the
-//! `CONTACT` blocks of `job.frd` (COPEN, CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2 at the slave
-//! nodes) at the corners of the candidate faces ([`Body::corners`]: on the tetrahedra fem-3d's
-//! weights and triangles, on the bricks each face's corners and two triangles): the layout of
-//! fem-3d's fields ([`Surface3`]).
+//! far face in `job.dat` (checked against the other sphere's), and the contact surface at the
+//! corners of the candidate faces ([`Body::corners`]: on the tetrahedra fem-3d's weights and
+//! triangles, on the bricks each face's corners and two triangles), the layout of fem-3d's fields
+//! ([`Surface3`]), from `job.frd`:
+//! - pressure and traction: the hat averages of the contact's nodal forces, recovered from the
+//!   `DISP` blocks as sphere 1's internal forces ([`ForceRecovery`]; why not CalculiX's nodal
+//!   CPRESS and CSHEAR: [`super::nodal_forces`]);
+//! - gap, slip and the stick state: the `CONTACT` blocks (COPEN, CSLIP1, CSLIP2 at the slave
+//!   nodes; a node sticks where CalculiX's own |CSHEAR| < μ CPRESS, [`STICK_MARGIN`]).
 
 use std::path::Path;
 
-use super::body::{Body, Corners};
+use super::body::Corners;
+use super::nodal_forces::ForceRecovery;
 use super::results::{self, ContactBlock};
-use crate::external::deck::ComputedStep;
+use super::solid_inp::SolidDeckSpec;
 use crate::external::readback::read_output;
 use crate::external::surface3d::{Node3, Surface3};
+use crate::fem::element::tri6::Lame;
+use crate::pair::Material;
 
 /// Largest disagreement between the reactions of the far face and of the plate (x and z),
 /// relative to the larger of the two and 1 N: the body's equilibrium, which CalculiX reaches to
@@ -39,28 +46,32 @@ pub struct SolidRun {
     pub triangles: Vec<[usize; 3]>,
 }
 
-/// Reads `job.dat` and `job.frd` in `dir` for the deck written on `mesh` with candidates within
-/// `candidate_radius` [m], friction `mu`, and the computed `steps`.
-pub fn read_back(
-    dir: &Path,
-    mesh: &Body,
-    candidate_radius: f64,
-    mu: f64,
-    steps: &[ComputedStep],
-) -> Result<SolidRun, String> {
-    let n = steps.len();
+/// Reads `job.dat` and `job.frd` in `dir` for the deck written from `spec`.
+pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
+    let n = spec.steps.len();
     let dat = read_output(dir, "job.dat")?;
     let far = results::last_per_step(&results::totals(&dat, "NFAR1")?, |t| t.time, n, "job.dat NFAR1")?;
     let other = results::last_per_step(&results::totals(&dat, "NFAR2")?, |t| t.time, n, "job.dat NFAR2")?;
     let frd = results::parse_frd(&read_output(dir, "job.frd")?)?;
-    let surface = mesh.corners(candidate_radius)?;
+    let surface = spec.mesh.corners(spec.candidate_radius)?;
+    let lame = Lame::of(&Material {
+        young: spec.young,
+        poisson: spec.poisson,
+    });
+    let recovery = ForceRecovery::try_new(
+        spec.mesh,
+        spec.settings.element,
+        lame,
+        &spec.slave_faces(),
+        &surface,
+    )?;
     let mut run = SolidRun {
         forces: Vec::with_capacity(n),
         forces_plane: Vec::with_capacity(n),
         surfaces: Vec::with_capacity(n),
         triangles: surface.triangles.clone(),
     };
-    for (k, (step, (far, other))) in steps.iter().zip(far.iter().zip(&other)).enumerate() {
+    for (k, (step, (far, other))) in spec.steps.iter().zip(far.iter().zip(&other)).enumerate() {
         // The half model's reactions, doubled; `+ 0.0` turns −0 into 0.
         let on_far = [-2.0 * far.force[2] + 0.0, 2.0 * far.force[0] + 0.0];
         let on_other = [2.0 * other.force[2] + 0.0, -2.0 * other.force[0] + 0.0];
@@ -73,10 +84,10 @@ pub fn read_back(
                 ));
             }
         }
-        let block = frd.contact_at_step(k);
-        let nodes = match block {
-            Some(block) => corner_values(block, &surface, mu)?,
-            None if on_far[0].abs() <= EQUILIBRIUM => corner_values(&ContactBlock::default(), &surface, mu)?,
+        let empty = ContactBlock::default();
+        let block = match frd.contact_at_step(k) {
+            Some(block) => block,
+            None if on_far[0].abs() <= EQUILIBRIUM => &empty,
             None => {
                 return Err(format!(
                     "job.frd: no contact output at step {} although P = {} N",
@@ -85,6 +96,11 @@ pub fn read_back(
                 ))
             }
         };
+        let displacement = frd
+            .displacement_at_step(k)
+            .ok_or_else(|| format!("job.frd: no displacements (DISP of NREAD1) at step {}", k + 1))?;
+        let values = recovery.hat_values(&recovery.corner_forces(displacement, k + 1)?);
+        let nodes = corner_values(block, &surface, &values, spec.friction);
         run.forces.push(on_far);
         run.forces_plane.push(on_other);
         run.surfaces.push(Surface3 {
@@ -95,33 +111,34 @@ pub fn read_back(
     Ok(run)
 }
 
-/// The contact state at the surface's corner points from one `CONTACT` block (a point without a
-/// record is open and unloaded). CalculiX's tangential directions on the plate's faces are
-/// global x and y (its master faces lie in z = 0); its shear is the traction on the slave, the
-/// sphere, opposite to ∫ q_x dA = Q's sign convention, and its slip that of the sphere against
-/// the plate, half the relative slip of the two spheres.
-fn corner_values(block: &ContactBlock, surface: &Corners, mu: f64) -> Result<Vec<Node3>, String> {
+/// The contact state at the surface's corner points: pressure and traction from the corner
+/// `values` of the contact's recovered forces on sphere 1 (f_z, f_x, f_y per area,
+/// [`ForceRecovery::hat_values`]), the rest from one `CONTACT` block (a point without a record
+/// is open and unloaded). The pressure pushes sphere 1 along +z; the traction is signed so that
+/// ∫ q_x dA = Q, the force on the far face, opposite to the contact's force on the sphere. CalculiX's tangential
+/// directions on the plate's faces are global x and y (its master faces lie in z = 0); its shear
+/// is the traction on the slave, the sphere, and its slip that of the sphere against the plate,
+/// half the relative slip of the two spheres.
+fn corner_values(block: &ContactBlock, surface: &Corners, values: &[Vec<f64>; 3], mu: f64) -> Vec<Node3> {
     surface
         .nodes
         .iter()
         .zip(&surface.points)
         .zip(&surface.weights)
-        .map(|((&node, point), &weight)| {
+        .enumerate()
+        .map(|(j, ((&node, point), &weight))| {
             let [open, slip1, slip2, pressure, shear1, shear2] =
                 block.values.get(&(node as u64 + 1)).copied().unwrap_or_default();
-            let pressure = pressure.max(0.0) * 1e6;
-            let traction = [-shear1 * 1e6, -shear2 * 1e6];
-            let stick =
-                pressure > 0.0 && traction[0].hypot(traction[1]) < mu * pressure * (1.0 - STICK_MARGIN);
-            Ok(Node3 {
+            let stick = pressure > 0.0 && shear1.hypot(shear2) < mu * pressure * (1.0 - STICK_MARGIN);
+            Node3 {
                 point: [point[0], point[1]],
                 weight,
                 gap: open * 1e-3,
-                pressure,
-                traction,
+                pressure: values[0][j],
+                traction: [-values[1][j], -values[2][j]],
                 stick,
                 slip: [slip1 * 1e-3, slip2 * 1e-3],
-            })
+            }
         })
         .collect()
 }

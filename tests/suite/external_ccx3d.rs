@@ -14,7 +14,11 @@ use spherecontact::calculix::{CcxSolid, Settings};
 use spherecontact::case::Case;
 use spherecontact::domain::Grip;
 use spherecontact::external::deck::ComputedStep;
+use spherecontact::fem::element::tet10;
+use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::mesh::solid::SolidMesh;
+use spherecontact::fit::recovery::hat_averages;
+use spherecontact::pair::Material;
 use spherecontact::solver;
 
 use crate::common::decks::ccx_present;
@@ -117,6 +121,13 @@ fn the_deck_holds_both_spheres_the_friction_and_one_step_per_path_step() {
         "NFAR1, 1, 1, 1.000000000000e-3\nNFAR1, 2, 2, 0.\nNFAR2, 1, 1, -1.000000000000e-3\nNFAR2, 2, 2, 0.\nNFAR1, 3, 3, -5.000000000000e-3\nNFAR2, 3, 3, 5.000000000000e-3\n"
     ), "{text}");
     assert_eq!(text.matches("*CONTACT FILE\nCDIS, CSTR\n").count(), 2);
+    // The displacements of sphere 1's elements at the slave faces (here its one element), from
+    // which the contact's nodal forces are recovered, at every step.
+    assert!(
+        text.contains("*NSET, NSET=NREAD1\n1, 2, 3, 4, 5, 6, 7, 8, 9, 10\n"),
+        "{text}"
+    );
+    assert_eq!(text.matches("*NODE FILE, NSET=NREAD1\nU\n").count(), 2);
     // Every number of a data line fits the 20 characters CalculiX reads.
     let longest = spherecontact::calculix::inp::widest_number(&text);
     assert!((1..=20).contains(&longest), "a field of {longest} characters");
@@ -130,7 +141,8 @@ fn the_deck_holds_both_spheres_the_friction_and_one_step_per_path_step() {
 
 /// `job.dat` and `job.frd` as ccx 2.20 writes them (the line formats of a recorded run), for the
 /// tetrahedron: at time 2, sphere 1's far face carries (fx, fz) = (5, −40) N on the half, node 1
-/// sticks, node 2 slides (|q| = μ p), node 3 is open.
+/// sticks, node 2 slides (|q| = μ p), node 3 is open; the displacements (mm) are a uniform
+/// strain, u = (2e-4 z, 0, −1e-3 z), zero at time 1.
 const DAT: &str = "
  total force (fx,fy,fz) for set NFAR1 and time  0.1000000E+01
 
@@ -155,6 +167,40 @@ const FRD: &str = "    1C
  -1         2 1.00000E+00 0.00000E+00 0.00000E+00
  -1         3 0.00000E+00 1.00000E+00 0.00000E+00
  -3
+  100CL  101 1.000000000          10                     0    1           1
+ -4  DISP        4    1
+ -5  D1          1    2    1    0
+ -5  D2          1    2    2    0
+ -5  D3          1    2    3    0
+ -5  ALL         1    2    0    0    1ALL
+ -1         1 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         2 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         3 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         4 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         5 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         6 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         7 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         8 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         9 0.00000E+00 0.00000E+00 0.00000E+00
+ -1        10 0.00000E+00 0.00000E+00 0.00000E+00
+ -3
+  100CL  102 2.000000000          10                     0    2           1
+ -4  DISP        4    1
+ -5  D1          1    2    1    0
+ -5  D2          1    2    2    0
+ -5  D3          1    2    3    0
+ -5  ALL         1    2    0    0    1ALL
+ -1         1 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         2 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         3 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         4 2.00000E-04 0.00000E+00-1.00000E-03
+ -1         5 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         6 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         7 0.00000E+00 0.00000E+00 0.00000E+00
+ -1         8 1.00000E-04 0.00000E+00-5.00000E-04
+ -1         9 1.00000E-04 0.00000E+00-5.00000E-04
+ -1        10 1.00000E-04 0.00000E+00-5.00000E-04
+ -3
   100CL  102 2.000000000           3                     0    2           1
  -4  CONTACT     6    1
  -5  COPEN       1    4    1    1
@@ -169,6 +215,34 @@ const FRD: &str = "    1C
  9999
 ";
 
+/// The contact face's corner forces (x, y, z) [N] that the displacements of [`FRD`] at time 2
+/// give, computed apart from the reader: K u with the element's stiffness matrix
+/// (`tet10::stiffness`, exact on the straight element), f_y set to 0 on the symmetry plane
+/// y = 0 (nodes 0, 1, 4), the midside nodes' forces halved onto their edges' corners.
+fn corner_forces(mesh: &Body) -> [[f64; 3]; 3] {
+    let Body::Tet10(m) = mesh else {
+        unreachable!("the tetrahedron")
+    };
+    let x: [[f64; 3]; 10] = std::array::from_fn(|i| m.nodes[i]);
+    let lame = Lame::of(&Material {
+        young: 70e9,
+        poisson: 0.3,
+    });
+    let k = tet10::stiffness(&x, lame).unwrap();
+    let u: Vec<f64> = x.iter().flat_map(|p| [2e-4 * p[2], 0.0, -1e-3 * p[2]]).collect();
+    let mut f: Vec<[f64; 3]> = (0..10)
+        .map(|i| std::array::from_fn(|a| k[3 * i + a].iter().zip(&u).map(|(kij, uj)| kij * uj).sum()))
+        .collect();
+    for plane in [0, 1, 4] {
+        f[plane][1] = 0.0;
+    }
+    // Face [0, 1, 2, 4, 5, 6]: midside 4 on 0–1, 5 on 1–2, 6 on 2–0.
+    let beside = [[4, 6], [4, 5], [5, 6]];
+    std::array::from_fn(|c| {
+        std::array::from_fn(|a| f[c][a] + 0.5 * (f[beside[c][0]][a] + f[beside[c][1]][a]))
+    })
+}
+
 #[test]
 fn a_recorded_dat_and_frd_are_read_into_fem_3ds_layout() {
     let mesh = tetrahedron();
@@ -176,41 +250,93 @@ fn a_recorded_dat_and_frd_are_read_into_fem_3ds_layout() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("job.dat"), DAT).unwrap();
     std::fs::write(dir.path().join("job.frd"), FRD).unwrap();
-    let run = solid_read::read_back(dir.path(), &mesh, 1.1e-3, 0.2, &steps).unwrap();
+    let read = |frd: &str| {
+        std::fs::write(dir.path().join("job.frd"), frd).unwrap();
+        solid_read::read_back(dir.path(), &spec(&mesh, &steps))
+    };
+    let run = read(FRD).unwrap();
     // P and Q of the whole spheres: twice the half's reaction.
     assert_eq!(run.forces, [[0.0, 0.0], [80.0, 10.0]]);
     let surface = &run.surfaces[1];
     assert_eq!(surface.step, 1);
     // The corners of the contact face, fem-3d's points (by distance from the pole).
     assert_eq!(surface.nodes.len(), 3);
-    let by_x = |x: f64| surface.nodes.iter().find(|n| n.point == [x, 0.0]).unwrap();
-    let (pole, slider) = (by_x(0.0), by_x(1e-3));
-    assert_eq!(pole.pressure, 5e8);
-    // CalculiX's shear acts on the slave (sphere 1) against the shift: q_x = −CSHEAR1.
-    assert_eq!(pole.traction, [5e7, 0.0]);
+    let by_xy = |x: f64, y: f64| surface.nodes.iter().position(|n| n.point == [x, y]).unwrap();
+    let order = [by_xy(0.0, 0.0), by_xy(1e-3, 0.0), by_xy(0.0, 1e-3)];
+    // Requirement: the corner values are those whose hat averages (what the map measures read)
+    // are the recovered forces per hat area, F_c / (|T|/3). Reference: K u lumped onto the
+    // corners ([`corner_forces`]); tolerance 1e-9 of the largest, the round-off of the two paths
+    // (the stress divergence on the 4-point rule against the assembled matrix, and a 3 × 3 solve).
+    let forces = corner_forces(&mesh);
+    let largest = forces.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+    assert!(
+        largest > 1.0,
+        "a strain of 1e-3 (about 100 MPa) on hats of a sixth of a square millimetre: {largest} N"
+    );
+    let points: Vec<[f64; 2]> = surface.nodes.iter().map(|n| n.point).collect();
+    let hat = |values: Vec<f64>| hat_averages(&points, &[[0, 1, 2]], &values);
+    let pressure = hat(surface.nodes.iter().map(|n| n.pressure).collect());
+    let qx = hat(surface.nodes.iter().map(|n| n.traction[0]).collect());
+    let qy = hat(surface.nodes.iter().map(|n| n.traction[1]).collect());
+    let hat_area = 0.5e-6 / 3.0;
+    for (c, &j) in order.iter().enumerate() {
+        // The pressure pushes sphere 1 along +z; q is signed so that ∫ q_x dA = Q, against the
+        // contact's force on the sphere.
+        // q_y's corners on y = 0 are held at 0 (its mirrored map's hat averages there are 0),
+        // so its half-triangle average is checked off the plane only.
+        let expected = [forces[c][2], -forces[c][0], -forces[c][1]].map(|f| f / hat_area);
+        let components = if c == 2 { 3 } else { 2 };
+        for (got, want) in [pressure[j], qx[j], qy[j]]
+            .into_iter()
+            .zip(expected)
+            .take(components)
+        {
+            assert!(
+                (got - want).abs() <= 1e-9 * largest / hat_area,
+                "corner {c}: {got} against {want}"
+            );
+        }
+    }
+    // q_y is odd in y: 0 at the corners on the symmetry plane.
+    assert_eq!(
+        (
+            surface.nodes[order[0]].traction[1],
+            surface.nodes[order[1]].traction[1]
+        ),
+        (0.0, 0.0)
+    );
+    // The stick state and the slip are CalculiX's own (the CONTACT block).
+    let (pole, slider) = (&surface.nodes[order[0]], &surface.nodes[order[1]]);
     assert!(pole.stick && !slider.stick, "|q| < μp sticks, |q| = μp slides");
     assert!((slider.slip[0] - 2e-7).abs() < 1e-18);
-    let open = surface.nodes.iter().find(|n| n.point[1] > 0.0).unwrap();
-    assert_eq!((open.pressure, open.stick), (0.0, false));
+    assert!(!surface.nodes[order[2]].stick, "an open node does not stick");
     assert!(run.surfaces[0].nodes.iter().all(|n| n.pressure == 0.0));
-    // Garbage, a truncated file and an unbalanced pair of reactions are refused, named.
-    std::fs::write(
-        dir.path().join("job.frd"),
-        FRD.replace("5.00000E+02", "       NaN  "),
-    )
-    .unwrap();
-    let e = solid_read::read_back(dir.path(), &mesh, 1.1e-3, 0.2, &steps).unwrap_err();
-    assert!(e.contains("job.frd line 15"), "{e}");
-    std::fs::write(dir.path().join("job.frd"), FRD.replace(" -3\n 9999\n", "")).unwrap();
-    let e = solid_read::read_back(dir.path(), &mesh, 1.1e-3, 0.2, &steps).unwrap_err();
+    // Garbage, a truncated file, missing displacements and an unbalanced pair of reactions are
+    // refused, named.
+    let e = read(&FRD.replace("5.00000E+02", "       NaN  ")).unwrap_err();
+    assert!(e.contains("job.frd line 49"), "{e}");
+    let e = read(&FRD.replace(" -3\n 9999\n", "")).unwrap_err();
     assert!(e.contains("not closed"), "{e}");
+    let e = read(&FRD.replace(" -1         8 1.00000E-04", " -1         8 garbage!!!!")).unwrap_err();
+    assert!(
+        e.contains("job.frd line 37") && e.contains("three finite values"),
+        "{e}"
+    );
+    let e = read(&FRD.replace(" -1        10 1.00000E-04 0.00000E+00-5.00000E-04\n", "")).unwrap_err();
+    assert!(
+        e.contains("step 2") && e.contains("no displacement of node 10"),
+        "{e}"
+    );
+    let first_disp = &FRD[FRD.find("  100CL  101").unwrap()..FRD.find("  100CL  102").unwrap()];
+    let e = read(&FRD.replace(first_disp, "")).unwrap_err();
+    assert!(e.contains("no displacements") && e.contains("step 1"), "{e}");
     std::fs::write(dir.path().join("job.frd"), FRD).unwrap();
     std::fs::write(
         dir.path().join("job.dat"),
         DAT.replace("-5.000001E+00", "-6.000000E+00"),
     )
     .unwrap();
-    let e = solid_read::read_back(dir.path(), &mesh, 1.1e-3, 0.2, &steps).unwrap_err();
+    let e = solid_read::read_back(dir.path(), &spec(&mesh, &steps)).unwrap_err();
     assert!(e.contains("not in equilibrium"), "{e}");
 }
 

@@ -85,19 +85,7 @@ impl Mapped {
 /// degenerate there.
 pub fn map(x: &Coords, at: [f64; 3]) -> Option<Mapped> {
     let (n, dn) = shape(at);
-    let j = super::jacobian(x, &dn); // j[a][b] = ∂x_a/∂ξ_b
-                                     // Cofactors: (J⁻¹)_ba = cof_ab / det, and ∇_x N = J⁻ᵀ ∇_ξ N.
-    let cof = |a: usize, b: usize| {
-        let (r0, r1) = ((a + 1) % 3, (a + 2) % 3);
-        let (c0, c1) = ((b + 1) % 3, (b + 2) % 3);
-        j[r0][c0] * j[r1][c1] - j[r0][c1] * j[r1][c0]
-    };
-    let cofactor: [[f64; 3]; 3] = std::array::from_fn(|a| std::array::from_fn(|b| cof(a, b)));
-    let det: f64 = (0..3).map(|b| j[0][b] * cofactor[0][b]).sum();
-    if det.is_nan() || det <= 0.0 {
-        return None;
-    }
-    let grad = dn.map(|d| std::array::from_fn(|a| (0..3).map(|b| cofactor[a][b] * d[b]).sum::<f64>() / det));
+    let (grad, det) = super::physical_gradients(x, &dn)?;
     Some(Mapped { n, grad, det })
 }
 
