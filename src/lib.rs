@@ -72,6 +72,7 @@ pub mod scene;
 pub mod schedule;
 pub mod slurm;
 pub mod solver;
+pub mod stick_slope;
 pub mod team;
 pub mod text;
 pub mod verify;

@@ -76,6 +76,12 @@ pub trait Solver: Send + Sync {
         None
     }
 
+    /// The same solver with its stick regularised by `slope` (`[fem-3d] stick_slope`), for
+    /// fem-3d; `None` for the others.
+    fn with_stick_slope(&self, _slope: crate::stick_slope::StickSlope) -> Option<Box<dyn Solver>> {
+        None
+    }
+
     /// The same solver writing its volume or surface fields as VTU files (for ParaView) into
     /// `dir`; `None` for solvers without such fields.
     fn writing_fields_to(&self, _dir: &std::path::Path) -> Option<Box<dyn Solver>> {
@@ -233,6 +239,10 @@ impl Solver for Resolved {
     /// The same resolution with other CalculiX settings (a formulation sweep).
     fn with_calculix(&self, settings: &crate::calculix_settings::Settings) -> Option<Box<dyn Solver>> {
         self.inner.with_calculix(settings).map(|inner| self.around(inner))
+    }
+
+    fn with_stick_slope(&self, slope: crate::stick_slope::StickSlope) -> Option<Box<dyn Solver>> {
+        self.inner.with_stick_slope(slope).map(|inner| self.around(inner))
     }
 }
 

@@ -95,6 +95,7 @@ pub mod case_solvers;
 mod check_rules;
 mod domain;
 mod error;
+mod fem3d;
 pub mod impact;
 pub mod impact_closed_form;
 mod impact_raw;
@@ -125,6 +126,7 @@ use crate::pair::ContactPair;
 use crate::registry;
 use crate::scene::Scene;
 use crate::solver::Solver;
+use crate::stick_slope::StickSlope;
 use raw::RawCase;
 
 /// A validated case.
@@ -150,6 +152,8 @@ pub struct Case {
     pub tree: CaseTree,
     /// The CalculiX solvers' settings (`[calculix]`; the defaults when absent).
     pub calculix: crate::calculix_settings::Settings,
+    /// fem-3d's regularised stick (`[fem-3d] stick_slope`); `None`: exact Coulomb friction.
+    pub stick_slope: Option<StickSlope>,
     /// What kind of work the case is ([`labels::LABELS`]), in its order.
     pub labels: Vec<String>,
     /// The resolution chosen per solver (`[resolution]`, then `--resolution`), each value
@@ -219,7 +223,11 @@ impl Case {
             .map(CaseSolver::solver)
             .or_else(|| registry::by_name(name))?;
         let solver = solver.with_ranks(self.ranks).unwrap_or(solver);
-        Some(solver.with_calculix(&self.calculix).unwrap_or(solver))
+        let solver = solver.with_calculix(&self.calculix).unwrap_or(solver);
+        match self.stick_slope {
+            Some(slope) => Some(solver.with_stick_slope(slope).unwrap_or(solver)),
+            None => Some(solver),
+        }
     }
 
     /// Every solver the case needs: its own list, then those its checks refer to.
@@ -358,6 +366,10 @@ impl Validator<'_> {
             calculix: match &raw.calculix {
                 Some(table) => self.calculix(table)?,
                 None => Default::default(),
+            },
+            stick_slope: match &raw.fem3d {
+                Some(table) => self.fem3d(table)?,
+                None => None,
             },
             labels,
             resolution: BTreeMap::new(),

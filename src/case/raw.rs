@@ -25,6 +25,8 @@ pub struct RawCase {
     pub domain: Option<RawDomain>,
     pub resolution: Option<std::collections::BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
     pub calculix: Option<RawCalculix>,
+    #[serde(rename = "fem-3d")]
+    pub fem3d: Option<RawFem3d>,
     #[serde(default)]
     pub checks: Vec<RawCheck>,
     #[serde(default)]
@@ -69,6 +71,13 @@ pub struct RawCalculix {
     pub contact: Option<Spanned<String>>,
     pub penalty: Option<Spanned<f64>>,
     pub element: Option<Spanned<String>>,
+}
+
+/// The `[fem-3d]` table as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFem3d {
+    pub stick_slope: Option<Spanned<f64>>,
 }
 
 /// A body as written.

@@ -25,6 +25,7 @@ mod fem3d_element;
 mod fem3d_friction;
 mod fem3d_hertz;
 mod fem3d_mesh;
+mod fem3d_stick_slope;
 mod fem3d_surface;
 mod fem_element;
 mod fem_friction;

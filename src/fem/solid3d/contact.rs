@@ -38,8 +38,10 @@ pub fn normal(model: &Model) -> Result<DenseCompliance, DenseError> {
     DenseCompliance::try_new(matrix, weights(model), 1)
 }
 
-/// The tangential compliance per unit traction on (x, y) at every candidate, component-major.
-pub fn tangential(model: &Model) -> Result<DenseCompliance, DenseError> {
+/// The tangential compliance per unit traction on (x, y) at every candidate, component-major,
+/// with the elastic slip 1/(2λ) on its diagonal for a stick slope λ = `stick_slope` [Pa/m]
+/// ([`super::stick_slope`]).
+pub fn tangential(model: &Model, stick_slope: Option<f64>) -> Result<DenseCompliance, DenseError> {
     let m = model.surface.len();
     let (c, w) = (&model.condensed.tangential, &model.surface.weights);
     let index: Vec<usize> = model
@@ -57,6 +59,11 @@ pub fn tangential(model: &Model) -> Result<DenseCompliance, DenseError> {
     for j in (0..m).filter(|&j| model.surface.on_symmetry[j]) {
         matrix[(m + j, m + j)] = matrix[(j, j)];
     }
+    if let Some(slope) = stick_slope {
+        for i in 0..2 * m {
+            matrix[(i, i)] += 0.5 / slope;
+        }
+    }
     DenseCompliance::try_new(matrix, weights(model), 2)
 }
 
@@ -72,18 +79,20 @@ pub enum SetupError {
 }
 
 /// The engine on the model, with Coulomb friction μ = `friction` when `with_friction` (the
-/// tangential operator is built only then).
+/// tangential operator is built only then), its stick regularised by the slope `stick_slope`
+/// [Pa/m] when given ([`super::stick_slope`]).
 pub fn engine(
     model: &Model,
     friction: f64,
     with_friction: bool,
     settings: Settings,
+    stick_slope: Option<f64>,
 ) -> Result<SolidContact, SetupError> {
     let normal = normal(model)?;
     let contact: SolidContact = Contact::new(normal, model.surface.heights(), settings)?;
     if !with_friction {
         return Ok(contact);
     }
-    let tangential = tangential(model)?;
+    let tangential = tangential(model, stick_slope)?;
     Ok(contact.with_friction(tangential, FrictionSet::Disc, friction)?)
 }

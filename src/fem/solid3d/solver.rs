@@ -60,6 +60,7 @@ use crate::memory::{self, Budget};
 use crate::resolution::{PoleLimits, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
+use crate::stick_slope::StickSlope;
 
 /// Default pole element size in units of the path's largest contact radius: c_max/10 keeps P
 /// within 0.1 % of its mesh limit and the set-up near 20 s (`examples/fem3d_timing.rs`).
@@ -83,6 +84,9 @@ pub struct FemSolid3d {
     pub vtu_dir: Option<PathBuf>,
     /// Where the contact multipliers live (corners by default: see the module doc).
     pub rule: Rule,
+    /// The regularised stick's slope ([`crate::stick_slope`]); `None` (the default): exact
+    /// Coulomb friction.
+    pub stick_slope: Option<StickSlope>,
 }
 
 impl Default for FemSolid3d {
@@ -96,6 +100,7 @@ impl Default for FemSolid3d {
             },
             vtu_dir: None,
             rule: Rule::Corners,
+            stick_slope: None,
         }
     }
 }
@@ -205,6 +210,13 @@ impl Solver for FemSolid3d {
         pole::writing_fields_to(self, dir)
     }
 
+    fn with_stick_slope(&self, slope: StickSlope) -> Option<Box<dyn Solver>> {
+        Some(Box::new(FemSolid3d {
+            stick_slope: Some(slope),
+            ..self.clone()
+        }))
+    }
+
     /// A pole element size: `c/N` or a length, within [`SOLID_POLE`].
     fn at_resolution(&self, scene: &Scene, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
         pole::at_resolution(self, scene, value)
@@ -236,8 +248,17 @@ impl Solver for FemSolid3d {
         let h = self.pole_size(scene)?;
         let (model, candidate_radius, mesh_s) = self.model(scene, h)?;
         let mode = Tangential::of(scene);
-        let engine = contact::engine(&model, scene.friction, mode == Tangential::Solved, self.contact)
-            .map_err(|e| SolveError::Failed(e.to_string()))?;
+        let stick_slope = self
+            .stick_slope
+            .map(|s| s.per_metre(scene.pair.body1.material.young, h));
+        let engine = contact::engine(
+            &model,
+            scene.friction,
+            mode == Tangential::Solved,
+            self.contact,
+            stick_slope,
+        )
+        .map_err(|e| SolveError::Failed(e.to_string()))?;
         let mut walker = Walker::new(
             &model,
             scene,
@@ -255,6 +276,7 @@ impl Solver for FemSolid3d {
             pole_size: h,
             mode,
             method: self.contact.method,
+            stick_slope: self.stick_slope.zip(stick_slope),
             mesh_s,
             contact_s,
         };
@@ -269,6 +291,8 @@ struct Finished<'a> {
     pole_size: f64,
     mode: Tangential,
     method: Method,
+    /// The regularised stick's slope: its factor of E/h and λ [Pa/m].
+    stick_slope: Option<(StickSlope, f64)>,
     mesh_s: f64,
     contact_s: f64,
 }
@@ -297,8 +321,12 @@ impl Finished<'_> {
     fn model_text(&self) -> String {
         let friction = match self.mode {
             Tangential::Solved => format!(
-                "Coulomb friction μ = {} with history (disc friction set, q_y solved; Q_y = 0 by the symmetry of y = 0)",
-                self.scene.friction
+                "Coulomb friction μ = {} with history{} (disc friction set, q_y solved; Q_y = 0 by the symmetry of y = 0)",
+                self.scene.friction,
+                self.stick_slope.map_or_else(String::new, |(s, lambda)| format!(
+                    ", its stick regularised: stick slope λ = {} E/h = {lambda:.4e} Pa/m (a sticking point slips q/λ elastically)",
+                    s.factor()
+                )),
             ),
             Tangential::Zero => "μ = 0: Q = 0 exactly".into(),
             Tangential::Absent => "frictionless (no tangential motion)".into(),
@@ -331,6 +359,7 @@ impl Finished<'_> {
             ("condense_s", json!(t.condense)),
             ("contact_s", json!(self.contact_s)),
             ("contact_method", json!(format!("{:?}", self.method))),
+            ("stick_slope_pa_per_m", json!(self.stick_slope.map(|(_, lambda)| lambda))),
             ("increments", json!(increments)),
             (
                 "increment_median_s",
