@@ -161,47 +161,44 @@ const DAT: &str = "
        -5.000001E+00  1.281291E+01  4.000000E+01
 ";
 
-const FRD: &str = "    1C
-    2C                            20                                     1
- -1         1 0.00000E+00 0.00000E+00 0.00000E+00
- -1         2 1.00000E+00 0.00000E+00 0.00000E+00
- -1         3 0.00000E+00 1.00000E+00 0.00000E+00
- -3
-  100CL  101 1.000000000          10                     0    1           1
- -4  DISP        4    1
- -5  D1          1    2    1    0
- -5  D2          1    2    2    0
- -5  D3          1    2    3    0
- -5  ALL         1    2    0    0    1ALL
- -1         1 0.00000E+00 0.00000E+00 0.00000E+00
- -1         2 0.00000E+00 0.00000E+00 0.00000E+00
- -1         3 0.00000E+00 0.00000E+00 0.00000E+00
- -1         4 0.00000E+00 0.00000E+00 0.00000E+00
- -1         5 0.00000E+00 0.00000E+00 0.00000E+00
- -1         6 0.00000E+00 0.00000E+00 0.00000E+00
- -1         7 0.00000E+00 0.00000E+00 0.00000E+00
- -1         8 0.00000E+00 0.00000E+00 0.00000E+00
- -1         9 0.00000E+00 0.00000E+00 0.00000E+00
- -1        10 0.00000E+00 0.00000E+00 0.00000E+00
- -3
-  100CL  102 2.000000000          10                     0    2           1
- -4  DISP        4    1
- -5  D1          1    2    1    0
- -5  D2          1    2    2    0
- -5  D3          1    2    3    0
- -5  ALL         1    2    0    0    1ALL
- -1         1 0.00000E+00 0.00000E+00 0.00000E+00
- -1         2 0.00000E+00 0.00000E+00 0.00000E+00
- -1         3 0.00000E+00 0.00000E+00 0.00000E+00
- -1         4 2.00000E-04 0.00000E+00-1.00000E-03
- -1         5 0.00000E+00 0.00000E+00 0.00000E+00
- -1         6 0.00000E+00 0.00000E+00 0.00000E+00
- -1         7 0.00000E+00 0.00000E+00 0.00000E+00
- -1         8 1.00000E-04 0.00000E+00-5.00000E-04
- -1         9 1.00000E-04 0.00000E+00-5.00000E-04
- -1        10 1.00000E-04 0.00000E+00-5.00000E-04
- -3
-  100CL  102 2.000000000           3                     0    2           1
+/// The displacements (mm) of the tetrahedron's node `n` (0-based) at time 2: u = (2e-4 z, 0,
+/// −1e-3 z), z in mm.
+fn displacement(n: usize) -> [f64; 3] {
+    let z = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.5][n];
+    [2e-4 * z, 0.0, -1e-3 * z]
+}
+
+/// A `DISP` block of the `.frd` at output time `time` (its step's): the ten nodes' `u`.
+fn disp_block(time: u32, u: impl Fn(usize) -> [f64; 3]) -> String {
+    let mut text = format!(
+        "  100CL  10{time} {time}.000000000          10                     0    {time}           1\n \
+         -4  DISP        4    1\n -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n \
+         -5  D3          1    2    3    0\n -5  ALL         1    2    0    0    1ALL\n"
+    );
+    for n in 0..10 {
+        text += &record(n, u(n));
+    }
+    text + " -3\n"
+}
+
+/// The `-1` record of node `n` (0-based) with the values `[x, y, z]`.
+fn record(n: usize, [x, y, z]: [f64; 3]) -> String {
+    format!(" -1{:>10}{x:>12.5E}{y:>12.5E}{z:>12.5E}\n", n + 1)
+}
+
+/// `job.frd`: the nodes, the displacements at times 1 (zero) and 2, the contact block at time 2.
+fn frd() -> String {
+    format!(
+        "    1C\n    2C                            20                                     1\n \
+         -1         1 0.00000E+00 0.00000E+00 0.00000E+00\n -1         2 1.00000E+00 0.00000E+00 0.00000E+00\n \
+         -1         3 0.00000E+00 1.00000E+00 0.00000E+00\n -3\n{}{}{CONTACT} 9999\n",
+        disp_block(1, |_| [0.0; 3]),
+        disp_block(2, displacement),
+    )
+}
+
+/// The contact block of [`frd`] at time 2.
+const CONTACT: &str = "  100CL  102 2.000000000           3                     0    2           1
  -4  CONTACT     6    1
  -5  COPEN       1    4    1    1
  -5  CSLIP1      1    4    2    2
@@ -212,10 +209,9 @@ const FRD: &str = "    1C
  -1         1-1.00000E-05 1.00000E-06 0.00000E+00 5.00000E+02-5.00000E+01 0.00000E+00
  -1         2-5.00000E-06 2.00000E-04 1.00000E-05 2.00000E+02-4.00000E+01 0.00000E+00
  -3
- 9999
 ";
 
-/// The contact face's corner forces (x, y, z) [N] that the displacements of [`FRD`] at time 2
+/// The contact face's corner forces (x, y, z) [N] that the displacements of [`frd`] at time 2
 /// give, computed apart from the reader: K u with the element's stiffness matrix
 /// (`tet10::stiffness`, exact on the straight element), f_y set to 0 on the symmetry plane
 /// y = 0 (nodes 0, 1, 4), the midside nodes' forces halved onto their edges' corners.
@@ -249,12 +245,13 @@ fn a_recorded_dat_and_frd_are_read_into_fem_3ds_layout() {
     let steps = steps();
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("job.dat"), DAT).unwrap();
-    std::fs::write(dir.path().join("job.frd"), FRD).unwrap();
+    let recorded = frd();
+    std::fs::write(dir.path().join("job.frd"), &recorded).unwrap();
     let read = |frd: &str| {
         std::fs::write(dir.path().join("job.frd"), frd).unwrap();
         solid_read::read_back(dir.path(), &spec(&mesh, &steps))
     };
-    let run = read(FRD).unwrap();
+    let run = read(&recorded).unwrap();
     // P and Q of the whole spheres: twice the half's reaction.
     assert_eq!(run.forces, [[0.0, 0.0], [80.0, 10.0]]);
     let surface = &run.surfaces[1];
@@ -313,24 +310,24 @@ fn a_recorded_dat_and_frd_are_read_into_fem_3ds_layout() {
     assert!(run.surfaces[0].nodes.iter().all(|n| n.pressure == 0.0));
     // Garbage, a truncated file, missing displacements and an unbalanced pair of reactions are
     // refused, named.
-    let e = read(&FRD.replace("5.00000E+02", "       NaN  ")).unwrap_err();
+    let e = read(&recorded.replace("5.00000E+02", "       NaN  ")).unwrap_err();
     assert!(e.contains("job.frd line 49"), "{e}");
-    let e = read(&FRD.replace(" -3\n 9999\n", "")).unwrap_err();
+    let e = read(&recorded.replace(" -3\n 9999\n", "")).unwrap_err();
     assert!(e.contains("not closed"), "{e}");
-    let e = read(&FRD.replace(" -1         8 1.00000E-04", " -1         8 garbage!!!!")).unwrap_err();
+    let garbage = " -1         8 garbage!!!! garbage!!!! garbage!!!!\n";
+    let e = read(&recorded.replace(&record(7, displacement(7)), garbage)).unwrap_err();
     assert!(
         e.contains("job.frd line 37") && e.contains("three finite values"),
         "{e}"
     );
-    let e = read(&FRD.replace(" -1        10 1.00000E-04 0.00000E+00-5.00000E-04\n", "")).unwrap_err();
+    let e = read(&recorded.replace(&record(9, displacement(9)), "")).unwrap_err();
     assert!(
         e.contains("step 2") && e.contains("no displacement of node 10"),
         "{e}"
     );
-    let first_disp = &FRD[FRD.find("  100CL  101").unwrap()..FRD.find("  100CL  102").unwrap()];
-    let e = read(&FRD.replace(first_disp, "")).unwrap_err();
+    let e = read(&recorded.replace(&disp_block(1, |_| [0.0; 3]), "")).unwrap_err();
     assert!(e.contains("no displacements") && e.contains("step 1"), "{e}");
-    std::fs::write(dir.path().join("job.frd"), FRD).unwrap();
+    std::fs::write(dir.path().join("job.frd"), &recorded).unwrap();
     std::fs::write(
         dir.path().join("job.dat"),
         DAT.replace("-5.000001E+00", "-6.000000E+00"),
