@@ -44,6 +44,24 @@ pub struct SolidRun {
     pub surfaces: Vec<Surface3>,
     /// fem-3d's triangles of the corners (indices of the surface's nodes).
     pub triangles: Vec<[usize; 3]>,
+    /// (P, Q) that the maps carry at each computed step [N]: twice the recovered forces' sums
+    /// over the corners, to be compared with [`SolidRun::forces`] (equal to the `.frd`'s digits
+    /// when the contact lies within the candidate faces).
+    pub forces_map: Vec<[f64; 2]>,
+}
+
+impl SolidRun {
+    /// The largest disagreement of the maps' P and Q with the reaction's, relative to the
+    /// largest P and 1 N.
+    pub fn map_mismatch(&self) -> f64 {
+        let scale = self.forces.iter().map(|f| f[0].abs()).fold(1.0, f64::max);
+        self.forces
+            .iter()
+            .zip(&self.forces_map)
+            .flat_map(|(f, m)| [(f[0] - m[0]).abs(), (f[1] - m[1]).abs()])
+            .fold(0.0, f64::max)
+            / scale
+    }
 }
 
 /// Reads `job.dat` and `job.frd` in `dir` for the deck written from `spec`.
@@ -68,6 +86,7 @@ pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
     let mut run = SolidRun {
         forces: Vec::with_capacity(n),
         forces_plane: Vec::with_capacity(n),
+        forces_map: Vec::with_capacity(n),
         surfaces: Vec::with_capacity(n),
         triangles: surface.triangles.clone(),
     };
@@ -99,7 +118,10 @@ pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
         let displacement = frd
             .displacement_at_step(k)
             .ok_or_else(|| format!("job.frd: no displacements (DISP of NREAD1) at step {}", k + 1))?;
-        let values = recovery.hat_values(&recovery.corner_forces(displacement, k + 1)?);
+        let forces = recovery.corner_forces(displacement, k + 1)?;
+        let sum = |a: usize| 2.0 * forces.iter().map(|f| f[a]).sum::<f64>() + 0.0;
+        run.forces_map.push([sum(2), -sum(0)]);
+        let values = recovery.hat_values(&forces);
         let nodes = corner_values(block, &surface, &values, spec.friction);
         run.forces.push(on_far);
         run.forces_plane.push(on_other);

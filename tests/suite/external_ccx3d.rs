@@ -294,6 +294,12 @@ fn a_recorded_dat_and_frd_are_read_into_fem_3ds_layout() {
             );
         }
     }
+    // The maps' P and Q (for the comparison with the reaction): twice the corner forces' sums,
+    // Q against the contact's force on sphere 1.
+    let sum = |a: usize| 2.0 * forces.iter().map(|f| f[a]).sum::<f64>();
+    let [p_map, q_map] = run.forces_map[1];
+    assert!((p_map - sum(2)).abs() <= 1e-9 * largest && (q_map + sum(0)).abs() <= 1e-9 * largest);
+    assert_eq!(run.forces_map[0], [0.0, 0.0]);
     // q_y is odd in y: 0 at the corners on the symmetry plane.
     assert_eq!(
         (
