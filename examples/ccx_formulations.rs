@@ -11,13 +11,15 @@
 //! - **3D** (a case listing `ccx-3d`, e.g. `cases-heavy/ccx-3d-maps.toml`): `ccx-3d` beside
 //!   fem-3d at the pole size c_max/N (N the third argument; default the case's); P and Q against
 //!   mdr-domain, and at the focus position the q_y ratio and the stick semi-axes against fem-3d
-//!   on the same mesh (mdr-domain is axisymmetric: it has no map). Where CalculiX's pressures
-//!   reach the outermost candidate ring (its metadata's warning: a mesh too coarse for its
-//!   maps) the map columns print "edge".
+//!   on the same mesh (mdr-domain is axisymmetric: it has no map). Where the contact's forces
+//!   reach the outermost candidate ring (ccx-3d's metadata warning: the contact may reach beyond
+//!   the candidate faces, which the maps do not see) the map columns mark their values with *.
 //!
-//! Run: `cargo run --release --example ccx_formulations [CASE] [PENALTIES] [N]`, e.g.
+//! Run: `cargo run --release --example ccx_formulations [CASE] [PENALTIES] [N] [FORMULATIONS]`
+//! (FORMULATIONS a comma-separated list of `[calculix] contact` names; default all), e.g.
 //! `cargo run --release --example ccx_formulations cases-heavy/ccx-formulations.toml 1e2,1e3,1e4`
-//! or `cargo run --release --example ccx_formulations cases-heavy/ccx-3d-maps.toml 1e3 2`
+//! or `cargo run --release --example ccx_formulations cases-heavy/ccx-3d-maps.toml 1e3 2
+//! face-to-face,mortar,linmortar,pglinmortar`
 //! (needs gmsh and ccx: scripts/setup.sh; minutes a formulation).
 
 use std::path::Path;
@@ -70,8 +72,8 @@ struct References<'a> {
     columns: &'a [Column],
 }
 
-/// Whether CalculiX's nodal pressures reach the outermost candidate ring (ccx-3d's warning): its
-/// maps are not the contact's there.
+/// Whether the contact's forces reach the outermost candidate ring (ccx-3d's warning): the maps
+/// may miss contact beyond the candidate faces.
 fn edge_loaded(history: &History) -> bool {
     history
         .metadata
@@ -104,7 +106,7 @@ fn cells(history: &History, references: &References) -> Vec<String> {
             let at_focus = error(focus).unwrap_or(f64::NAN);
             if *on_map {
                 return if edge_loaded(history) {
-                    format!("{:>10}", "edge")
+                    format!("{:>10}", format!("{}*", cell(at_focus).trim_start()))
                 } else {
                     cell(at_focus)
                 };
@@ -218,8 +220,13 @@ fn main() {
     let fem_history = row(&format!("{fem} (same mesh)"), fem_solver.as_ref(), &references);
     references.fem = fem_history.as_ref();
     let ccx_solver = case.solver(ccx).expect("built in");
+    let formulations: Vec<Formulation> = args.get(3).map_or(Formulation::ALL.to_vec(), |list| {
+        list.split(',')
+            .map(|name| Settings::formulation(name).unwrap_or_else(|e| panic!("{e}")))
+            .collect()
+    });
     for penalty in penalties {
-        for formulation in Formulation::ALL {
+        for &formulation in &formulations {
             let settings = Settings {
                 formulation,
                 penalty: Settings::penalty(penalty).unwrap_or_else(|e| panic!("{e}")),
