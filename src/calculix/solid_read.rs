@@ -120,7 +120,7 @@ pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
             .ok_or_else(|| format!("job.frd: no displacements (DISP of NREAD1) at step {}", k + 1))?;
         let forces = recovery.corner_forces(displacement, k + 1)?;
         let sum = |a: usize| 2.0 * forces.iter().map(|f| f[a]).sum::<f64>() + 0.0;
-        run.forces_map.push([sum(2), -sum(0)]);
+        run.forces_map.push([sum(2), -sum(0) + 0.0]);
         let values = recovery.hat_values(&forces);
         let nodes = corner_values(block, &surface, &values, spec.friction);
         run.forces.push(on_far);
