@@ -62,7 +62,7 @@ fn median(mut values: Vec<f64>) -> f64 {
 /// The frictionless engine along δn = 1 … 25 µm in 1 µm increments (the loading of
 /// cases/hertz-normal.toml): median wall and CPU time of one increment.
 fn normal_increments(model: &Model) {
-    let mut engine = contact::engine(model, 0.0, false, ContactSettings::default()).unwrap();
+    let mut engine = contact::engine(model, 0.0, false, ContactSettings::default(), None).unwrap();
     let (mut wall, mut cpu) = (Vec::new(), Vec::new());
     for k in 1..=25 {
         let (start, cpu0) = (Instant::now(), process_cpu_seconds());
@@ -102,13 +102,13 @@ fn spectrum(label: &str, op: &mut dyn Compliance) {
 
 fn report(label: &str, model: &Model, pair: &ContactPair, friction: bool) {
     spectrum("normal", &mut contact::normal(model).unwrap());
-    spectrum("tangential", &mut contact::tangential(model).unwrap());
+    spectrum("tangential", &mut contact::tangential(model, None).unwrap());
     normal_increments(model);
     let t = model.times;
     let hertz = spherecontact::hertz::Hertz::of(pair);
     let d = 17e-6;
     let start = Instant::now();
-    let mut engine = contact::engine(model, 0.2, friction, ContactSettings::default()).unwrap();
+    let mut engine = contact::engine(model, 0.2, friction, ContactSettings::default(), None).unwrap();
     engine.advance(0.5 * d, &[0.0, 0.0]).unwrap();
     let solve = start.elapsed().as_secs_f64();
     let force = engine.normal_force();
