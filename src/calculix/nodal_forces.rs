@@ -29,9 +29,10 @@
 //! y, so its corner values on y = 0 are 0 (the mirrored map's values there), the others solved
 //! with them fixed.
 //!
-//! Precision: the `.frd` prints the displacements with 6 digits, so a recovered force is exact
-//! to about 1e-5 of the forces the element's strain carries (measured on the c_max/5 maps case:
-//! the half model's Σ f = (−67.55, 404.62) N against the far face's (67.55, 404.62) N).
+//! Precision: the `.frd` prints the displacements with 6 digits, and that is all the recovery
+//! loses: the maps' P and Q against the far face's reactions, −7.5e-7 and −6.4e-6 on
+//! `cases/ccx-3d.toml` (C3D10), 7.3e-6 of P on `cases-heavy/ccx-3d-hex20.toml` (C3D20R); every
+//! run checks it ([`super::solid_read::SolidRun::map_mismatch`]).
 
 use std::collections::{HashMap, HashSet};
 
@@ -57,6 +58,7 @@ pub struct ForceRecovery {
     on_plane: HashSet<usize>,
     /// Each corner's node and the midside nodes of its faces' edges.
     corners: Vec<(usize, Vec<usize>)>,
+    /// The material (CalculiX's E and ν).
     lame: Lame,
     /// The hats' mass matrix, factored: for p and q_x, and for q_y with its corners on y = 0
     /// fixed (their rows and columns the identity's).

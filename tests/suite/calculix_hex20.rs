@@ -180,12 +180,31 @@ fn the_shipped_brick_case_passes_its_checks_against_fem_3d_and_mdr_domain() {
                 .join(" | ")
         );
     }
+    // fem-3d carries the bricks' stick slope, and the report says so.
+    assert!(
+        section.paragraphs[0].contains("same stick slope"),
+        "{}",
+        section.paragraphs[0]
+    );
     // The case's checks (P and Q at every position against fem-3d and mdr-domain, each with its
-    // measured reason) are the assertions; none may be N/A here, ccx being present.
+    // measured reason) are the assertions; none may be N/A here, ccx being present. Q at position
+    // 3 against fem-3d is face-to-face's known failure (Q rises while δn rises at constant δt).
     for o in &run.outcomes {
         eprintln!("{:?} {:?} error {:?}", o.verdict, o.spec, o.error);
-        assert_eq!(o.verdict, spherecontact::check::Verdict::Ok, "{:?}", o.spec);
+        let expected = if o.spec.known_failure.is_some() {
+            spherecontact::check::Verdict::Known
+        } else {
+            spherecontact::check::Verdict::Ok
+        };
+        assert_eq!(o.verdict, expected, "{:?}", o.spec);
     }
+    assert_eq!(
+        run.outcomes
+            .iter()
+            .filter(|o| o.spec.known_failure.is_some())
+            .count(),
+        1
+    );
     assert!(run.passed());
     assert_eq!(section.tables[0].rows.len(), 5);
 }
