@@ -78,11 +78,11 @@ impl ForceRecovery {
         faces: &[Vec<usize>],
         corners: &Corners,
     ) -> Result<Self, String> {
-        let elements = elements_at(mesh, faces)
+        let face_nodes = nodes_of(faces);
+        let elements = elements_at(mesh, &face_nodes)
             .into_iter()
             .map(|e| Ok((native(mesh, e).to_vec(), integration(mesh, element, e)?)))
             .collect::<Result<_, String>>()?;
-        let face_nodes: HashSet<usize> = faces.iter().flatten().copied().collect();
         let on_plane: HashSet<usize> = mesh
             .symmetry_nodes()
             .into_iter()
@@ -174,15 +174,20 @@ impl ForceRecovery {
                     .iter()
                     .map(at)
                     .fold([0.0; 3], |s, m| std::array::from_fn(|a| s[a] + m[a]));
-                std::array::from_fn(|a| at(c)[a] + 0.5 * half[a])
+                let own = at(c);
+                std::array::from_fn(|a| own[a] + 0.5 * half[a])
             })
             .collect())
     }
 }
 
-/// The elements of `mesh` with a node on one of `faces`, in increasing order.
-fn elements_at(mesh: &Body, faces: &[Vec<usize>]) -> Vec<usize> {
-    let face_nodes: HashSet<usize> = faces.iter().flatten().copied().collect();
+/// The distinct nodes of `faces`.
+fn nodes_of(faces: &[Vec<usize>]) -> HashSet<usize> {
+    faces.iter().flatten().copied().collect()
+}
+
+/// The elements of `mesh` with a node among `face_nodes`, in increasing order.
+fn elements_at(mesh: &Body, face_nodes: &HashSet<usize>) -> Vec<usize> {
     (0..mesh.element_count())
         .filter(|&e| native(mesh, e).iter().any(|n| face_nodes.contains(n)))
         .collect()
@@ -191,7 +196,7 @@ fn elements_at(mesh: &Body, faces: &[Vec<usize>]) -> Vec<usize> {
 /// The nodes of the elements with a node on one of `faces`, sorted: the nodes whose
 /// displacements the recovery reads (the deck's `NREAD1`).
 pub fn read_nodes(mesh: &Body, faces: &[Vec<usize>]) -> Vec<usize> {
-    let mut nodes: Vec<usize> = elements_at(mesh, faces)
+    let mut nodes: Vec<usize> = elements_at(mesh, &nodes_of(faces))
         .into_iter()
         .flat_map(|e| native(mesh, e).to_vec())
         .collect();
@@ -248,8 +253,9 @@ fn integration(mesh: &Body, element: Element, e: usize) -> Result<Vec<GradientPo
 }
 
 /// The factored mass matrix of the corners' hats on their triangles, M_ck = ∫ L_c L_k dA over the
-/// triangles projected on the contact plane (on a triangle T, |T| (1 + δ_ck)/12), with the
-/// corners `fixed` (and any corner in no triangle) held: their rows and columns the identity's.
+/// triangles projected on the contact plane (on a triangle T, |T| (1 + δ_ck)/12: the matrix that
+/// [`crate::fit::recovery::hat_averages`] applies, divided there by ∫ L_c dA), with the corners
+/// `fixed` (and any corner in no triangle) held: their rows and columns the identity's.
 fn mass_factor(corners: &Corners, fixed: &[usize]) -> Result<Factor, String> {
     let n = corners.nodes.len();
     let mut held = vec![true; n];

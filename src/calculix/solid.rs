@@ -16,8 +16,8 @@
 //! P and Q from the far face's reaction, the maps at the candidate faces' corners (pressure and
 //! traction from the contact's nodal forces, recovered from the displacements CalculiX writes;
 //! gap, slip and stick from its contact output), all read from CalculiX's own output
-//! ([`super::solid_read`], [`super::nodal_forces`]), in fem-3d's surface layout. The `.inp` ([`super::solid_inp`], template `templates/calculix_3d.inp`) is
-//! self-contained.
+//! ([`super::solid_read`], [`super::nodal_forces`]), in fem-3d's surface layout. The `.inp`
+//! ([`super::solid_inp`], template `templates/calculix_3d.inp`) is self-contained.
 //!
 //! Model and findings: docs/external-decks.md, "CalculiX 3D".
 

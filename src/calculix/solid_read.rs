@@ -137,10 +137,10 @@ pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
 /// `values` of the contact's recovered forces on sphere 1 (f_z, f_x, f_y per area,
 /// [`ForceRecovery::hat_values`]), the rest from one `CONTACT` block (a point without a record
 /// is open and unloaded). The pressure pushes sphere 1 along +z; the traction is signed so that
-/// ∫ q_x dA = Q, the force on the far face, opposite to the contact's force on the sphere. CalculiX's tangential
-/// directions on the plate's faces are global x and y (its master faces lie in z = 0); its shear
-/// is the traction on the slave, the sphere, and its slip that of the sphere against the plate,
-/// half the relative slip of the two spheres.
+/// ∫ q_x dA = Q, the force on the far face, opposite to the contact's force on the sphere.
+/// CalculiX's tangential directions on the plate's faces are global x and y (its master faces lie
+/// in z = 0); its shear is the traction on the slave, the sphere, and its slip that of the sphere
+/// against the plate, half the relative slip of the two spheres.
 fn corner_values(block: &ContactBlock, surface: &Corners, values: &[Vec<f64>; 3], mu: f64) -> Vec<Node3> {
     surface
         .nodes

@@ -40,7 +40,7 @@ pub fn normal(model: &Model) -> Result<DenseCompliance, DenseError> {
 
 /// The tangential compliance per unit traction on (x, y) at every candidate, component-major,
 /// with the elastic slip 1/(2λ) on its diagonal for a stick slope λ = `stick_slope` [Pa/m]
-/// ([`super::stick_slope`]).
+/// ([`crate::stick_slope`]).
 pub fn tangential(model: &Model, stick_slope: Option<f64>) -> Result<DenseCompliance, DenseError> {
     let m = model.surface.len();
     let (c, w) = (&model.condensed.tangential, &model.surface.weights);
@@ -80,7 +80,7 @@ pub enum SetupError {
 
 /// The engine on the model, with Coulomb friction μ = `friction` when `with_friction` (the
 /// tangential operator is built only then), its stick regularised by the slope `stick_slope`
-/// [Pa/m] when given ([`super::stick_slope`]).
+/// [Pa/m] when given ([`crate::stick_slope`]).
 pub fn engine(
     model: &Model,
     friction: f64,
