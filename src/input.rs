@@ -4,13 +4,16 @@
 //! non-blocking and judged by its own metadata), and a file larger than
 //! [`MAX_INPUT_BYTES`](crate::limits::MAX_INPUT_BYTES) is refused before it is read. The same
 //! opening ([`open_regular`]) serves every file a case names (stored results, with their own
-//! limit).
+//! limit), and [`foreign`] reads by one rule the files that come from elsewhere (baselines, run
+//! files, deck folders).
 
 use std::fs::File;
 use std::io::{self, Read};
 use std::path::Path;
 
 use crate::limits::MAX_INPUT_BYTES;
+
+pub mod foreign;
 
 /// The text of the regular file at `path`, at most [`MAX_INPUT_BYTES`] long.
 ///
@@ -124,6 +127,14 @@ fn open_without_blocking(path: &Path, links: Links) -> io::Result<File> {
         options.custom_flags(libc::O_NONBLOCK | no_follow);
     }
     options.open(path)
+}
+
+/// The 1-based line and column of byte `offset` in `text`.
+pub fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
 }
 
 /// What kind of file this is, in words.

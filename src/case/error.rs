@@ -3,6 +3,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::input::line_and_column;
 use crate::number::Short;
 use crate::text::one_line;
 
@@ -146,14 +147,6 @@ fn shorten_numbers(text: &str) -> String {
     }
     out.push_str(rest);
     out
-}
-
-/// The 1-based line and column of byte `offset` in `text`.
-pub fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, column)
 }
 
 impl fmt::Display for CaseError {
