@@ -32,21 +32,52 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use crate::check::{Drift, Histories, Verdict};
+use crate::input::foreign::{self, ForeignError};
+use crate::plan::Member;
 use crate::verify::CaseRun;
+
+mod shape;
+pub use shape::Shape;
 
 /// The baselines' folder, relative to the current folder (as `cases/` is).
 pub const DIR: &str = "reference/baselines";
 
-/// Why a baseline file cannot be used (bad input: exit code 2).
+/// Why a baseline file cannot be used (bad input: exit code 2). A baseline is a file from
+/// elsewhere (a pull request can add one): it is read by [`crate::input::foreign`], and no
+/// message quotes it.
 #[derive(Debug, thiserror::Error)]
 pub enum BaselineError {
-    /// The file cannot be read.
-    #[error("{}: cannot read the baseline: {error}", file.display())]
-    Read { file: PathBuf, error: std::io::Error },
-    /// The file is not a baseline.
-    #[error("{}: not a baseline (written by `spherecontact baseline update`): {error}", file.display())]
-    Parse { file: PathBuf, error: String },
+    /// The file cannot be read, or is not a baseline.
+    #[error("{0}")]
+    Foreign(#[from] ForeignError),
+    /// A `--baselines` folder that is not one.
+    #[error(
+        "--baselines {}: not a folder (allowed: a folder of baselines written by `spherecontact baseline \
+         update`)",
+        .0.display()
+    )]
+    Folder(PathBuf),
+    /// An entry that does not fit its case: the case changed since, or the file was edited.
+    #[error(
+        "{}: {entry}: {problem} (a baseline holds its case's checks, steps and solvers as `spherecontact \
+         baseline update` wrote them: run it again if the case changed)",
+        file.display()
+    )]
+    Stale {
+        /// The file.
+        file: PathBuf,
+        /// The entry, as `checks[3]` or `solvers`.
+        entry: String,
+        /// What does not fit, and what is allowed.
+        problem: String,
+    },
 }
+
+/// The largest baseline file [bytes] (16 MiB): the shipped ones are under 8 KB, and a baseline
+/// of every judged value of the longest shipped path (the paper case: about 600 checks over its
+/// 101 steps, some 60 bytes a value) under 4 MB; TOML parsing takes about 30 bytes of memory a
+/// byte, 0.5 GB at the limit.
+pub const MAX_BASELINE_BYTES: u64 = 16 << 20;
 
 /// The non-regression tolerance of a solver's values (relative) and its reason.
 pub fn tolerance(solver: &str) -> (f64, &'static str) {
@@ -240,6 +271,23 @@ pub fn key(spec: &crate::check::CheckSpec) -> String {
     )
 }
 
+/// What a baseline file is, as its errors say.
+const FORM: &str =
+    "a baseline written by `spherecontact baseline update`: its case, [solvers.NAME] and [[checks]]";
+
+/// The first line of every baseline file ([`Baseline::to_toml`]).
+const HEADER: &str = "# Non-regression baseline of case `";
+
+/// True when `file` is a regular `<case>.toml` file that opens as the harness's baselines do:
+/// what a baselines' folder without its marker may hold ([`crate::io::OutputFolder::claim_recognising`]).
+pub fn is_baseline_file(file: &Path) -> bool {
+    let mut head = [0; HEADER.len()];
+    file.extension().is_some_and(|e| e == "toml")
+        && std::fs::symlink_metadata(file).is_ok_and(|m| m.is_file())
+        && std::fs::File::open(file).is_ok_and(|mut f| std::io::Read::read_exact(&mut f, &mut head).is_ok())
+        && head == HEADER.as_bytes()
+}
+
 /// The file of case `name` under `dir`.
 pub fn file(dir: &Path, name: &str) -> PathBuf {
     dir.join(format!("{name}.toml"))
@@ -267,26 +315,17 @@ impl Baseline {
         }
     }
 
-    /// The baseline of case `name` in `dir`, or `None` when it has none.
-    pub fn load(dir: &Path, name: &str) -> Result<Option<Self>, BaselineError> {
-        let file = file(dir, name);
-        if !file.exists() {
+    /// The baseline of `case` in `dir`, checked against it ([`Shape`]), or `None` when it has
+    /// none (nothing at its name: a dangling link is an error, as is any other kind of file).
+    pub fn load(dir: &Path, case: &Shape) -> Result<Option<Self>, BaselineError> {
+        let file = file(dir, &case.name);
+        if std::fs::symlink_metadata(&file).is_err() {
             return Ok(None);
         }
-        let text = crate::input::read_text(&file).map_err(|error| BaselineError::Read {
-            file: file.clone(),
-            error,
-        })?;
-        let baseline: Baseline = toml::from_str(&text).map_err(|e| BaselineError::Parse {
-            file: file.clone(),
-            error: e.to_string(),
-        })?;
-        if baseline.case != name {
-            return Err(BaselineError::Parse {
-                file,
-                error: format!("it is case `{}`'s, not `{name}`'s", baseline.case),
-            });
-        }
+        let text = foreign::read_text(&file, MAX_BASELINE_BYTES)?;
+        let baseline: Baseline = foreign::parse_toml(&file, &text, FORM)?;
+        case.admits(&baseline)
+            .map_err(|(entry, problem)| BaselineError::Stale { file, entry, problem })?;
         Ok(Some(baseline))
     }
 
@@ -296,8 +335,11 @@ impl Baseline {
     }
 
     /// Compares every check of `run` that has an entry: sets its drift, and its verdict to
-    /// DRIFT when the change exceeds the tolerance (a NOOK stays NOOK).
-    pub fn compare(&self, run: &mut (impl Baselined + ?Sized)) {
+    /// DRIFT when the change exceeds the tolerance (a NOOK stays NOOK) or when the baseline
+    /// records another resolution of one of its solvers than the run's. The checks of a solver
+    /// in `chosen` (a resolution chosen on the command line, `--resolution`) are not compared:
+    /// a baseline belongs to the case's own resolution.
+    pub fn compare(&self, run: &mut (impl Baselined + ?Sized), chosen: &[String]) {
         for (check, judgement) in run.judgements().into_iter().enumerate() {
             let Some(record) = self
                 .checks
@@ -309,51 +351,72 @@ impl Baseline {
             let Some(value) = run.value_at(check, record.step) else {
                 continue;
             };
-            let same_resolution =
-                judgement
-                    .solvers
-                    .iter()
-                    .all(|name| match (self.solvers.get(name), run.resolution(name)) {
-                        (Some(stored), Some(now)) => stored.resolution == now,
-                        _ => false,
-                    });
-            if !same_resolution {
+            if judgement.solvers.iter().any(|name| chosen.contains(name)) {
                 continue;
             }
-            // Scaled by the magnitude of the quantity judged: for a profile the value is an RMS
-            // difference, some 1e-4 of its reference's peak, and scaling by it would amplify the
-            // external decks' last-bit noise by that cancellation (measured: FreeFEM's profile
-            // RMS moved 4.4e-9 of itself run to run, 1.5e-13 of the peak).
-            let reference = judgement.reference.map_or(0.0, f64::abs);
-            let (difference, scale) = (
-                (value - record.value).abs(),
-                record.value.abs().max(value.abs()).max(reference),
-            );
-            let change = if difference == 0.0 {
-                0.0
-            } else {
-                difference / scale
+            // A solver that did not run now has no resolution: nothing to compare.
+            let Some(now) = judgement
+                .solvers
+                .iter()
+                .map(|name| run.resolution(name))
+                .collect::<Option<Vec<String>>>()
+            else {
+                continue;
             };
-            let tolerance = check_tolerance(&judgement.solvers);
-            let verdict = if change > tolerance && judgement.verdict != Verdict::Nook {
-                Verdict::Drift
-            } else {
-                judgement.verdict
-            };
-            let drift = Drift {
-                baseline: record.value,
-                change,
-                tolerance,
+            let other = judgement
+                .solvers
+                .iter()
+                .zip(&now)
+                .find(|(name, now)| self.solvers.get(*name).map(|s| &s.resolution) != Some(now))
+                .map(|(name, _)| name);
+            let (drift, verdict) = match other {
+                Some(solver) => (
+                    Drift::OtherResolution {
+                        solver: solver.clone(),
+                    },
+                    Verdict::Drift,
+                ),
+                None => self.measured(&judgement, record.value, value),
             };
             run.mark(check, drift, verdict);
         }
+    }
+
+    /// The drift of `judgement`'s `value` from its baseline's `stored` value, and its verdict.
+    fn measured(&self, judgement: &Judgement, stored: f64, value: f64) -> (Drift, Verdict) {
+        // Scaled by the magnitude of the quantity judged: for a profile the value is an RMS
+        // difference, some 1e-4 of its reference's peak, and scaling by it would amplify the
+        // external decks' last-bit noise by that cancellation (measured: FreeFEM's profile
+        // RMS moved 4.4e-9 of itself run to run, 1.5e-13 of the peak).
+        let reference = judgement.reference.map_or(0.0, f64::abs);
+        let (difference, scale) = (
+            (value - stored).abs(),
+            stored.abs().max(value.abs()).max(reference),
+        );
+        let change = if difference == 0.0 {
+            0.0
+        } else {
+            difference / scale
+        };
+        let tolerance = check_tolerance(&judgement.solvers);
+        let verdict = if change > tolerance && judgement.verdict != Verdict::Nook {
+            Verdict::Drift
+        } else {
+            judgement.verdict
+        };
+        let drift = Drift::Measured {
+            baseline: stored,
+            change,
+            tolerance,
+        };
+        (drift, verdict)
     }
 
     /// The file's text: a header, the solvers, the checks (values round-trip exact).
     pub fn to_toml(&self) -> String {
         let string = |s: &str| toml::Value::String(s.to_owned()).to_string();
         let mut text = format!(
-            "# Non-regression baseline of case `{}`: each check's computed value when last accepted,\n\
+            "{HEADER}{}`: each check's computed value when last accepted,\n\
              # with each solver's version, resolution and wall time. Written by\n\
              # `spherecontact baseline update`; `verify` reports a change beyond the solvers'\n\
              # tolerance as DRIFT (src/baseline.rs).\ncase = {}\n",
@@ -405,28 +468,37 @@ pub fn two_digits(x: f64) -> f64 {
     }
 }
 
-/// The baselines of the cases named found in `dir`, by case name.
+/// The baselines in `dir` of `cases`, each checked against its case, by case name. A folder
+/// that does not exist is an error (a typo in `--baselines` would turn the check off unseen),
+/// except the default [`DIR`] (cases verified outside a repository have none).
 pub fn load_all<'a>(
     dir: &Path,
-    names: impl IntoIterator<Item = &'a str>,
+    cases: impl IntoIterator<Item = &'a Member>,
 ) -> Result<BTreeMap<String, Baseline>, BaselineError> {
     let mut baselines = BTreeMap::new();
-    for name in names {
-        if let Some(baseline) = Baseline::load(dir, name)? {
-            baselines.insert(name.to_owned(), baseline);
+    if !dir.is_dir() {
+        if dir == Path::new(DIR) && std::fs::symlink_metadata(dir).is_err() {
+            return Ok(baselines);
+        }
+        return Err(BaselineError::Folder(dir.to_path_buf()));
+    }
+    for case in cases {
+        if let Some(baseline) = Baseline::load(dir, &Shape::of(case))? {
+            baselines.insert(case.name().to_owned(), baseline);
         }
     }
     Ok(baselines)
 }
 
-/// Compares every run with its case's baseline, if any.
+/// Compares every run with its case's baseline, if any; `chosen` as for [`Baseline::compare`].
 pub fn compare_all<'a>(
     baselines: &BTreeMap<String, Baseline>,
     runs: impl IntoIterator<Item = &'a mut dyn Baselined>,
+    chosen: &[String],
 ) {
     for run in runs {
         if let Some(baseline) = baselines.get(run.case_name()) {
-            baseline.compare(run);
+            baseline.compare(run, chosen);
         }
     }
 }

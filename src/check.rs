@@ -217,14 +217,24 @@ pub struct Outcome {
 
 /// A check's value against the value stored in its baseline.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Drift {
-    /// The value stored.
-    pub baseline: f64,
-    /// |value − baseline| / max(|baseline|, |value|, |reference|) at the baseline's step (the
-    /// reference's magnitude: a profile's value is a small RMS difference): 0 when equal.
-    pub change: f64,
-    /// The largest change accepted for this check's solvers.
-    pub tolerance: f64,
+pub enum Drift {
+    /// Compared at the baseline's step.
+    Measured {
+        /// The value stored.
+        baseline: f64,
+        /// |value − baseline| / max(|baseline|, |value|, |reference|) at the baseline's step (the
+        /// reference's magnitude: a profile's value is a small RMS difference): 0 when equal.
+        change: f64,
+        /// The largest change accepted for this check's solvers.
+        tolerance: f64,
+    },
+    /// Not comparable: the baseline records another resolution of this solver than the one it
+    /// ran at now (the case's resolution changed, or the baseline was edited). A failure until
+    /// `baseline update` records the run's.
+    OtherResolution {
+        /// The solver.
+        solver: String,
+    },
 }
 
 /// The histories of a case's solvers, by name.

@@ -1,12 +1,25 @@
 //! `spherecontact merge DIR...`: the run files of a sharded verification read back and put
-//! together into one plan's finished runs, judged as one unsharded run would be.
+//! together into one plan's finished runs, judged as one unsharded run would be; `compare
+//! --from` and `reproduce-paper --from` read them the same way.
+//!
+//! A run file is a file from elsewhere (a shard comes back from a cluster, a folder from a
+//! colleague or an earlier job), so before any verdict it must prove what it is
+//! ([`crate::runfile`]): read by [`crate::input::foreign`]'s rule, written by this harness, its
+//! case files the same bytes as those its runs were made of (their SHA-256, checked before a case
+//! file is parsed: a run file that names another file learns nothing of it), the same paths, and
+//! every stored history on its case's path as a live run's must be ([`crate::solver::validate`]):
+//! a history cut to one row, another path's values or a stale shard are refused, never judged.
 
 use std::path::{Path, PathBuf};
 
+use crate::case::impact::ImpactCase;
 use crate::case::ReadRoots;
+use crate::impact::run::SolverRun;
+use crate::input::foreign::{self, ForeignError};
 use crate::plan::{CaseOptions, Member, Plan, PlanError};
-use crate::runfile::{RunFile, FILE, FORMAT};
+use crate::runfile::{self, CaseRecord, RunFile, RunResult, FILE, FORMAT, HARNESS, MAX_RUN_FILE_BYTES};
 use crate::schedule::Finished;
+use crate::text::one_line;
 
 /// Why run files cannot be merged (bad input: exit code 2, nothing written).
 #[derive(Debug, thiserror::Error)]
@@ -14,12 +27,12 @@ pub enum MergeError {
     /// No folder given.
     #[error("merge: no run folders (allowed: one or more folders written by `verify --out`)")]
     Nothing,
-    /// A run file that cannot be read.
-    #[error("{}: cannot read the run file: {error}", file.display())]
-    Read { file: PathBuf, error: std::io::Error },
-    /// A run file that is not one.
-    #[error("{}: not a run file of format {FORMAT}: {error}", file.display())]
-    Parse { file: PathBuf, error: String },
+    /// A run file that cannot be read or is not one.
+    #[error("{0}")]
+    Foreign(#[from] ForeignError),
+    /// A run file of another harness, or whose cases are not the files it names now.
+    #[error("{}: {problem} (allowed: a run file of {HARNESS} over the case files as they are: run `verify --out` again)", file.display())]
+    Provenance { file: PathBuf, problem: String },
     /// Run files of different selections or options.
     #[error("{}: {what} differ from {}'s (allowed: shards of one `verify` command)", file.display(), first.display())]
     Mismatch {
@@ -30,14 +43,14 @@ pub enum MergeError {
     /// A run that no file holds.
     #[error("merge: no run of solver `{solver}` for case {} (is a shard missing?)", case.display())]
     Missing { case: PathBuf, solver: String },
-    /// A run whose result is of the other kind than its case (an impact case's run for a path
-    /// case, or the reverse: the case file changed since the shard ran).
-    #[error("{}: run of solver `{solver}` for case {} holds {held} (allowed: the case's kind of run; was the case file changed?)", file.display(), case.display())]
-    Kind {
+    /// A run whose result does not fit its case: of the other kind (an impact case's run for a
+    /// path case, or the reverse), or a history off the case's path.
+    #[error("{}: run of solver `{solver}` for case {}: {problem} (allowed: a run of the case as it is: was the case file changed?)", file.display(), case.display())]
+    Unfit {
         file: PathBuf,
         case: PathBuf,
         solver: String,
-        held: &'static str,
+        problem: String,
     },
     /// A run that two files hold, or that the plan does not have.
     #[error("{}: run of solver `{solver}` for case {} {problem}", file.display(), case.display())]
@@ -52,32 +65,39 @@ pub enum MergeError {
     Plan(#[from] PlanError),
 }
 
-/// Reads `dir/run.json`: a regular file of [`FORMAT`].
+/// Reads `dir/run.json`: a file from elsewhere of [`FORMAT`], written by [`HARNESS`].
 fn read(dir: &Path) -> Result<RunFile, MergeError> {
     let file = dir.join(FILE);
-    let read_error = |error| MergeError::Read {
-        file: file.clone(),
-        error,
-    };
-    if !std::fs::metadata(&file).map_err(read_error)?.is_file() {
-        return Err(read_error(std::io::Error::other("not a regular file")));
+    let text = foreign::read_text(&file, MAX_RUN_FILE_BYTES)?;
+    #[derive(serde::Deserialize)]
+    struct Header {
+        format: u32,
+        harness: Option<String>,
     }
-    let text = std::fs::read_to_string(&file).map_err(read_error)?;
-    let parse = |error: String| MergeError::Parse {
+    let form = "a run file written by `spherecontact verify --out`";
+    let header: Header = foreign::parse_json(&file, &text, form)?;
+    let provenance = |problem: String| MergeError::Provenance {
         file: file.clone(),
-        error,
+        problem,
     };
-    let run: RunFile = serde_json::from_str(&text).map_err(|e| parse(e.to_string()))?;
-    if run.format != FORMAT {
-        return Err(parse(format!("format {}", run.format)));
+    if header.format != FORMAT {
+        return Err(provenance(format!(
+            "format {} (allowed: {FORMAT})",
+            header.format
+        )));
     }
-    Ok(run)
+    if header.harness.as_deref() != Some(HARNESS) {
+        return Err(provenance("written by another version of the harness".into()));
+    }
+    Ok(foreign::parse_json(&file, &text, form)?)
 }
 
 /// Run files put together.
 pub struct Merged {
     /// The plan of every selected case.
     pub plan: Plan,
+    /// The options the cases were read with.
+    pub options: CaseOptions,
     /// Its finished runs, in plan order.
     pub finished: Vec<Finished>,
     /// Per run file, in the order given: its shard (`K/N`, or none) and the sum of its runs'
@@ -87,7 +107,8 @@ pub struct Merged {
 
 /// The run files of `dirs` as one plan and its finished runs, in plan order. The case files
 /// are read again (from the paths recorded, relative to the current folder) with the options
-/// recorded; every run of the plan must be in exactly one file.
+/// recorded, each checked against its digests; every run of the plan must be in exactly one
+/// file, and fit its case.
 pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> {
     let files = dirs.iter().map(|d| read(d)).collect::<Result<Vec<_>, _>>()?;
     let first = files.first().ok_or(MergeError::Nothing)?;
@@ -104,14 +125,18 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
             return Err(mismatch("the options (--ranks, --resolution)"));
         }
     }
-    let case_files = first.cases.clone();
+    let records = first.cases.clone();
+    let case_files: Vec<PathBuf> = records.iter().map(|r| r.file.clone()).collect();
+    let recorded_options = first.options.clone();
     let options = CaseOptions {
         roots: roots.clone(),
-        ..first.options.clone()
+        ..recorded_options.clone()
     };
-    let cases = case_files
+    let run_file = dirs[0].join(FILE);
+    let cases = records
         .iter()
-        .map(|f| options.load_member(f))
+        .enumerate()
+        .map(|(k, record)| load_recorded(&run_file, k, record, &options))
         .collect::<Result<Vec<_>, _>>()?;
     let plan = Plan::new(cases, |_, _| None);
     let mut slots: Vec<Option<Finished>> = plan.runs.iter().map(|_| None).collect();
@@ -122,7 +147,7 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
             let extra = |problem| MergeError::Extra {
                 file: dir.join(FILE),
                 case: case_files.get(record.case).cloned().unwrap_or_default(),
-                solver: record.solver.clone(),
+                solver: one_line(&record.solver).into_owned(),
                 problem,
             };
             let slot = plan
@@ -132,21 +157,15 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
             match slot {
                 None => return Err(extra("is not a run of the cases")),
                 Some(i) if slots[i].is_some() => return Err(extra("is held by another run file too")),
-                Some(_)
-                    if record.result.is_impact() != matches!(plan.cases[record.case], Member::Impact(_)) =>
-                {
-                    return Err(MergeError::Kind {
-                        file: dir.join(FILE),
-                        case: case_files[record.case].clone(),
-                        solver: record.solver.clone(),
-                        held: if record.result.is_impact() {
-                            "an impact run but the case is a path case"
-                        } else {
-                            "a path run but the case is an impact case"
-                        },
-                    })
-                }
                 Some(i) => {
+                    if let Err(problem) = fits(&record.result, &plan.cases[record.case], &record.solver) {
+                        return Err(MergeError::Unfit {
+                            file: dir.join(FILE),
+                            case: case_files[record.case].clone(),
+                            solver: record.solver.clone(),
+                            problem,
+                        });
+                    }
                     slots[i] = Some(Finished {
                         result: record.result.into_output(),
                         wall_s: record.wall_s,
@@ -169,7 +188,91 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
         .collect::<Result<_, _>>()?;
     Ok(Merged {
         plan,
+        options: recorded_options,
         finished,
         shards,
     })
+}
+
+/// The `k`-th case of the run file `run_file`, read from the file its `record` names: a `.toml`
+/// file whose bytes have the recorded SHA-256 (checked before it is parsed), whose path has the
+/// recorded digest.
+fn load_recorded(
+    run_file: &Path,
+    k: usize,
+    record: &CaseRecord,
+    options: &CaseOptions,
+) -> Result<Member, MergeError> {
+    let shown = one_line(&record.file.display().to_string()).into_owned();
+    let provenance = |problem: String| MergeError::Provenance {
+        file: run_file.to_path_buf(),
+        problem: format!("cases[{k}] (`{shown}`): {problem}"),
+    };
+    if record.file.extension().is_none_or(|e| e != "toml") {
+        return Err(provenance(
+            "not a case file's name (allowed: a .toml file)".into(),
+        ));
+    }
+    let text = crate::input::read_text(&record.file)
+        .map_err(|e| provenance(format!("cannot read the case file: {e}")))?;
+    if runfile::digest(text.as_bytes()) != record.digest {
+        return Err(provenance(
+            "the case file is not the one its runs were made of (its SHA-256 differs: the case was edited \
+             since, or the run file names another file)"
+                .into(),
+        ));
+    }
+    let case = options.parse_member(&record.file, &text)?;
+    if runfile::path_digest(&case) != record.path_digest {
+        return Err(provenance("its path is not the one its runs followed".into()));
+    }
+    Ok(case)
+}
+
+/// Whether the stored `result` of `solver` fits `case`: a path run for a path case, its history
+/// on the case's path ([`crate::solver::validate`]); an impact run for an impact case, each
+/// sweep on the case's points. Why not, else.
+fn fits(result: &RunResult, case: &Member, solver: &str) -> Result<(), String> {
+    match (result, case) {
+        (RunResult::Impact(runs), Member::Impact(case)) => impact_fits(runs, case, solver),
+        (RunResult::Impact(_), Member::Path(_)) => Err("an impact run but the case is a path case".into()),
+        (_, Member::Impact(_)) => Err("a path run but the case is an impact case".into()),
+        (RunResult::History(history), Member::Path(case)) => {
+            crate::solver::validate(history, &case.scene.steps()).map_err(|why| format!("its history: {why}"))
+        }
+        (RunResult::NotApplicable(_) | RunResult::Unavailable(_) | RunResult::Failed(_), Member::Path(_)) => {
+            Ok(())
+        }
+    }
+}
+
+/// Whether the stored impact `runs` of `solver` are sweeps of `case`: each of this solver, in
+/// one of the case's variants (once each), over the case's sweep points (their values bit for
+/// bit) with finite outcomes.
+fn impact_fits(runs: &[SolverRun], case: &ImpactCase, solver: &str) -> Result<(), String> {
+    let (points, variants) = (case.points(), case.variants());
+    for (k, run) in runs.iter().enumerate() {
+        if run.solver != solver {
+            return Err(format!("its sweep {k} is another solver's"));
+        }
+        if !variants.contains(&run.variant) || runs[..k].iter().any(|r| r.variant == run.variant) {
+            return Err(format!("its sweep {k} is not one of the case's variants, once"));
+        }
+        if run.points.len() != points.len() && run.unavailable.is_none() {
+            return Err(format!(
+                "its sweep {k} has {} points for the case's {}",
+                run.points.len(),
+                points.len()
+            ));
+        }
+        for (j, ((value, outcome), point)) in run.points.iter().zip(&points).enumerate() {
+            if value.map(f64::to_bits) != point.value.map(f64::to_bits) {
+                return Err(format!("its sweep {k}'s point {j} is not the case's"));
+            }
+            if outcome.as_ref().is_ok_and(|o| !o.is_finite()) || !run.wall_time_s.is_finite() {
+                return Err(format!("its sweep {k}'s point {j} holds a non-finite value"));
+            }
+        }
+    }
+    Ok(())
 }

@@ -67,19 +67,35 @@ pub struct CaseOptions {
 }
 
 impl CaseOptions {
+    /// The solvers whose resolution the command line chose (`--resolution`): their values are
+    /// not compared with the baselines, which belong to the cases' own resolutions.
+    pub fn chosen_solvers(&self) -> Vec<String> {
+        self.resolutions.iter().map(|(name, _)| name.clone()).collect()
+    }
+
     /// Loads the case at `file`, a path case with these options over its own or an impact case
     /// (whose steps and springs are its own: `--ranks` and `--resolution` do not apply).
     pub fn load_member(&self, file: &Path) -> Result<Member, PlanError> {
-        if crate::case::is_impact_file(file) {
-            Ok(Member::Impact(crate::case::load_impact(file)?))
+        self.parse_member(file, &crate::case::read_case_file(file)?)
+    }
+
+    /// [`CaseOptions::load_member`] of the case file `file` whose text is `text`.
+    pub fn parse_member(&self, file: &Path, text: &str) -> Result<Member, PlanError> {
+        if crate::case::is_impact(text) {
+            Ok(Member::Impact(crate::case::parse_impact(file, text)?))
         } else {
-            self.load(file).map(Member::Path)
+            self.parse(file, text).map(Member::Path)
         }
     }
 
     /// Loads the path case at `file` with these options over its own.
     pub fn load(&self, file: &Path) -> Result<Case, PlanError> {
-        let mut case = Case::load_with(file, &self.roots)?;
+        self.parse(file, &crate::case::read_case_file(file)?)
+    }
+
+    /// [`CaseOptions::load`] of the case file `file` whose text is `text`.
+    pub fn parse(&self, file: &Path, text: &str) -> Result<Case, PlanError> {
+        let mut case = Case::parse_with(file, text, &self.roots)?;
         case.permit_commands(&self.permission);
         case.ranks = self.ranks.unwrap_or(case.ranks);
         for (name, value) in &self.resolutions {

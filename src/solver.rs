@@ -8,7 +8,9 @@ pub mod split;
 
 use std::time::Instant;
 
+use crate::exchange::results_csv::PATH_MATCH;
 use crate::history::{History, Quantity};
+use crate::path::Step;
 use crate::resolution::ResolutionError;
 use crate::scene::Scene;
 use crate::vtu;
@@ -110,7 +112,7 @@ pub trait Solver: Send + Sync {
 pub fn run(solver: &dyn Solver, scene: &Scene) -> Result<History, SolveError> {
     let start = Instant::now();
     let mut history = solve_catching_panics(solver, scene)?;
-    validate(&history, scene.steps().len())?;
+    validate(&history, &scene.steps()).map_err(SolveError::Failed)?;
     let meta = &mut history.metadata;
     meta.wall_time_s = start.elapsed().as_secs_f64();
     meta.solver = solver.name().to_owned();
@@ -151,22 +153,40 @@ pub fn solve_catching_panics(solver: &dyn Solver, scene: &Scene) -> Result<Histo
 }
 
 /// Rejects histories that would print NaN or inf in any output column, or misalign with the
-/// path: the rows (path columns and quantities) and the surface fields.
-fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
-    if history.steps.len() != steps {
-        return Err(SolveError::Failed(format!(
-            "{} rows for a path of {steps} steps",
-            history.steps.len()
-        )));
+/// path `steps`: the rows (a row per step, each on its step: index, position, and δn, δt within
+/// [`PATH_MATCH`] of the path's largest) and the surface fields. A solver's live run and a run
+/// read back from a run file ([`crate::merge`]) are checked alike. Why, else.
+pub fn validate(history: &History, steps: &[Step]) -> Result<(), String> {
+    if history.steps.len() != steps.len() {
+        return Err(format!(
+            "{} rows for a path of {} steps",
+            history.steps.len(),
+            steps.len()
+        ));
     }
-    let non_finite = |what: &str, at: String| SolveError::Failed(format!("non-finite {what} at {at}"));
-    for row in &history.steps {
+    let scale = steps
+        .iter()
+        .map(|s| s.delta_n.abs().max(s.delta_t.abs()))
+        .fold(0.0, f64::max);
+    let non_finite = |what: &str, at: String| format!("non-finite {what} at {at}");
+    for (row, step) in history.steps.iter().zip(steps) {
         let columns = [("delta_n", Some(row.delta_n)), ("delta_t", Some(row.delta_t))];
         let quantities = Quantity::ALL.map(|q| (q.name(), q.of(row)));
         for (name, value) in columns.into_iter().chain(quantities) {
             if value.is_some_and(|v| !v.is_finite()) {
                 return Err(non_finite(name, format!("step {}", row.step)));
             }
+        }
+        let off = |a: f64, b: f64| (a - b).abs() > PATH_MATCH * scale;
+        if row.step != step.index
+            || row.position != step.position
+            || off(row.delta_n, step.delta_n)
+            || off(row.delta_t, step.delta_t)
+        {
+            return Err(format!(
+                "row {} is not on the path's step {} (its step, position, delta_n or delta_t differs)",
+                row.step, step.index
+            ));
         }
     }
     for field in &history.fields {
@@ -186,7 +206,7 @@ fn validate(history: &History, steps: usize) -> Result<(), SolveError> {
             field.stick.as_ref().map(Vec::len),
         ];
         if lengths.into_iter().flatten().any(|n| n != field.points.len()) {
-            return Err(SolveError::Failed(format!("{}: arrays of unequal lengths", at())));
+            return Err(format!("{}: arrays of unequal lengths", at()));
         }
     }
     Ok(())

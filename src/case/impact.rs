@@ -239,6 +239,22 @@ impl ImpactCheck {
             ImpactReference::Hertz => None,
         })
     }
+
+    /// The check in words: solver, quantity, variant, reference and measure (a baseline's key,
+    /// a JUnit test case's name).
+    pub fn key(&self) -> String {
+        let reference = match &self.reference {
+            ImpactReference::Hertz => "hertz closed form",
+            ImpactReference::Solver(name) => name,
+        };
+        format!(
+            "{} {} ({}) vs {reference} ({})",
+            self.solver,
+            self.quantity.name(),
+            self.variant.name(),
+            if self.relative { "relative" } else { "absolute" }
+        )
+    }
 }
 
 /// A validated impact case.

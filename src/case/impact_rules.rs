@@ -90,9 +90,7 @@ pub fn is_impact_file(file: &std::path::Path) -> bool {
 
 /// Reads and validates the impact case at `file`.
 pub fn load_impact(file: &std::path::Path) -> Result<ImpactCase, CaseError> {
-    let text = input::read_text(file)
-        .map_err(|e| CaseError::new(file, None, "", format!("cannot read the case file: {e}")))?;
-    parse_impact(file, &text)
+    parse_impact(file, &super::read_case_file(file)?)
 }
 
 /// Validates the text of an impact case file.

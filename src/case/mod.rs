@@ -161,6 +161,13 @@ pub struct Case {
     pub resolution: BTreeMap<String, String>,
 }
 
+/// The text of the case file `file` (path or impact case): a regular file of at most 4 MiB,
+/// UTF-8 ([`input::read_text`]).
+pub fn read_case_file(file: &Path) -> Result<String, CaseError> {
+    input::read_text(file)
+        .map_err(|e| CaseError::new(file, None, "", format!("cannot read the case file: {e}")))
+}
+
 impl Case {
     /// Reads and validates the case file at `file` (a regular file of at most 4 MiB); the files
     /// it names must lie in its own tree ([`reads`]).
@@ -170,9 +177,7 @@ impl Case {
 
     /// [`Case::load`], the files it names also read from the folders `roots` allows.
     pub fn load_with(file: &Path, roots: &ReadRoots) -> Result<Self, CaseError> {
-        let text = input::read_text(file)
-            .map_err(|e| CaseError::new(file, None, "", format!("cannot read the case file: {e}")))?;
-        Self::parse_with(file, &text, roots)
+        Self::parse_with(file, &read_case_file(file)?, roots)
     }
 
     /// Validates the text of a case file; `file` names it in errors and anchors the files it

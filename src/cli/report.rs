@@ -117,7 +117,8 @@ fn run_solvers(cases: Vec<Case>, jobs: Jobs) -> Vec<CaseRun> {
     let recorded: Vec<(String, baseline::Baseline)> = cases
         .iter()
         .filter_map(|case| {
-            let found = baseline::Baseline::load(Path::new(baseline::DIR), case.name())
+            let shape = baseline::Shape::of_path(case);
+            let found = baseline::Baseline::load(Path::new(baseline::DIR), &shape)
                 .ok()
                 .flatten()?;
             Some((case.name().to_owned(), found))

@@ -10,7 +10,7 @@ use spherecontact::conclusion::Conclusion;
 use spherecontact::external::permission;
 use spherecontact::judged::Suite;
 use spherecontact::report::junit;
-use spherecontact::runfile::RunFile;
+use spherecontact::runfile::{CaseRecord, RunFile};
 use spherecontact::schedule::Judged;
 use spherecontact::{baseline, io, merge, plan, schedule};
 
@@ -196,7 +196,7 @@ fn write_impact_report(judged: &[Judged], dir: &Path) -> Result<(), InputError> 
 /// The cases of `verify` (path and impact cases), read and selected, with their baselines;
 /// nothing run yet.
 struct VerifyPlan {
-    files: Vec<PathBuf>,
+    files: Vec<CaseRecord>,
     options: plan::CaseOptions,
     plan: plan::Plan,
     baselines: std::collections::BTreeMap<String, baseline::Baseline>,
@@ -215,9 +215,10 @@ fn verify_plan(
     })?;
     let (mut selected, mut cases) = (Vec::new(), Vec::new());
     for file in files {
-        let case = options.load_member(&file)?;
+        let text = spherecontact::case::read_case_file(&file).map_err(plan::PlanError::from)?;
+        let case = options.parse_member(&file, &text)?;
         if selection.selects(&case) {
-            selected.push(file);
+            selected.push(CaseRecord::new(file, &text, &case));
             cases.push(case);
         }
     }
@@ -226,7 +227,7 @@ fn verify_plan(
             "no case files to verify (none given, or none selected by label)".into(),
         ));
     }
-    let baselines = baseline::load_all(baselines, cases.iter().map(plan::Member::name))?;
+    let baselines = baseline::load_all(baselines, &cases)?;
     let commands: Vec<String> = cases
         .iter()
         .flat_map(|case| match case {
@@ -277,13 +278,18 @@ fn verify_cases(
         None => verify.plan,
     };
     let finished = schedule::execute(&plan, jobs);
+    let chosen = verify.options.chosen_solvers();
     if let Some(folder) = &outputs.out {
         RunFile::new(&plan, &finished, verify.files, verify.options, shard)
             .write(folder.path())
             .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
     }
     let mut judged = schedule::judge(plan, finished);
-    baseline::compare_all(&verify.baselines, judged.iter_mut().map(Judged::baselined_mut));
+    baseline::compare_all(
+        &verify.baselines,
+        judged.iter_mut().map(Judged::baselined_mut),
+        &chosen,
+    );
     outputs.write(&judged)
 }
 
@@ -294,7 +300,7 @@ pub(crate) fn merge_runs(
     roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
     let merged = merge::merge(dirs, roots)?;
-    let baselines = baseline::load_all(baselines, merged.plan.cases.iter().map(plan::Member::name))?;
+    let baselines = baseline::load_all(baselines, &merged.plan.cases)?;
     for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
         let shard = shard.as_deref().unwrap_or("whole");
         eprintln!(
@@ -303,7 +309,11 @@ pub(crate) fn merge_runs(
         );
     }
     let mut judged = schedule::judge(merged.plan, merged.finished);
-    baseline::compare_all(&baselines, judged.iter_mut().map(Judged::baselined_mut));
+    baseline::compare_all(
+        &baselines,
+        judged.iter_mut().map(Judged::baselined_mut),
+        &merged.options.chosen_solvers(),
+    );
     outputs.write(&judged)
 }
 
@@ -319,15 +329,21 @@ pub(crate) fn update_baselines(
         permission: commands.permission()?,
         ..plan::CaseOptions::default()
     };
+    // Claimed as an output folder before any case runs: no system folder, no link, no foreign
+    // file (a folder of baselines only, or marked), one run at a time.
+    let folder = io::OutputFolder::claim_recognising(dir, false, baseline::is_baseline_file)
+        .map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
     let verify = verify_plan(cases, &plan::Selection::default(), &options, dir)?;
     let finished = schedule::execute(&verify.plan, jobs.cores());
-    io::create_folder(dir).map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
     for judged in schedule::judge(verify.plan, finished) {
         let run = judged.baselined();
         let baseline = baseline::Baseline::of(run);
         let file = baseline::file(dir, run.case_name());
-        io::write_atomically(&file, baseline.to_toml().as_bytes())
-            .map_err(|e| InputError(format!("--baselines {}: {e}", file.display())))?;
+        io::write_atomically(
+            &baseline::file(folder.path(), run.case_name()),
+            baseline.to_toml().as_bytes(),
+        )
+        .map_err(|e| InputError(format!("--baselines {}: {e}", file.display())))?;
         println!(
             "baseline: {} ({} checks with a value, {} solvers ran)",
             file.display(),

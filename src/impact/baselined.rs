@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::judge::{key, value_at};
+use super::judge::value_at;
 use super::ImpactRun;
 use crate::baseline::{two_digits, Baselined, Judgement, SolverRecord};
 use crate::case::impact::REFERENCE;
@@ -56,7 +56,7 @@ impl Baselined for ImpactRun {
             .filter_map(|o| {
                 Some(Judgement {
                     index: self.case.checks.iter().position(|c| *c == o.check)?,
-                    key: key(&o.check),
+                    key: o.check.key(),
                     solvers: o.check.solvers().cloned().collect(),
                     step: o.worst.map(|w| w.index),
                     value: o.worst.map(|w| w.value),

@@ -216,22 +216,6 @@ pub fn outcome_row(case: &str, outcome: &CheckOutcome) -> String {
     crate::text::one_line(&row).into_owned()
 }
 
-/// The check in words: solver, quantity, variant, reference and measure (a baseline's key, a
-/// JUnit test case's name).
-pub fn key(check: &ImpactCheck) -> String {
-    let reference = match &check.reference {
-        ImpactReference::Hertz => "hertz closed form",
-        ImpactReference::Solver(name) => name,
-    };
-    format!(
-        "{} {} ({}) vs {reference} ({})",
-        check.solver,
-        check.quantity.name(),
-        check.variant.name(),
-        if check.relative { "relative" } else { "absolute" }
-    )
-}
-
 /// The value `check`'s subject gives at sweep point `index`, if it ran and defines it there.
 pub fn value_at(runs: &[SolverRun], check: &ImpactCheck, index: usize) -> Option<f64> {
     let run = find(runs, &check.solver, check.variant)?;

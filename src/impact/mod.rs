@@ -122,7 +122,7 @@ impl ImpactRun {
             .iter()
             .enumerate()
             .map(|(i, outcome)| crate::judged::Row {
-                title: format!("{i:02} {}", judge::key(&outcome.check)),
+                title: format!("{i:02} {}", outcome.check.key()),
                 verdict: outcome.verdict,
                 text: judge::outcome_row(&self.case.name, outcome),
             })

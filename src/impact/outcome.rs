@@ -55,4 +55,10 @@ impl Outcome {
         // The variants are declared in the order of `Quantity::ALL`.
         self.values[quantity as usize]
     }
+
+    /// True when every defined value is finite (as every outcome computed is: a run read back
+    /// from a run file is checked for it, [`crate::merge`]).
+    pub fn is_finite(&self) -> bool {
+        self.values.iter().flatten().all(|v| v.is_finite())
+    }
 }

@@ -84,10 +84,21 @@ impl OutputFolder {
     /// holding files the harness did not write (and marks it as the harness's). Nothing is
     /// written when it is refused.
     pub fn claim(dir: &Path, force: bool) -> Result<OutputFolder, ClaimError> {
+        Self::claim_recognising(dir, force, |_| false)
+    }
+
+    /// [`OutputFolder::claim`], a folder without the marker also taken for the harness's when
+    /// every entry in it is a file that `is_ours` recognises (the baselines' folder of a
+    /// repository, whose marker is not committed: every file in it a baseline the harness wrote).
+    pub fn claim_recognising(
+        dir: &Path,
+        force: bool,
+        is_ours: impl Fn(&Path) -> bool,
+    ) -> Result<OutputFolder, ClaimError> {
         let path = resolve(dir)?;
         refuse_system_folder(&path)?;
         match std::fs::symlink_metadata(&path) {
-            Ok(meta) if meta.is_dir() => check_existing(&path, force)?,
+            Ok(meta) if meta.is_dir() => check_existing(&path, force, &is_ours)?,
             Ok(_) => return Err(ClaimError::Kind("not a folder")),
             Err(e) if e.kind() == ErrorKind::NotFound => {}
             Err(e) => return Err(e.into()),
@@ -160,20 +171,23 @@ fn refuse_system_folder(dir: &Path) -> Result<(), ClaimError> {
 }
 
 /// Checks an existing folder: no link anywhere in it, and the marker present (or `force`) when
-/// it is not empty.
-fn check_existing(dir: &Path, force: bool) -> Result<(), ClaimError> {
+/// it holds an entry that `is_ours` does not recognise.
+fn check_existing(dir: &Path, force: bool, is_ours: &dyn Fn(&Path) -> bool) -> Result<(), ClaimError> {
     if let Some(link) = find_link(dir)? {
         return Err(ClaimError::Link(link));
     }
     if force || dir.join(MARKER).symlink_metadata().is_ok() {
         return Ok(());
     }
-    match std::fs::read_dir(dir)?.next() {
-        Some(entry) => Err(ClaimError::Foreign {
-            example: entry?.file_name().to_string_lossy().into_owned(),
-        }),
-        None => Ok(()),
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        if !is_ours(&entry.path()) {
+            return Err(ClaimError::Foreign {
+                example: crate::text::one_line(&entry.file_name().to_string_lossy()).into_owned(),
+            });
+        }
     }
+    Ok(())
 }
 
 /// The first symbolic link found in the tree under `dir` (links are not followed).

@@ -60,12 +60,22 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
 
 /// A check's drift from its baseline as its row shows it (path and impact checks alike).
 pub fn drift_cell(drift: &crate::check::Drift) -> String {
-    format!(
-        " | drift {} (baseline {}, tol {})",
-        format_value(Some(drift.change)),
-        format_value(Some(drift.baseline)),
-        format_value(Some(drift.tolerance))
-    )
+    match drift {
+        crate::check::Drift::Measured {
+            baseline,
+            change,
+            tolerance,
+        } => format!(
+            " | drift {} (baseline {}, tol {})",
+            format_value(Some(*change)),
+            format_value(Some(*baseline)),
+            format_value(Some(*tolerance))
+        ),
+        crate::check::Drift::OtherResolution { solver } => format!(
+            " | drift: the baseline records another resolution of {solver} than this run's (run `spherecontact \
+             baseline update` if the case's resolution changed)"
+        ),
+    }
 }
 
 /// The whole block printed for one case: warnings, then a row per check.

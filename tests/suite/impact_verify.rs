@@ -28,6 +28,8 @@ fn junit_lists_each_impact_check_as_a_test_case() {
     let dir = tempfile::tempdir().unwrap();
     let junit = dir.path().join("verify.xml");
     let none = dir.path().join("no-baselines");
+    // An empty baselines folder: a missing one is an error (a typo would hide the check).
+    std::fs::create_dir(&none).unwrap();
     let (code, stdout, stderr) = run(&[
         "verify",
         NORMAL,
@@ -108,6 +110,8 @@ fn a_run_file_whose_impact_case_became_a_path_case_is_refused() {
     let case = dir.path().join("case.toml");
     std::fs::copy(root().join(NORMAL), &case).unwrap();
     let (out, none) = (dir.path().join("out"), dir.path().join("none"));
+    // An empty baselines folder: a missing one is an error (a typo would hide the check).
+    std::fs::create_dir(&none).unwrap();
     let (code, stdout, stderr) = run(&[
         "verify",
         path(&case),
@@ -125,8 +129,9 @@ fn a_run_file_whose_impact_case_became_a_path_case_is_refused() {
     let junit = dir.path().join("merged.xml");
     let (code, _, stderr) = run(&["merge", path(&out), "--junit", path(&junit)]);
     assert_eq!(code, 2, "{stderr}");
+    // The case file changed since the run: refused by its digest before it is judged.
     assert!(
-        stderr.contains("holds an impact run but the case is a path case"),
+        stderr.contains("the case file is not the one its runs were made of"),
         "{stderr}"
     );
     assert!(!junit.exists());
@@ -136,6 +141,8 @@ fn a_run_file_whose_impact_case_became_a_path_case_is_refused() {
 fn a_tampered_impact_run_in_a_run_file_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let (out, none) = (dir.path().join("out"), dir.path().join("none"));
+    // An empty baselines folder: a missing one is an error (a typo would hide the check).
+    std::fs::create_dir(&none).unwrap();
     let (code, stdout, stderr) = run(&["verify", NORMAL, "--out", path(&out), "--baselines", path(&none)]);
     assert_eq!(code, 0, "{stdout}{stderr}");
     let file = out.join("run.json");
@@ -158,7 +165,8 @@ fn a_tampered_impact_run_in_a_run_file_is_refused() {
         let (code, _, stderr) = run(&["merge", path(&out), "--junit", path(&junit)]);
         assert_eq!(code, 2, "{stderr}");
         assert!(
-            stderr.contains("run.json: not a run file of format 1"),
+            stderr.contains("run.json:1:")
+                && stderr.contains("(allowed: a run file written by `spherecontact verify --out`)"),
             "{stderr}"
         );
         assert!(!stderr.contains("panicked"), "{stderr}");
@@ -254,6 +262,8 @@ fn impact_labels_come_from_the_case_file_and_select() {
     assert_eq!(case.labels, ["impact", "dem", "fast"]);
     let dir = tempfile::tempdir().unwrap();
     let none = dir.path().join("none");
+    // An empty baselines folder: a missing one is an error (a typo would hide the check).
+    std::fs::create_dir(&none).unwrap();
     let cases_run = |stdout: &str| -> Vec<String> {
         stdout
             .lines()

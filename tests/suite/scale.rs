@@ -53,6 +53,8 @@ const FAST: [&str; 2] = ["--label", "hard"];
 fn concurrent_runs_print_and_write_what_a_serial_run_does() {
     let dir = tempfile::tempdir().unwrap();
     let none = dir.path().join("no-baselines");
+    // An empty baselines folder: a missing one is an error (a typo would hide the check).
+    std::fs::create_dir(&none).unwrap();
     let mut outputs = Vec::new();
     for jobs in ["1", "2", "3"] {
         let junit = dir.path().join(format!("junit-{jobs}.xml"));
@@ -93,6 +95,8 @@ fn three_shards_merged_equal_the_unsharded_run() {
     let dir = tempfile::tempdir().unwrap();
     let d = |name: &str| dir.path().join(name);
     let none = d("no-baselines");
+    // An empty baselines folder: a missing one is an error (a typo would hide the check).
+    std::fs::create_dir(&none).unwrap();
     let common = [
         &["verify", "cases/hard", "--baselines", path(&none)][..],
         &FAST[..],
