@@ -404,3 +404,24 @@ fn a_failing_program_s_secrets_reach_no_output_masked_bounded_and_escaped() {
         kept.display()
     );
 }
+
+/// A command solver that succeeds and describes itself in `metadata.json` with the values of a
+/// `--pass-env` variable and of a secret-named variable, and a 100 000-character warning with a
+/// terminal escape (`tests/hostile/commands/leak-metadata.toml`), publishes neither value: its
+/// version, model, resolution and warnings reach the terminal, JUnit, `summary.txt`, `run.json`
+/// and both reports masked, bounded and escaped.
+#[test]
+fn a_program_s_metadata_reaches_no_output_with_its_secrets_masked_bounded_and_escaped() {
+    let (_dir, _temporary, verified, texts) = published("leak-metadata.toml");
+    assert_eq!(verified, Some(0), "{texts:?}");
+    assert_masked_bounded_and_escaped(
+        &texts,
+        &[
+            "verify's terminal output",
+            "verify/summary.txt",
+            "verify/run.json",
+            "compare/report.html",
+            "compare/report.md",
+        ],
+    );
+}
