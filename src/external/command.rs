@@ -202,7 +202,7 @@ impl CommandSolver {
 
 /// Writes the scene file into `dir`, runs `job` there in `environment` and reads back the History
 /// CSV it wrote (validated against the path) and its optional [`METADATA_FILE`] (masked and
-/// bounded: [`CommandMetadata::shown`]); also its wall time [s].
+/// bounded: `CommandMetadata::shown`); also its wall time [s].
 pub fn run_exchange(
     scene: &Scene,
     dir: &Path,

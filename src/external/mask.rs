@@ -42,7 +42,7 @@ pub const SECRET_NAME_WORDS: [&str; 15] = [
     "WEBHOOK",
 ];
 
-/// The shortest value masked [characters] (8): a shorter value (`1`, `true`, `x11`, a port, a
+/// The shortest value masked, in characters (8): a shorter value (`1`, `true`, `x11`, a port, a
 /// user name) stands for ordinary words and numbers of any output, and masking it would garble
 /// every excerpt (a value `1` would take every digit 1); tokens, keys and passwords under most
 /// policies are longer. GitLab's masked CI variables must have 8 characters or more, for the same
