@@ -114,6 +114,26 @@ pub const MAX_PROGRAM_LOG_BYTES: u64 = 16 << 20;
 /// only part of the stream the harness holds in memory while the program runs.
 pub const PROGRAM_LOG_TAIL_BYTES: usize = 64 << 10;
 
+/// The most characters of one line of a program's output that a message or a report shows
+/// (300): compiler diagnostics, Python tracebacks and MPI errors run under 200 characters a
+/// line; a longer line is data (a flood, an array, a binary dump) that no one reads in a table
+/// cell, a JUnit message or a CI log. A longer line is cut, and says how much was cut
+/// (`external::excerpt`); the whole line stays in the program's log.
+pub const MAX_SHOWN_LINE_CHARS: usize = 300;
+
+/// The most bytes of a program's output that one message shows (4 KiB): the 12 lines a failure
+/// shows at most ([`MAX_SHOWN_LINES`]) of [`MAX_SHOWN_LINE_CHARS`] ASCII characters fit (3.6 KB); a
+/// failure's message is repeated in each of its checks' rows, in JUnit, `summary.txt`,
+/// `run.json` and both reports, so this bounds what a failing program adds to each of them: 4 KiB
+/// a row, where 128 KiB of its output went before. Lines are dropped from the first on until the
+/// rest fits.
+pub const MAX_SHOWN_OUTPUT_BYTES: usize = 4 << 10;
+
+/// The most lines of a program's output that one message shows (12): the end of its output in a
+/// failure's message, a Python traceback's last frames and its error, a compiler's or an MPI
+/// launcher's last error with its context.
+pub const MAX_SHOWN_LINES: usize = 12;
+
 /// The largest History CSV a command solver may write [bytes] (256 MiB): one row per step, at
 /// most [`MAX_INCREMENTS`] + 1 rows of nine cells written with round-trip precision (at most
 /// 24 characters each, with separators under 256 bytes a row). Read as a stream, never whole.

@@ -10,8 +10,8 @@
 //! link, at most [`MAX_HISTORY_BYTES`]) and validated against the path
 //! ([`crate::exchange::results_csv`]); optionally `metadata.json` (the same checks, at most
 //! [`MAX_METADATA_BYTES`]) read for the version, model, resolution and warnings the program
-//! wants shown. On any failure the folder is kept and named in the message; on success it is
-//! removed.
+//! wants shown, each masked and bounded as its output is ([`super::mask`], [`super::excerpt`]).
+//! On any failure the folder is kept and named in the message; on success it is removed.
 //!
 //! Placeholders in the command: `{case_dir}` (the case file's folder), `{scene}` and `{history}`
 //! (the absolute paths of the two files), filled under the rule of [`super::placeholder`]. A
@@ -26,6 +26,8 @@ use std::time::Duration;
 
 use serde::Deserialize;
 
+use super::excerpt;
+use super::mask::Mask;
 use super::permission::{how_to_allow, CommandPermission};
 use super::placeholder::{self, Values};
 use super::process::{Environment, Job};
@@ -34,7 +36,7 @@ use super::toolchain::which;
 use crate::exchange::{results_csv, scene_file};
 use crate::history::{History, Metadata, StepResult};
 use crate::input::{self, Links};
-use crate::limits::{MAX_HISTORY_BYTES, MAX_METADATA_BYTES};
+use crate::limits::{MAX_HISTORY_BYTES, MAX_METADATA_BYTES, MAX_SHOWN_LINES};
 use crate::scene::Scene;
 use crate::solver::{SolveError, Solver};
 
@@ -54,6 +56,20 @@ pub struct CommandMetadata {
     /// Warnings a reader must see.
     #[serde(default)]
     pub warnings: Vec<String>,
+}
+
+impl CommandMetadata {
+    /// What of it the harness shows and keeps: each text with the values of `mask` masked, then
+    /// bounded as an excerpt of a program's output ([`excerpt::last_lines`]).
+    fn shown(self, mask: &Mask) -> Self {
+        let shown = |text: String| excerpt::last_lines(&mask.apply(&text), MAX_SHOWN_LINES);
+        CommandMetadata {
+            version: self.version.map(shown),
+            model: self.model.map(shown),
+            resolution: self.resolution.map(shown),
+            warnings: self.warnings.into_iter().map(shown).collect(),
+        }
+    }
 }
 
 /// A program named by a case as a solver.
@@ -185,8 +201,8 @@ impl CommandSolver {
 }
 
 /// Writes the scene file into `dir`, runs `job` there in `environment` and reads back the History
-/// CSV it wrote (validated against the path) and its optional [`METADATA_FILE`]; also its wall
-/// time [s].
+/// CSV it wrote (validated against the path) and its optional [`METADATA_FILE`] (masked and
+/// bounded: `CommandMetadata::shown`); also its wall time [s].
 pub fn run_exchange(
     scene: &Scene,
     dir: &Path,
@@ -213,7 +229,8 @@ pub fn run_exchange(
         .map_err(|e| failed(&format!("its results: {}: cannot read", history.display()), &e))?;
     let steps =
         results_csv::read_from(file, &history, &scene.steps()).map_err(|e| failed("its results", &e))?;
-    Ok((steps, read_metadata(&dir.join(METADATA_FILE))?, run.wall_s))
+    let told = read_metadata(&dir.join(METADATA_FILE))?.shown(&environment.mask());
+    Ok((steps, told, run.wall_s))
 }
 
 /// The command's own description of itself, if it wrote one.

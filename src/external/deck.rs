@@ -7,6 +7,7 @@ use std::time::Duration;
 use super::process::{Ending, Job, Run};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
+use crate::limits::MAX_SHOWN_LINES;
 use crate::solver::SolveError;
 
 /// The numbers a deck template is filled with: mm, N, MPa (the decks' units). The computed
@@ -267,7 +268,7 @@ pub fn run_written(
     match failure(deck, &run.ending, timeout) {
         Some(why) => Err(SolveError::Failed(format!(
             "{why}; last output:\n{}",
-            run.tail(12)
+            run.tail(MAX_SHOWN_LINES)
         ))),
         None => Ok(run),
     }

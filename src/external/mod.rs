@@ -5,6 +5,7 @@
 //! - [`toolchain`]: finding the tools, their versions, how to install them (`doctor`);
 //! - [`process`]: one run in its own directory and process group, with a timeout;
 //!   [`descendants`]: every process it started, found and killed; [`bounded_log`]: its output;
+//!   [`mask`]: the secrets masked in it; [`excerpt`]: what of it a message shows;
 //! - [`command`]: a program a case names as a solver, run only with [`permission`], its
 //!   command filled under the rule of [`placeholder`];
 //! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
@@ -25,10 +26,12 @@ pub mod bounded_log;
 pub mod command;
 pub mod deck;
 pub mod descendants;
+pub mod excerpt;
 pub mod fenicsx;
 pub mod fenicsx3d;
 pub mod freefem;
 pub mod geo;
+pub mod mask;
 pub mod permission;
 pub mod placeholder;
 pub mod process;

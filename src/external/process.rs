@@ -2,7 +2,8 @@
 //! timeout; at the timeout, and when the program ends, every process it started is killed,
 //! those that left its group or session included ([`super::descendants`]). Its stdout and
 //! stderr are streamed into logs of bounded size ([`super::bounded_log`]), never held whole in
-//! memory, and its exit status is put into words.
+//! memory; the excerpt of them it returns has its secrets masked ([`super::mask`]); its exit
+//! status is put into words.
 
 use std::io::Read;
 use std::os::fd::AsRawFd;
@@ -14,6 +15,8 @@ use std::time::{Duration, Instant};
 
 use super::bounded_log::BoundedLog;
 use super::descendants::Tracker;
+use super::excerpt;
+use super::mask::Mask;
 
 /// How often a running program is polled for its exit (the longest wait for its output).
 const POLL: Duration = Duration::from_millis(10);
@@ -85,7 +88,17 @@ impl Environment {
             }
         }
     }
+
+    /// The mask of a program's output run in this environment: the values of the variables
+    /// passed on and of the harness's secret-named variables ([`Mask::of_environment`]).
+    pub fn mask(&self) -> Mask {
+        match self {
+            Environment::Inherited => Mask::of_environment(&[]),
+            Environment::Minimal(pass) => Mask::of_environment(pass),
+        }
+    }
 }
+
 /// How a run ended.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Ending {
@@ -102,9 +115,9 @@ pub enum Ending {
 pub struct Run {
     /// How it ended.
     pub ending: Ending,
-    /// Its standard output.
+    /// Its standard output: the log's excerpt ([`BoundedLog::finish`]), secrets masked.
     pub stdout: String,
-    /// Its standard error.
+    /// Its standard error: the log's excerpt, secrets masked.
     pub stderr: String,
     /// Wall time [s].
     pub wall_s: f64,
@@ -137,16 +150,15 @@ impl Run {
         self.ending == Ending::Exited(0)
     }
 
-    /// The last `lines` lines of stderr, or of stdout when stderr is empty: what a failure
-    /// message shows.
+    /// The last `lines` lines of stderr, or of stdout when stderr is empty, bounded in lines and
+    /// bytes ([`excerpt::last_lines`]): what a failure message shows.
     pub fn tail(&self, lines: usize) -> String {
         let text = if self.stderr.trim().is_empty() {
             &self.stdout
         } else {
             &self.stderr
         };
-        let all: Vec<&str> = text.lines().collect();
-        all[all.len().saturating_sub(lines)..].join("\n")
+        excerpt::last_lines(text, lines)
     }
 }
 
@@ -157,8 +169,8 @@ pub fn run(job: &Job, dir: &Path, stem: &str) -> std::io::Result<Run> {
 }
 
 /// Runs `job` with working directory `dir` in `environment`, stdout and stderr streamed to the
-/// bounded logs `dir/<stem>.stdout` and `dir/<stem>.stderr` (kept there for inspection; their
-/// first and last lines returned).
+/// bounded logs `dir/<stem>.stdout` and `dir/<stem>.stderr` (kept there as the program wrote
+/// them; their first and last lines returned, with the secrets of `environment` masked).
 ///
 /// The child leads a new process group and carries the run's marker; at the timeout, and when it
 /// ends, every process of the run is killed ([`Tracker::kill_all`]): MPI ranks, shells, Python
@@ -219,10 +231,11 @@ pub fn run_in(job: &Job, dir: &Path, stem: &str, environment: &Environment) -> s
         pipes.pump(&mut logs, POLL)?;
     }
     let [stdout, stderr] = logs;
+    let mask = environment.mask();
     Ok(Run {
         ending,
-        stdout: stdout.finish()?,
-        stderr: stderr.finish()?,
+        stdout: mask.apply(&stdout.finish()?).into_owned(),
+        stderr: mask.apply(&stderr.finish()?).into_owned(),
         wall_s: start.elapsed().as_secs_f64(),
     })
 }
@@ -450,6 +463,25 @@ mod tests {
         }
         // The harness's own environment is fuller: the test shows the difference.
         assert!(std::env::vars().any(|(k, _)| !MINIMAL_ENV.contains(&k.as_str())));
+    }
+
+    /// The excerpt a run returns has a passed variable's value masked; the program's log in its
+    /// folder keeps what the program wrote (docs/security.md, "Programs a case may run").
+    #[test]
+    fn the_excerpt_masks_a_passed_variable_s_value_and_the_log_keeps_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = std::env::var("PATH").unwrap();
+        let environment = Environment::Minimal(vec!["PATH".into()]);
+        let run = run_in(
+            &job("echo \"x $PATH x\" >&2", 10_000),
+            dir.path(),
+            "t",
+            &environment,
+        )
+        .unwrap();
+        assert_eq!(run.tail(1), "x [masked: PATH] x");
+        let log = std::fs::read_to_string(dir.path().join("t.stderr")).unwrap();
+        assert_eq!(log, format!("x {path} x\n"));
     }
 
     #[test]

@@ -9,6 +9,7 @@ use std::time::Duration;
 
 use super::deck::RunDir;
 use super::process::{self, Environment, Job, Run};
+use crate::limits::MAX_SHOWN_LINES;
 use crate::solver::SolveError;
 
 /// Runs `work` in a fresh folder named after `solver`; a failure keeps the folder and says where.
@@ -43,7 +44,7 @@ pub fn run_to_success(
     match run.ending.failure(program, job.timeout, meaning) {
         Some(why) => Err(SolveError::Failed(format!(
             "{why}; last output:\n{}",
-            run.tail(12)
+            run.tail(MAX_SHOWN_LINES)
         ))),
         None => Ok(run),
     }

@@ -309,3 +309,119 @@ fn the_program_does_not_see_the_harness_secrets_unless_passed() {
         }
     }
 }
+
+/// A variable passed on with `--pass-env` (a licence server, say): its value is masked.
+const PASSED: (&str, &str) = ("SPHERECONTACT_TEST_LICENCE", "27000@licence-host-7f3e");
+
+/// A secret-named variable of the harness's environment, not passed on: the program reads it
+/// from the harness's own `/proc/<pid>/environ`, and its value is masked all the same.
+const TOKEN: (&str, &str) = ("SPHERECONTACT_TEST_API_TOKEN", "tok-3f9a7c1e-do-not-publish");
+
+/// Runs `case` (a file of `tests/hostile/commands/`) as CI would, its command allowed, [`PASSED`]
+/// passed on and [`TOKEN`] set: `verify --junit --out` and `compare --out`. Returns the folder,
+/// the folder its kept run folders went to, `verify`'s exit code, and every text published:
+/// both commands' terminal output, JUnit, `summary.txt`, `run.json`, `report.html`, `report.md`.
+fn published(case: &str) -> (tempfile::TempDir, PathBuf, Option<i32>, Vec<(String, String)>) {
+    let dir = tempfile::tempdir().unwrap();
+    place(case, dir.path());
+    // The run folders kept on failure go into the test's folder, not into /tmp.
+    let temporary = dir.path().join("tmp");
+    std::fs::create_dir(&temporary).unwrap();
+    let run = |args: &[&str]| {
+        let mut command = spherecontact(args, dir.path());
+        command
+            .args(["--allow-commands", "--pass-env", PASSED.0])
+            .env(PASSED.0, PASSED.1)
+            .env(TOKEN.0, TOKEN.1)
+            .env("TMPDIR", &temporary);
+        output(&mut command)
+    };
+    let (verified, verify) = run(&["verify", "case.toml", "--junit", "junit.xml", "--out", "verify"]);
+    let (compared, compare) = run(&["compare", "case.toml", "--out", "compare"]);
+    assert_ne!(compared.status.code(), Some(2), "{compare}");
+    let mut texts = vec![
+        ("verify's terminal output".to_string(), verify),
+        ("compare's terminal output".to_string(), compare),
+    ];
+    for file in [
+        "junit.xml",
+        "verify/summary.txt",
+        "verify/run.json",
+        "compare/report.html",
+        "compare/report.md",
+    ] {
+        let text = std::fs::read_to_string(dir.path().join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        texts.push((file.to_string(), text));
+    }
+    (dir, temporary, verified.status.code(), texts)
+}
+
+/// Neither secret's value is in any of `texts`, a program's line is never longer than the
+/// shown line's bound, no terminal escape is raw; the masks are in the texts named in `masked`.
+fn assert_masked_bounded_and_escaped(texts: &[(String, String)], masked: &[&str]) {
+    let too_long = "y".repeat(spherecontact::limits::MAX_SHOWN_LINE_CHARS + 1);
+    for (what, text) in texts {
+        for (name, value) in [PASSED, TOKEN] {
+            assert!(!text.contains(value), "{what} publishes {name}:\n{text}");
+            let marker = format!("[masked: {name}]");
+            let expected = masked.contains(&what.as_str());
+            assert!(
+                !expected || text.contains(&marker),
+                "{what} has no {marker}:\n{text}"
+            );
+        }
+        assert!(
+            !text.contains(&too_long),
+            "{what}: a program's line is not bounded"
+        );
+        assert!(!text.contains('\x1b'), "{what}: a program's escape is raw");
+    }
+}
+
+/// A failing command solver that prints the value of a `--pass-env` variable and of a
+/// secret-named variable (`tests/hostile/commands/leak.toml`, issue 42 "Leaks") publishes
+/// neither: its last output reaches the terminal, JUnit, `summary.txt`, `run.json`,
+/// `report.html` and `report.md` with both values replaced by their mask, its 200 000-character
+/// line cut to the shown line's bound and its terminal escape written as a visible escape. The
+/// program's own log, in the run folder kept on failure, holds what it wrote.
+#[test]
+fn a_failing_program_s_secrets_reach_no_output_masked_bounded_and_escaped() {
+    let (_dir, temporary, verified, texts) = published("leak.toml");
+    assert_eq!(verified, Some(1), "{texts:?}");
+    let everywhere: Vec<&str> = texts.iter().map(|(what, _)| what.as_str()).collect();
+    assert_masked_bounded_and_escaped(&texts, &everywhere);
+    // The logs are the program's own output, in a folder of the user's: kept as written.
+    let kept = std::fs::read_dir(&temporary)
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let log = std::fs::read_to_string(kept.join("command.stderr")).unwrap();
+    assert!(
+        log.contains(PASSED.1) && log.contains(TOKEN.1),
+        "{}",
+        kept.display()
+    );
+}
+
+/// A command solver that succeeds and describes itself in `metadata.json` with the values of a
+/// `--pass-env` variable and of a secret-named variable, and a 100 000-character warning with a
+/// terminal escape (`tests/hostile/commands/leak-metadata.toml`), publishes neither value: its
+/// version, model, resolution and warnings reach the terminal, JUnit, `summary.txt`, `run.json`
+/// and both reports masked, bounded and escaped.
+#[test]
+fn a_program_s_metadata_reaches_no_output_with_its_secrets_masked_bounded_and_escaped() {
+    let (_dir, _temporary, verified, texts) = published("leak-metadata.toml");
+    assert_eq!(verified, Some(0), "{texts:?}");
+    assert_masked_bounded_and_escaped(
+        &texts,
+        &[
+            "verify's terminal output",
+            "verify/summary.txt",
+            "verify/run.json",
+            "compare/report.html",
+            "compare/report.md",
+        ],
+    );
+}
