@@ -7,6 +7,7 @@ use crate::case::ReadRoots;
 use crate::plan::{CaseOptions, Member, Plan, PlanError};
 use crate::runfile::{RunFile, FILE, FORMAT};
 use crate::schedule::Finished;
+use crate::text::one_line;
 
 /// Why run files cannot be merged (bad input: exit code 2, nothing written).
 #[derive(Debug, thiserror::Error)]
@@ -28,11 +29,15 @@ pub enum MergeError {
         what: &'static str,
     },
     /// A run that no file holds.
-    #[error("merge: no run of solver `{solver}` for case {} (is a shard missing?)", case.display())]
+    #[error(
+        "merge: no run of solver `{}` for case {} (is a shard missing?)",
+        one_line(solver),
+        shown(case)
+    )]
     Missing { case: PathBuf, solver: String },
     /// A run whose result is of the other kind than its case (an impact case's run for a path
     /// case, or the reverse: the case file changed since the shard ran).
-    #[error("{}: run of solver `{solver}` for case {} holds {held} (allowed: the case's kind of run; was the case file changed?)", file.display(), case.display())]
+    #[error("{}: run of solver `{}` for case {} holds {held} (allowed: the case's kind of run; was the case file changed?)", file.display(), one_line(solver), shown(case))]
     Kind {
         file: PathBuf,
         case: PathBuf,
@@ -40,7 +45,7 @@ pub enum MergeError {
         held: &'static str,
     },
     /// A run that two files hold, or that the plan does not have.
-    #[error("{}: run of solver `{solver}` for case {} {problem}", file.display(), case.display())]
+    #[error("{}: run of solver `{}` for case {} {problem}", file.display(), one_line(solver), shown(case))]
     Extra {
         file: PathBuf,
         case: PathBuf,
@@ -50,6 +55,11 @@ pub enum MergeError {
     /// The cases cannot be read back.
     #[error(transparent)]
     Plan(#[from] PlanError),
+}
+
+/// A case file's name as a run file records it, on one line (src/text.rs).
+fn shown(case: &Path) -> String {
+    one_line(&case.display().to_string()).into_owned()
 }
 
 /// Reads `dir/run.json`: a regular file of [`FORMAT`].

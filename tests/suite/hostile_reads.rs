@@ -293,6 +293,45 @@ fn control_characters_never_reach_the_terminal_or_the_reports() {
     );
 }
 
+/// Requirement: `merge` shows a run folder's name and the run file's fields (`shard`, a run's
+/// `solver` in an error) with their control characters escaped (src/text.rs), on one line: none
+/// can redraw the terminal nor forge a line.
+#[test]
+fn merge_escapes_the_control_characters_of_folder_names_and_shard_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), common::SMALL_CASE).unwrap();
+    let folder = "run\u{1b}[2K\rOK";
+    let output = spherecontact(&["verify", "case.toml", "--out", folder], dir.path());
+    assert!(output.status.success(), "{}", text(&output));
+    let run_file = dir.path().join(folder).join("run.json");
+    let mut run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&run_file).unwrap()).unwrap();
+    run["shard"] = "1/1\u{1b}[1A\nOK forged".into();
+    std::fs::write(&run_file, run.to_string()).unwrap();
+    let output = spherecontact(&["merge", folder], dir.path());
+    let all = text(&output);
+    assert!(output.status.success(), "{all}");
+    assert!(raw_controls(&all).is_empty(), "raw control characters: {all:?}");
+    assert!(
+        all.contains("merge: run\\u{1b}[2K\\u{d}OK (shard 1/1\\u{1b}[1A\\nOK forged): runs"),
+        "{all}"
+    );
+    assert!(!all.lines().any(|l| l.starts_with("OK")), "a forged line: {all}");
+    run["runs"][0]["solver"] = "mdr\u{1b}[2K\nOK forged".into();
+    std::fs::write(&run_file, run.to_string()).unwrap();
+    let output = spherecontact(&["merge", folder], dir.path());
+    let all = text(&output);
+    assert_eq!(output.status.code(), Some(2), "{all}");
+    assert!(raw_controls(&all).is_empty(), "raw control characters: {all:?}");
+    assert!(
+        all.contains(
+            "run of solver `mdr\\u{1b}[2K\\nOK forged` for case case.toml is not a run of the cases"
+        ),
+        "{all}"
+    );
+    assert!(!all.lines().any(|l| l.starts_with("OK")), "a forged line: {all}");
+}
+
 /// HTML and Markdown that a case's strings and a run file's metadata carry into the reports.
 const MARKUP: &str = "<script>alert(10)</script> | [v](javascript:alert(11)) <IMG SRC=x onerror=alert(12)>";
 
