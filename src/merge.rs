@@ -41,11 +41,15 @@ pub enum MergeError {
         what: &'static str,
     },
     /// A run that no file holds.
-    #[error("merge: no run of solver `{solver}` for case {} (is a shard missing?)", case.display())]
+    #[error(
+        "merge: no run of solver `{}` for case {} (is a shard missing?)",
+        one_line(solver),
+        shown(case)
+    )]
     Missing { case: PathBuf, solver: String },
     /// A run whose result does not fit its case: of the other kind (an impact case's run for a
     /// path case, or the reverse), or a history off the case's path.
-    #[error("{}: run of solver `{solver}` for case {}: {problem} (allowed: a run of the case as it is: was the case file changed?)", file.display(), case.display())]
+    #[error("{}: run of solver `{}` for case {}: {problem} (allowed: a run of the case as it is: was the case file changed?)", file.display(), one_line(solver), shown(case))]
     Unfit {
         file: PathBuf,
         case: PathBuf,
@@ -53,7 +57,7 @@ pub enum MergeError {
         problem: String,
     },
     /// A run that two files hold, or that the plan does not have.
-    #[error("{}: run of solver `{solver}` for case {} {problem}", file.display(), case.display())]
+    #[error("{}: run of solver `{}` for case {} {problem}", file.display(), one_line(solver), shown(case))]
     Extra {
         file: PathBuf,
         case: PathBuf,
@@ -63,6 +67,11 @@ pub enum MergeError {
     /// The cases cannot be read back.
     #[error(transparent)]
     Plan(#[from] PlanError),
+}
+
+/// A case file's name as a run file records it, on one line (src/text.rs).
+fn shown(case: &Path) -> String {
+    one_line(&case.display().to_string()).into_owned()
 }
 
 /// Reads `dir/run.json`: a file from elsewhere of [`FORMAT`], written by [`HARNESS`].
@@ -147,7 +156,7 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
             let extra = |problem| MergeError::Extra {
                 file: dir.join(FILE),
                 case: case_files.get(record.case).cloned().unwrap_or_default(),
-                solver: one_line(&record.solver).into_owned(),
+                solver: record.solver.clone(),
                 problem,
             };
             let slot = plan
@@ -158,7 +167,9 @@ pub fn merge(dirs: &[PathBuf], roots: &ReadRoots) -> Result<Merged, MergeError> 
                 None => return Err(extra("is not a run of the cases")),
                 Some(i) if slots[i].is_some() => return Err(extra("is held by another run file too")),
                 Some(i) => {
-                    if let Err(problem) = fits(&record.result, &plan.cases[record.case], &record.solver) {
+                    let fitting = timings_fit(&record)
+                        .and_then(|()| fits(&record.result, &plan.cases[record.case], &record.solver));
+                    if let Err(problem) = fitting {
                         return Err(MergeError::Unfit {
                             file: dir.join(FILE),
                             case: case_files[record.case].clone(),
@@ -203,7 +214,7 @@ fn load_recorded(
     record: &CaseRecord,
     options: &CaseOptions,
 ) -> Result<Member, MergeError> {
-    let shown = one_line(&record.file.display().to_string()).into_owned();
+    let shown = shown(&record.file);
     let provenance = |problem: String| MergeError::Provenance {
         file: run_file.to_path_buf(),
         problem: format!("cases[{k}] (`{shown}`): {problem}"),
@@ -228,6 +239,23 @@ fn load_recorded(
     }
     Ok(case)
 }
+
+/// Whether a run's record keeps a run's bounds: finite, non-negative times (their sums are
+/// printed and become costs) and at least one core.
+fn timings_fit(record: &runfile::RunRecord) -> Result<(), String> {
+    let time = |t: f64| t.is_finite() && (0.0..=MAX_RUN_SECONDS).contains(&t);
+    if time(record.wall_s) && time(record.cost_s) && record.cores >= 1 {
+        Ok(())
+    } else {
+        Err(format!(
+            "its wall_s, cost_s or cores is not a run's (allowed: 0 to {MAX_RUN_SECONDS:e} s, at least one core)"
+        ))
+    }
+}
+
+/// The longest run a run file may record [s]: a year, far beyond any timeout, so that the sums of
+/// a merge's times stay finite.
+const MAX_RUN_SECONDS: f64 = 3.2e7;
 
 /// Whether the stored `result` of `solver` fits `case`: a path run for a path case, its history
 /// on the case's path ([`crate::solver::validate`]); an impact run for an impact case, each

@@ -8,9 +8,13 @@
 //! ESC, CR, backspace), DEL, the C1 controls and the Unicode bidirectional and invisible
 //! formatting characters (U+200B–U+200F, U+202A–U+202E, U+2060–U+2069, U+FEFF): each is written
 //! `\u{…}` (a newline `\n`, a tab `\t`). [`one_line`] escapes newlines too (a table row, a cell, an
-//! attribute); [`lines`] keeps them (a paragraph, a multi-line error message).
+//! attribute); [`lines`] keeps them (a paragraph, a multi-line error message). [`markdown`] adds
+//! Markdown's own rule on top (`report.md`: no HTML, link or table cell from the text).
 
 use std::borrow::Cow;
+
+mod markdown;
+pub use markdown::markdown;
 
 /// `text` with every control character escaped, newlines included: for text that must stay on
 /// its line.

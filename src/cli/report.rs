@@ -25,8 +25,7 @@ pub(crate) fn bench(
     roots: &ReadRoots,
     permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
-    let case = load_case(case, None, &[], roots, permission)?;
-    case.command_lines().iter().for_each(|line| eprintln!("{line}"));
+    let case = load_shown(case, &[], roots, permission)?;
     let (plan, left_out) =
         spherecontact::bench::sweepable(&case, planned_solvers(&case, solvers)?, !solvers.is_empty())?;
     for name in left_out {
@@ -89,6 +88,19 @@ pub(crate) fn bench(
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// The case of `file` ([`load_case`]), every command it would run printed on stderr before
+/// anything runs (docs/security.md, "What a case would run is shown before it runs").
+fn load_shown(
+    file: &Path,
+    resolutions: &[(String, String)],
+    roots: &ReadRoots,
+    permission: &CommandPermission,
+) -> Result<Case, InputError> {
+    let case = load_case(file, None, resolutions, roots, permission)?;
+    case.command_lines().iter().for_each(|line| eprintln!("{line}"));
+    Ok(case)
 }
 
 /// How the progress lines reach the user beside `bar`: above it (a hidden bar prints nothing:
@@ -249,8 +261,7 @@ pub(crate) fn report(
     }
     let (permission, force) = (&commands.permission()?, force.force);
     let resolution = &resolution;
-    let case = load_case(case, None, &resolution_options(resolution)?, roots, permission)?;
-    case.command_lines().iter().for_each(|line| eprintln!("{line}"));
+    let case = load_shown(case, &resolution_options(resolution)?, roots, permission)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("compare-{}", case.name())));
     // The paper's quoted values are read before anything is written or run: a missing file is
     // bad input.
@@ -266,7 +277,7 @@ pub(crate) fn report(
     // input exits 2. (`compare` has no such section: its reason is never shown.)
     let discretisation: Result<Case, String> = match kind {
         Report::Paper { discretisation } => match discretisation.file(&case.file) {
-            Ok(file) => Ok(load_case(&file, None, &[], roots, permission)?),
+            Ok(file) => Ok(load_shown(&file, &[], roots, permission)?),
             Err(why) => Err(why),
         },
         Report::Compare => Err("not a paper report".into()),

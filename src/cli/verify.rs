@@ -12,6 +12,7 @@ use spherecontact::judged::Suite;
 use spherecontact::report::junit;
 use spherecontact::runfile::{CaseRecord, RunFile};
 use spherecontact::schedule::Judged;
+use spherecontact::text::one_line;
 use spherecontact::{baseline, io, merge, plan, schedule};
 
 use super::Jobs;
@@ -302,10 +303,12 @@ pub(crate) fn merge_runs(
     let merged = merge::merge(dirs, roots)?;
     let baselines = baseline::load_all(baselines, &merged.plan.cases)?;
     for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
-        let shard = shard.as_deref().unwrap_or("whole");
+        // The folder's name and the run file's shard field as text (src/text.rs): one line each.
+        let shard = one_line(shard.as_deref().unwrap_or("whole"));
+        let dir = dir.display().to_string();
         eprintln!(
             "merge: {} (shard {shard}): runs {wall_s:.2} s wall in all",
-            dir.display()
+            one_line(&dir)
         );
     }
     let mut judged = schedule::judge(merged.plan, merged.finished);

@@ -3,7 +3,8 @@
 //!
 //! The script (`templates/yade_mindlin.py`) is a command solver: it reads the scene file and
 //! writes the History CSV ([`crate::exchange`]), run by `yade -n -x` in its own folder with the
-//! process handling of every external program.
+//! process handling of every external program; every YADE run (this solver's, the impact
+//! sweeps') is made by [`job`], which leaves nothing outside that folder.
 //!
 //! YADE's `Law2_ScGeom_MindlinPhys_MindlinDeresiewitz` is not a solver here: it gives no
 //! tangential force at all. In YADE 2023.02a (the Debian build) its shear-force update sits
@@ -11,6 +12,7 @@
 //! [`YadeLaw::MindlinDeresiewitz`] exists so that a test shows it (Q = 0 at every step of a
 //! sliding path, P still Hertz).
 
+use std::path::Path;
 use std::time::Duration;
 
 use serde_json::json;
@@ -29,6 +31,13 @@ pub const TEMPLATE: &str = include_str!("templates/yade_mindlin.py");
 
 /// The script's file name in the run folder.
 const SCRIPT: &str = "yade_mindlin.py";
+
+/// What every YADE script starts with ([`job`]): YADE's own `/tmp/yade-XXXXXX` removed.
+const PRELUDE: &str = include_str!("templates/yade_prelude.py");
+
+/// The folder in the run folder where YADE's IPython keeps its profile (`IPYTHONDIR`), instead of
+/// the user's `~/.ipython`.
+const IPYTHON_DIR: &str = "ipython";
 
 /// YADE's start-up (2–3 s), and the time allowed per path increment (about 0.1 ms).
 const START_UP: Duration = Duration::from_secs(120);
@@ -93,6 +102,28 @@ impl Yade {
     }
 }
 
+/// The job that runs the YADE script `text` as `dir/script` (written there, [`PRELUDE`] first):
+/// `yade -n -x script` within `timeout`. Every YADE run goes through it (the path solver here, the
+/// impact sweeps of `crate::impact::code_run`), so that none leaves anything outside `dir`: the
+/// prelude removes the `/tmp/yade-XXXXXX` YADE makes at its start, and its IPython keeps its
+/// profile and history in `dir/ipython` (`IPYTHONDIR`: an absolute path, so `dir` must be UTF-8).
+pub fn job(yade: &Path, dir: &Path, script: &str, text: &str, timeout: Duration) -> std::io::Result<Job> {
+    let ipython = dir.join(IPYTHON_DIR);
+    let ipython = ipython.to_str().ok_or_else(|| {
+        std::io::Error::other(format!(
+            "the run folder {} is not UTF-8 (YADE's IPYTHONDIR is text)",
+            dir.display()
+        ))
+    })?;
+    std::fs::write(dir.join(script), format!("{PRELUDE}{text}"))?;
+    Ok(Job {
+        program: yade.to_path_buf(),
+        args: ["-n", "-x", script].map(String::from).to_vec(),
+        env: vec![("IPYTHONDIR".into(), ipython.into())],
+        timeout,
+    })
+}
+
 impl Solver for Yade {
     fn name(&self) -> &str {
         self.law.solver_name()
@@ -115,14 +146,9 @@ impl Solver for Yade {
             .require(Tool::Yade)
             .map_err(SolveError::Unavailable)?;
         program::in_run_folder(self.name(), |dir| {
-            std::fs::write(dir.join(SCRIPT), self.script())
+            let timeout = program::time_limit(START_UP, PER_STEP, scene.steps().len());
+            let job = job(&self.toolchain.yade, dir, SCRIPT, &self.script(), timeout)
                 .map_err(|e| SolveError::Failed(format!("writing the YADE script: {e}")))?;
-            let job = Job {
-                program: self.toolchain.yade.clone(),
-                args: ["-n", "-x", SCRIPT].map(String::from).to_vec(),
-                env: Vec::new(),
-                timeout: program::time_limit(START_UP, PER_STEP, scene.steps().len()),
-            };
             let (steps, told, wall_s) =
                 command::run_exchange(scene, dir, &job, "YADE", &Environment::Inherited)?;
             let mut metadata = Metadata {
@@ -153,5 +179,35 @@ impl Solver for Yade {
                 fields: Vec::new(),
             })
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_yade_job_removes_yades_temporary_folder_and_keeps_ipython_in_its_run_folder() {
+        let dir = tempfile::tempdir().unwrap();
+        let job = job(
+            Path::new("yade"),
+            dir.path(),
+            "s.py",
+            "print(1)\n",
+            Duration::from_secs(1),
+        )
+        .unwrap();
+        assert_eq!(job.args, ["-n", "-x", "s.py"]);
+        let script = std::fs::read_to_string(dir.path().join("s.py")).unwrap();
+        assert!(
+            script.starts_with(PRELUDE) && script.ends_with("\nprint(1)\n"),
+            "{script}"
+        );
+        assert!(PRELUDE.contains("rmdir(") && PRELUDE.contains("O.tmpFilename()"));
+        let ipython = dir.path().join(IPYTHON_DIR);
+        assert_eq!(
+            job.env,
+            [("IPYTHONDIR".to_owned(), ipython.to_str().unwrap().to_owned())]
+        );
     }
 }

@@ -104,14 +104,14 @@ impl Code {
                 })
             }
             Code::Yade => {
-                std::fs::write(dir.join(super::yade::SCRIPT), super::yade::SCRIPT_TEXT)?;
                 std::fs::write(dir.join(super::yade::POINTS), super::yade::points(placements))?;
-                Ok(Job {
-                    program: toolchain.yade.clone(),
-                    args: ["-n", "-x", super::yade::SCRIPT].map(String::from).to_vec(),
-                    env: Vec::new(),
+                crate::dem::yade::job(
+                    &toolchain.yade,
+                    dir,
+                    super::yade::SCRIPT,
+                    super::yade::SCRIPT_TEXT,
                     timeout,
-                })
+                )
             }
         }
     }

@@ -6,7 +6,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 use crate::io::write_atomically;
-use crate::text::{lines, one_line};
+use crate::text::{lines, markdown, one_line};
 
 /// A table cell: text, and a CSS class that marks verdicts and timings.
 #[derive(Clone, Debug, PartialEq)]
@@ -103,11 +103,6 @@ pub fn escape_html(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Escapes the characters that break a Markdown table cell, control characters included.
-fn escape_markdown_cell(text: &str) -> String {
-    one_line(&text.replace('\n', " ")).replace('|', "\\|")
-}
-
 /// The page's style. Tables take the page's width and no more: cells wrap anywhere a long word
 /// would otherwise widen the table (a path, a list of metadata), so no table scrolls sideways;
 /// headings and verdicts (short) never break, timings only between words.
@@ -184,13 +179,15 @@ impl Document {
         html
     }
 
-    /// The Markdown summary (figures linked as files).
+    /// The Markdown summary (figures linked as files). Every text, the title's to the cells',
+    /// goes through [`markdown`]: Markdown shows what the HTML page shows, never markup of a
+    /// case's or a file's.
     pub fn to_markdown(&self) -> String {
-        let mut md = format!("# {}\n", one_line(&self.title));
+        let mut md = format!("# {}\n", markdown(&self.title));
         for section in &self.sections {
-            let _ = write!(md, "\n## {}\n\n", one_line(&section.title));
+            let _ = write!(md, "\n## {}\n\n", markdown(&section.title));
             for paragraph in &section.paragraphs {
-                let _ = write!(md, "{}\n\n", lines(paragraph));
+                let _ = write!(md, "{}\n\n", markdown(paragraph));
             }
             for table in &section.tables {
                 let _ = writeln!(
@@ -199,13 +196,13 @@ impl Document {
                     table
                         .header
                         .iter()
-                        .map(|h| escape_markdown_cell(h))
+                        .map(|h| markdown(h))
                         .collect::<Vec<_>>()
                         .join(" | ")
                 );
                 let _ = writeln!(md, "|{}", "---|".repeat(table.header.len()));
                 for row in &table.rows {
-                    let cells: Vec<_> = row.iter().map(|c| escape_markdown_cell(&c.text)).collect();
+                    let cells: Vec<_> = row.iter().map(|c| markdown(&c.text)).collect();
                     let _ = writeln!(md, "| {} |", cells.join(" | "));
                 }
                 md.push('\n');
@@ -215,7 +212,7 @@ impl Document {
                     md,
                     "![{caption}](figures/{id}.svg)\n\n*{caption}* (data: [data/{id}.csv](data/{id}.csv))\n\n",
                     id = figure.id,
-                    caption = one_line(&figure.caption)
+                    caption = markdown(&figure.caption)
                 );
             }
         }
@@ -341,6 +338,21 @@ mod tests {
         let md = document().to_markdown();
         assert!(md.contains("| x\\|y | OK |"));
         assert!(md.contains("![cap](figures/f1.svg)"));
+    }
+
+    #[test]
+    fn markdown_shows_every_text_as_text() {
+        let mut doc = document();
+        doc.title = "<b>T</b>".into();
+        doc.sections[0].paragraphs = vec!["[x](javascript:alert(1))".into()];
+        doc.sections[0].figures[0].caption = "c](javascript:alert(2)) <img src=x>".into();
+        let md = doc.to_markdown();
+        assert!(md.starts_with("# &lt;b&gt;T&lt;/b&gt;\n"), "{md}");
+        assert!(md.contains("\n\\[x\\](javascript\\:alert(1))\n"), "{md}");
+        assert!(
+            md.contains("![c\\](javascript\\:alert(2)) &lt;img src=x&gt;](figures/f1.svg)"),
+            "{md}"
+        );
     }
 
     #[test]

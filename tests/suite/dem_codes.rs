@@ -174,6 +174,16 @@ fn yade_mindlin_deresiewitz_gives_no_tangential_force() {
     }
 }
 
+/// Requirement: a YADE run along a path leaves nothing outside its own run folder: no
+/// `/tmp/yade-XXXXXX` (one was left by every run), nothing in HOME (its IPython's `~/.ipython/`)
+/// or in TMPDIR.
+#[test]
+fn a_yade_path_run_leaves_nothing_behind() {
+    if present(Tool::Yade, "a_yade_path_run_leaves_nothing_behind") {
+        common::leftovers::assert_run_leaves_nothing(common::SMALL_CASE, "yade-mindlin");
+    }
+}
+
 #[test]
 fn missing_codes_are_not_available_and_a_flat_is_not_applicable() {
     let scene = shear_scene();

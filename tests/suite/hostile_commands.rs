@@ -364,9 +364,11 @@ fn assert_masked_bounded_and_escaped(texts: &[(String, String)], masked: &[&str]
         for (name, value) in [PASSED, TOKEN] {
             assert!(!text.contains(value), "{what} publishes {name}:\n{text}");
             let marker = format!("[masked: {name}]");
+            // Markdown shows the mask as text: its brackets escaped (src/text/markdown.rs).
+            let shown = spherecontact::text::markdown(&marker);
             let expected = masked.contains(&what.as_str());
             assert!(
-                !expected || text.contains(&marker),
+                !expected || text.contains(&marker) || text.contains(&shown),
                 "{what} has no {marker}:\n{text}"
             );
         }
@@ -424,4 +426,45 @@ fn a_program_s_metadata_reaches_no_output_with_its_secrets_masked_bounded_and_es
             "compare/report.md",
         ],
     );
+}
+
+/// Requirement: `reproduce-paper --allow-commands` shows every command it will run before it runs
+/// it, those of the discretisation case (`--discretisation CASE`) as those of the paper's case
+/// (docs/security.md, "What a case would run is shown before it runs").
+#[test]
+fn reproduce_paper_shows_the_discretisation_cases_commands_before_running_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = dir.path().join("cases");
+    place("unasked.toml", &cases);
+    std::fs::rename(cases.join("case.toml"), cases.join("discretisation.toml")).unwrap();
+    std::fs::write(cases.join("paper.toml"), common::SMALL_CASE).unwrap();
+    std::fs::create_dir(dir.path().join("reference")).unwrap();
+    std::fs::copy(
+        common::root().join("reference/paper.toml"),
+        dir.path().join("reference/paper.toml"),
+    )
+    .unwrap();
+    let args = [
+        "reproduce-paper",
+        "--case",
+        "cases/paper.toml",
+        "--discretisation",
+        "cases/discretisation.toml",
+        "--allow-commands",
+        "--out",
+        "out",
+    ];
+    let (_, text) = output(&mut spherecontact(&args, dir.path()));
+    assert!(
+        cases.join("ran").exists(),
+        "the command was allowed and ran:\n{text}"
+    );
+    let shown = format!("mine runs (timeout 60 s): sh -c 'touch {}/ran", cases.display());
+    let announced = text.find(&shown);
+    let beside = text.find("the paper's discretisation, beside");
+    assert!(
+        announced.is_some() && announced < beside,
+        "the command is not shown before the runs:\n{text}"
+    );
+    assert!(text.contains("command solvers allowed"), "{text}");
 }

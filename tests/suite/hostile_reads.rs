@@ -288,9 +288,143 @@ fn control_characters_never_reach_the_terminal_or_the_reports() {
     }
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
-        md.contains("escape \\u{1b}[31mred"),
+        md.contains("escape \\\\u{1b}\\[31mred"),
         "the description is shown, escaped"
     );
+}
+
+/// Requirement: `merge` shows a run folder's name and the run file's fields (`shard`, a run's
+/// `solver` in an error) with their control characters escaped (src/text.rs), on one line: none
+/// can redraw the terminal nor forge a line.
+#[test]
+fn merge_escapes_the_control_characters_of_folder_names_and_shard_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), common::SMALL_CASE).unwrap();
+    let folder = "run\u{1b}[2K\rOK";
+    let output = spherecontact(&["verify", "case.toml", "--out", folder], dir.path());
+    assert!(output.status.success(), "{}", text(&output));
+    let run_file = dir.path().join(folder).join("run.json");
+    let mut run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&run_file).unwrap()).unwrap();
+    run["shard"] = "1/1\u{1b}[1A\nOK forged".into();
+    std::fs::write(&run_file, run.to_string()).unwrap();
+    let output = spherecontact(&["merge", folder], dir.path());
+    let all = text(&output);
+    assert!(output.status.success(), "{all}");
+    assert!(raw_controls(&all).is_empty(), "raw control characters: {all:?}");
+    assert!(
+        all.contains("merge: run\\u{1b}[2K\\u{d}OK (shard 1/1\\u{1b}[1A\\nOK forged): runs"),
+        "{all}"
+    );
+    assert!(!all.lines().any(|l| l.starts_with("OK")), "a forged line: {all}");
+    run["runs"][0]["solver"] = "mdr\u{1b}[2K\nOK forged".into();
+    std::fs::write(&run_file, run.to_string()).unwrap();
+    let output = spherecontact(&["merge", folder], dir.path());
+    let all = text(&output);
+    assert_eq!(output.status.code(), Some(2), "{all}");
+    assert!(raw_controls(&all).is_empty(), "raw control characters: {all:?}");
+    assert!(
+        all.contains(
+            "run of solver `mdr\\u{1b}[2K\\nOK forged` for case case.toml is not a run of the cases"
+        ),
+        "{all}"
+    );
+    assert!(!all.lines().any(|l| l.starts_with("OK")), "a forged line: {all}");
+}
+
+/// HTML and Markdown that a case's strings and a run file's metadata carry into the reports.
+const MARKUP: &str = "<script>alert(10)</script> | [v](javascript:alert(11)) <IMG SRC=x onerror=alert(12)>";
+
+/// How often `pattern` starts at a character of `text` that no backslash escapes (Markdown reads
+/// those: a `|` that breaks a cell, a `](` that opens a link's address).
+fn unescaped(text: &str, pattern: &str) -> usize {
+    let (mut found, mut escaped) = (0, false);
+    for (at, c) in text.char_indices() {
+        if escaped {
+            escaped = false;
+        } else if c == '\\' {
+            escaped = true;
+        } else if text[at..].starts_with(pattern) {
+            found += 1;
+        }
+    }
+    found
+}
+
+/// Requirement: report.md shows a case's strings (description, a check's reason, a solver's
+/// description) and a run file's metadata (version, model) as text, as report.html does: no
+/// raw HTML tag, no link, no `javascript:`, and no `|` that adds a table cell.
+#[test]
+fn markup_in_case_strings_and_run_files_is_text_in_the_markdown_report() {
+    let p = Project::new();
+    let case = p.cases().join("markup.toml");
+    std::fs::copy(hostile("markup.toml"), &case).unwrap();
+    let verified = p.project().join("verified");
+    let output = spherecontact(
+        &[
+            "verify",
+            case.to_str().unwrap(),
+            "--out",
+            verified.to_str().unwrap(),
+        ],
+        &p.project(),
+    );
+    assert!(output.status.success(), "{}", text(&output));
+    // The run file's hertz history says what a forged or foreign run file may say about its
+    // solver (lab-rig's model is the stored results' description).
+    let run_file = verified.join("run.json");
+    let mut run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&run_file).unwrap()).unwrap();
+    for record in run["runs"].as_array_mut().unwrap() {
+        if record["solver"] == "hertz" {
+            let metadata = &mut record["result"]["history"]["metadata"];
+            metadata["version"] = MARKUP.into();
+            metadata["model"] = MARKUP.into();
+        }
+    }
+    std::fs::write(&run_file, run.to_string()).unwrap();
+    let out = p.project().join("out");
+    let output = spherecontact(
+        &[
+            "compare",
+            case.to_str().unwrap(),
+            "--from",
+            verified.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &p.project(),
+    );
+    assert!(output.status.success(), "{}", text(&output));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let lower = md.to_lowercase();
+    for raw in ["<script", "<img", "javascript:"] {
+        assert!(!lower.contains(raw), "raw `{raw}` in report.md:\n{md}");
+    }
+    // The only links are the harness's own: `![caption](figures/…)`, `[data/…](data/…)`.
+    let own = md.matches("](figures/").count() + md.matches("](data/").count();
+    assert_eq!(
+        unescaped(&md, "]("),
+        own,
+        "a link of the case's in report.md:\n{md}"
+    );
+    for shown in ["alert(1)", "alert(4)", "alert(7)", "alert(10)", "&lt;script&gt;"] {
+        assert!(md.contains(shown), "`{shown}` is shown: {md}");
+    }
+    let mut header_cells = None;
+    for line in md.lines() {
+        match line.starts_with('|') {
+            true => {
+                let cells = *header_cells.get_or_insert(unescaped(line, "|"));
+                assert_eq!(
+                    unescaped(line, "|"),
+                    cells,
+                    "a row with other cells than its header: {line}"
+                );
+            }
+            false => header_cells = None,
+        }
+    }
 }
 
 #[test]

@@ -225,3 +225,19 @@ fn compare_from_a_forged_run_is_refused() {
     );
     assert!(!dir.path().join("report").exists());
 }
+
+/// Finding (of this round's review): two huge recorded wall times summed to `inf` in merge's
+/// line; a run's times and cores must be a run's.
+#[test]
+fn a_run_of_impossible_times_is_refused() {
+    let dir = verified();
+    edit_run_file(dir.path(), |json| {
+        json["runs"][0]["wall_s"] = serde_json::json!(1.7e308)
+    });
+    assert_refused(merge(dir.path()), "its wall_s, cost_s or cores is not a run's");
+    edit_run_file(dir.path(), |json| {
+        json["runs"][0]["wall_s"] = serde_json::json!(0.1);
+        json["runs"][0]["cores"] = serde_json::json!(0);
+    });
+    assert_refused(merge(dir.path()), "at least one core");
+}

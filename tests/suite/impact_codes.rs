@@ -265,6 +265,22 @@ fn yade_runs_one_sweep_point_under_its_own_rule() {
     }
 }
 
+/// Requirement: a YADE impact sweep leaves nothing outside its own run folder: no
+/// `/tmp/yade-XXXXXX` (one was left by every sweep), nothing in HOME (its IPython's
+/// `~/.ipython/`) or in TMPDIR. Test 6 cut to its spin of 2 rad/s, without checks.
+#[test]
+fn a_yade_impact_sweep_leaves_nothing_behind() {
+    if !present(Tool::Yade, "a_yade_impact_sweep_leaves_nothing_behind") {
+        return;
+    }
+    let text = std::fs::read_to_string(root().join("cases/impact/chung-ooi-6.toml")).unwrap();
+    let values = text.find("values = [").unwrap();
+    let end = values + text[values..].find('\n').unwrap();
+    let checks = text.find("[[checks]]").unwrap();
+    let case = format!("{}values = [2.0]{}", &text[..values], &text[end..checks]);
+    crate::common::leftovers::assert_run_leaves_nothing(&case, "yade-mindlin");
+}
+
 #[test]
 fn a_code_not_installed_makes_its_checks_na_and_require_external_fails() {
     // No lmp or yade on PATH: the codes' checks are N/A with the reason, the case still passes

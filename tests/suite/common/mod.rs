@@ -3,6 +3,7 @@
 
 pub mod decks;
 pub mod friction;
+pub mod leftovers;
 pub mod peak;
 pub mod reads;
 
