@@ -155,20 +155,13 @@ impl Member {
         }
     }
 
-    /// The expected wall time of `solver` with nothing recorded [s].
+    /// The expected wall time of `solver` with nothing recorded [s]: a path run's by its kind, an
+    /// impact run's from its size (steps × springs × sweep points × variants, a DEM code's
+    /// start-up and steps: [`crate::impact::cost`]).
     fn default_cost(&self, solver: &str) -> f64 {
         match self {
             Member::Path(_) => default_cost(solver),
-            // Measured (release, 17 sweep points, docs/impact.md): MDR's bed about 0.3 s a
-            // variant, a DEM law's spring about ten times less.
-            Member::Impact(case) => {
-                let per_variant = if solver == crate::case::impact::REFERENCE {
-                    0.3
-                } else {
-                    0.03
-                };
-                per_variant * case.variants().len() as f64
-            }
+            Member::Impact(case) => crate::impact::cost::seconds(case, solver),
         }
     }
 }
@@ -249,7 +242,8 @@ pub struct Run {
     pub solver: String,
     /// The cores the solver keeps busy ([`crate::solver::Solver::cores`]).
     pub cores: usize,
-    /// Its expected wall time [s]: recorded with the baselines, else [`default_cost`].
+    /// Its expected wall time [s]: recorded with the baselines, else [`default_cost`] (a path
+    /// run) or its size ([`crate::impact::cost::seconds`], an impact run).
     pub cost_s: f64,
 }
 
@@ -430,9 +424,53 @@ mod tests {
             ]
         );
         assert!(plan.runs.iter().all(|r| r.cores == 1));
-        // e = 0.5: two variants, each costed; a recorded cost wins.
-        assert_eq!(plan.runs[0].cost_s, 0.6);
+        // A recorded cost wins; else the run's size is costed (e = 0.5: two variants).
         assert_eq!(plan.runs[2].cost_s, 7.0);
+        let case = match &plan.cases[0] {
+            Member::Impact(case) => case,
+            Member::Path(_) => unreachable!("an impact case"),
+        };
+        for run in plan.runs.iter().filter(|r| r.solver != "thornton") {
+            assert_eq!(
+                run.cost_s,
+                crate::impact::cost::seconds(case, &run.solver),
+                "{}",
+                run.solver
+            );
+        }
+    }
+
+    /// Requirement (issue 42): an impact run with nothing recorded is costed from its size, not
+    /// at a fixed 0.3 s: the shipped cases' runs differ with their sweeps and solvers, and a
+    /// 200-angle sweep costs ten times a 20-angle one.
+    #[test]
+    fn an_impact_run_is_costed_from_its_size() {
+        let mut costs = Vec::new();
+        for file in case_files(&[PathBuf::from("cases/impact")]).unwrap() {
+            let member = Member::Impact(crate::case::load_impact(&file).unwrap());
+            let plan = Plan::new(vec![member], |_, _| None);
+            costs.extend(plan.runs.iter().map(|r| (r.solver.clone(), r.cost_s)));
+        }
+        let mdr: Vec<f64> = costs.iter().filter(|(s, _)| s == "mdr").map(|c| c.1).collect();
+        assert_eq!(mdr.len(), 12);
+        assert!(mdr.iter().all(|&c| c != 0.3 && c != 0.6), "{mdr:?}");
+        let (least, most) = (
+            mdr.iter().copied().fold(f64::INFINITY, f64::min),
+            mdr.iter().copied().fold(0.0, f64::max),
+        );
+        // One elastic point (tests 1, 2) to 17 points in two variants (tests 4, 6–8).
+        assert!(most / least > 30.0, "{least} … {most}");
+        let mut four = crate::case::load_impact(Path::new("cases/impact/chung-ooi-4.toml")).unwrap();
+        let cost =
+            |case: &ImpactCase| Plan::new(vec![Member::Impact(case.clone())], |_, _| None).runs[0].cost_s;
+        four.sweep.as_mut().unwrap().values = (1..=20).map(|i| f64::from(i) * 0.07).collect();
+        let twenty = cost(&four);
+        four.sweep.as_mut().unwrap().values = (1..=200).map(|i| f64::from(i) * 0.007).collect();
+        assert!(
+            (cost(&four) / twenty - 10.0).abs() < 1e-9,
+            "{twenty} {}",
+            cost(&four)
+        );
     }
 
     #[test]

@@ -7,10 +7,12 @@
 //! mdr-domain's own loops), and a line `progress: CASE SOLVER: k/n steps (p %), t s, about
 //! r s left` is printed at most every [`INTERVAL_SECONDS`] (the first after that long, so a
 //! short run prints none). The lines only read the walkers' counters: results do not depend on
-//! them.
+//! them. An impact run ([`crate::impact::run`]) is metered the same way in sweep points
+//! (`k/n points`, [`Work::points`]); a program that runs a whole sweep (LAMMPS, YADE) is
+//! [`watching`] its output folder, which the process's waiting loop asks through [`poll`].
 //!
-//! Where: `run`, `verify`, `compare` and `reproduce-paper` (the latter two above their bar);
-//! `bench` times its rungs without them. When: the announcement always (one line, in a CI log
+//! Where: `run`, `verify`, `compare`, `reproduce-paper` (the latter two above their bar) and
+//! `impact`; `bench` times its rungs without them. When: the announcement always (one line, in a CI log
 //! too), the progress lines if stderr is a terminal; the environment variable [`ENV`] changes
 //! that: `off` (neither), `on` (the lines also when stderr is not a terminal), or a number of
 //! seconds (on, with that interval).
@@ -64,9 +66,34 @@ impl Mode {
     }
 }
 
+/// What a run counts its progress in: `count` units called `unit`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Work {
+    /// How many units the run goes through.
+    pub count: usize,
+    /// Their name in the lines (plural).
+    pub unit: &'static str,
+}
+
+impl Work {
+    /// The steps of a path.
+    pub fn steps(count: usize) -> Self {
+        Self { count, unit: "steps" }
+    }
+
+    /// The points of an impact sweep (over every variant).
+    pub fn points(count: usize) -> Self {
+        Self {
+            count,
+            unit: "points",
+        }
+    }
+}
+
 /// The meter of the run in progress on this thread.
 struct Meter {
     label: String,
+    unit: &'static str,
     interval: f64,
     /// The first step's time (the rate leaves the set-up out) and the last line's.
     first: Option<Instant>,
@@ -76,9 +103,14 @@ struct Meter {
 /// How a line reaches the user: stderr, or through a progress bar that owns the terminal.
 type Printer = Box<dyn Fn(&str)>;
 
+/// How far a program is ([`watching`]): the units done and in all, when more are done than at
+/// the last call (`None`: no change).
+pub type Watcher = Box<dyn FnMut() -> Option<(usize, usize)>>;
+
 thread_local! {
     static METER: RefCell<Option<Meter>> = const { RefCell::new(None) };
     static PRINTER: RefCell<Option<Printer>> = const { RefCell::new(None) };
+    static WATCHER: RefCell<Option<Watcher>> = const { RefCell::new(None) };
 }
 
 /// Prints `line` through this thread's printer ([`printing_through`]), else on stderr.
@@ -108,22 +140,55 @@ pub fn tick(done: usize, total: usize) {
     });
 }
 
+/// Runs `f` (a program that runs many units in one process, e.g. a DEM code over a sweep) with
+/// `watcher` telling [`poll`] how far it is (e.g. from the files it has written so far).
+pub fn watching<R>(watcher: Watcher, f: impl FnOnce() -> R) -> R {
+    let previous = WATCHER.with(|cell| cell.borrow_mut().replace(watcher));
+    let result = f();
+    WATCHER.with(|cell| *cell.borrow_mut() = previous);
+    result
+}
+
+/// Reports the progress of the program [`watching`] on this thread (called by the loop that
+/// waits for a program, [`crate::external::process`]): a tick when it has done more, as a
+/// walker's after a step; no-op when no run is metered or watched, and the watcher is asked only
+/// when a line is due.
+pub fn poll() {
+    METER.with(|meter| {
+        let mut meter = meter.borrow_mut();
+        let Some(meter) = meter.as_mut().filter(|m| m.due(Instant::now())) else {
+            return;
+        };
+        WATCHER.with(|watcher| {
+            if let Some((done, total)) = watcher.borrow_mut().as_mut().and_then(|w| w()) {
+                meter.tick(done, total);
+            }
+        });
+    });
+}
+
 impl Meter {
+    /// True when a line may be printed at `now` (the interval has passed since the last).
+    fn due(&self, now: Instant) -> bool {
+        now.duration_since(self.last).as_secs_f64() >= self.interval
+    }
+
     fn tick(&mut self, done: usize, total: usize) {
         let now = Instant::now();
         let first = *self.first.get_or_insert_with(|| {
             self.last = now;
             now
         });
-        if now.duration_since(self.last).as_secs_f64() < self.interval || done == 0 {
+        if !self.due(now) || done == 0 {
             return;
         }
         self.last = now;
         let elapsed = now.duration_since(first).as_secs_f64();
         let left = elapsed / done as f64 * total.saturating_sub(done) as f64;
         print(&format!(
-            "progress: {}: {done}/{total} steps ({:.0} %), {}, about {} left",
+            "progress: {}: {done}/{total} {} ({:.0} %), {}, about {} left",
             self.label,
+            self.unit,
             100.0 * done as f64 / total.max(1) as f64,
             duration(elapsed),
             duration(left)
@@ -131,13 +196,13 @@ impl Meter {
     }
 }
 
-/// Runs `f`, a run of `steps` steps estimated at `seconds` (e.g. [`crate::solver::run_reported`]),
-/// under `label` (e.g. the case and the solver): announced when its estimate is long and metered
-/// (see the module doc).
-pub fn metered<R>(label: &str, seconds: Option<f64>, steps: usize, f: impl FnOnce() -> R) -> R {
+/// Runs `f`, a run of `work` estimated at `seconds` (e.g. [`crate::solver::run_reported`], an
+/// impact run), under `label` (e.g. the case and the solver): announced when its estimate is
+/// long and metered (see the module doc).
+pub fn metered<R>(label: &str, seconds: Option<f64>, work: Work, f: impl FnOnce() -> R) -> R {
     let mode = Mode::current();
     if mode != Mode::Off {
-        if let Some(line) = announcement(label, seconds, steps, mode) {
+        if let Some(line) = announcement(label, seconds, work, mode) {
             print(&line);
         }
     }
@@ -148,6 +213,7 @@ pub fn metered<R>(label: &str, seconds: Option<f64>, steps: usize, f: impl FnOnc
     let previous = METER.with(|cell| {
         cell.borrow_mut().replace(Meter {
             label: label.to_owned(),
+            unit: work.unit,
             interval,
             first: None,
             last: start,
@@ -158,17 +224,19 @@ pub fn metered<R>(label: &str, seconds: Option<f64>, steps: usize, f: impl FnOnc
     result
 }
 
-/// The line that announces a run of `steps` steps estimated at `seconds`, when that is above
+/// The line that announces a run of `work` estimated at `seconds`, when that is above
 /// [`ANNOUNCE_SECONDS`].
-pub fn announcement(label: &str, seconds: Option<f64>, steps: usize, mode: Mode) -> Option<String> {
+pub fn announcement(label: &str, seconds: Option<f64>, work: Work, mode: Mode) -> Option<String> {
     let seconds = seconds.filter(|&s| s > ANNOUNCE_SECONDS)?;
     let follows = match mode {
         Mode::Every(_) => "progress follows".to_owned(),
         Mode::Off | Mode::Announce => format!("progress is shown on a terminal, or with {ENV}=on"),
     };
     Some(format!(
-        "note: {label}: estimated {} for {steps} steps (a coarse estimate, within a factor of about 3); {follows}",
-        duration(seconds)
+        "note: {label}: estimated {} for {} {} (a coarse estimate, within a factor of about 3); {follows}",
+        duration(seconds),
+        work.count,
+        work.unit
     ))
 }
 
@@ -200,15 +268,66 @@ mod tests {
     #[test]
     fn only_a_long_run_is_announced() {
         let every = Mode::Every(INTERVAL_SECONDS);
-        assert_eq!(announcement("case mdr", Some(29.0), 10, every), None);
-        assert_eq!(announcement("case mdr", None, 10, every), None);
-        let line = announcement("case mdr", Some(1500.0), 1_000_001, every).unwrap();
+        assert_eq!(announcement("case mdr", Some(29.0), Work::steps(10), every), None);
+        assert_eq!(announcement("case mdr", None, Work::steps(10), every), None);
+        let line = announcement("case mdr", Some(1500.0), Work::steps(1_000_001), every).unwrap();
         assert!(
             line.contains("case mdr: estimated 25.0 min for 1000001 steps"),
             "{line}"
         );
-        let quiet = announcement("case mdr", Some(1500.0), 10, Mode::Announce).unwrap();
+        let quiet = announcement("case mdr", Some(1500.0), Work::steps(10), Mode::Announce).unwrap();
         assert!(quiet.contains("SPHERECONTACT_PROGRESS=on"), "{quiet}");
+    }
+
+    /// Requirement (issue 42): a long impact run is announced with its estimate in sweep points,
+    /// as a path run is in steps.
+    #[test]
+    fn an_impact_run_is_announced_in_sweep_points() {
+        let every = Mode::Every(INTERVAL_SECONDS);
+        let line = announcement("sweep-200 mdr", Some(240_000.0), Work::points(400), every).unwrap();
+        assert_eq!(
+            line,
+            "note: sweep-200 mdr: estimated 2.8 days for 400 points (a coarse estimate, within a factor \
+             of about 3); progress follows"
+        );
+    }
+
+    /// Requirement (issue 42): a program watched while it runs (a DEM code over a sweep) ticks
+    /// the run's meter each time it has done more, in the run's unit, and not otherwise.
+    #[test]
+    fn a_watched_program_ticks_the_meter_when_it_advances() {
+        let lines = std::rc::Rc::new(RefCell::new(Vec::<String>::new()));
+        let sink = lines.clone();
+        printing_through(
+            Box::new(move |line| sink.borrow_mut().push(line.to_owned())),
+            || {
+                let meter = Meter {
+                    label: "case yade-mindlin".into(),
+                    unit: "points",
+                    interval: 0.0,
+                    first: None,
+                    last: Instant::now(),
+                };
+                METER.with(|cell| *cell.borrow_mut() = Some(meter));
+                let mut calls = 0;
+                let watcher: Watcher = Box::new(move || {
+                    calls += 1;
+                    [None, Some((1, 2)), None, Some((2, 2))][calls - 1]
+                });
+                watching(watcher, || (0..4).for_each(|_| poll()));
+                METER.with(|cell| *cell.borrow_mut() = None);
+            },
+        );
+        let lines = lines.borrow();
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        assert!(
+            lines[0].starts_with("progress: case yade-mindlin: 1/2 points (50 %), "),
+            "{lines:?}"
+        );
+        assert!(
+            lines[1].starts_with("progress: case yade-mindlin: 2/2 points (100 %), "),
+            "{lines:?}"
+        );
     }
 
     #[test]

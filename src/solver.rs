@@ -128,7 +128,7 @@ pub fn run_reported(solver: &dyn Solver, scene: &Scene, label: &str) -> Result<H
     crate::progress::metered(
         label,
         solver.estimated_seconds(scene),
-        scene.steps().len(),
+        crate::progress::Work::steps(scene.steps().len()),
         || run(solver, scene),
     )
 }

@@ -174,8 +174,9 @@ pub fn run(job: &Job, dir: &Path, stem: &str) -> std::io::Result<Run> {
 ///
 /// The child leads a new process group and carries the run's marker; at the timeout, and when it
 /// ends, every process of the run is killed ([`Tracker::kill_all`]): MPI ranks, shells, Python
-/// workers, daemons that started a new session. An error here means the program could not be
-/// started (missing executable, unwritable directory).
+/// workers, daemons that started a new session. While it waits, it reports the program's
+/// progress when a run is metered and watched ([`crate::progress::poll`]). An error here means
+/// the program could not be started (missing executable, unwritable directory).
 pub fn run_in(job: &Job, dir: &Path, stem: &str, environment: &Environment) -> std::io::Result<Run> {
     let log = |stream: &str| BoundedLog::create(&dir.join(format!("{stem}.{stream}")));
     let mut logs = [log("stdout")?, log("stderr")?];
@@ -216,6 +217,7 @@ pub fn run_in(job: &Job, dir: &Path, stem: &str, environment: &Environment) -> s
             return Ok((pipes, true));
         }
         tracker.observe();
+        crate::progress::poll();
     });
     // The program is held unreaped while the sweep runs, so that its group stays its own.
     tracker.kill_all();

@@ -33,13 +33,14 @@ use super::closed_form::HertzImpact;
 use super::code_readback::{self, Rows};
 use super::integrator::Integration;
 use super::outcome::Outcome;
-use super::run::{SolverRun, STEP_BUDGET, TRACE_SAMPLES};
+use super::run::{SolverRun, Tally, STEP_BUDGET, TRACE_SAMPLES};
 use crate::dem::lammps::TangentialModel;
 use crate::dem::yade::YadeLaw;
 use crate::external::process::{Environment, Job};
 use crate::external::program;
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::hertz::Hertz;
+use crate::progress;
 use crate::solver::SolveError;
 
 /// A rigid flat is a fixed sphere this many times body 1's radius (see the module doc).
@@ -49,6 +50,26 @@ pub const FLAT_RADIUS_FACTOR: f64 = 1e5;
 /// its per-step print, YADE ~60 µs through Python; ×50 and more for a loaded machine).
 const START_UP: Duration = Duration::from_secs(120);
 const PER_STEP: Duration = Duration::from_millis(3);
+
+/// LAMMPS's start-up [s] and its wall time a step of an impact sweep (with its per-step print)
+/// [s], for the estimate ([`Code::estimated_seconds`]): measured in a release build on the shared
+/// 2-core machine at load 9 (`cargo run --release --example impact_estimate`, docs/impact.md
+/// "Speed"): a one-point sweep of 2000 steps 0.73 to 0.87 s wall (0.19 to 0.23 s CPU), test 4's
+/// 17 points at 20 000 steps 19 s wall a variant (7.2 s CPU): 5.4e-5 s wall (2.1e-5 s CPU) a
+/// step after 0.6 s; the step set between the two, as [`super::cost`] sets its constants. The
+/// toolchain's probe (about 5 s once a process, every code) is left out.
+pub const LAMMPS_START_UP_S: f64 = 0.6;
+/// See [`LAMMPS_START_UP_S`].
+pub const LAMMPS_STEP_S: f64 = 4.0e-5;
+
+/// YADE's start-up (its Python and plugins) [s] and its wall time a step of an impact sweep (a
+/// Python loop around `O.step()`) [s], measured as [`LAMMPS_START_UP_S`]: a one-point sweep of
+/// 2000 steps 3.6 to 4.6 s wall (1.4 to 1.8 s CPU), test 4's 17 points at 20 000 steps 23 s wall
+/// a variant (8.7 s CPU): 5.5e-5 s wall (2.1e-5 s CPU) a step after 4 s (1.4 s CPU); both set
+/// between wall and CPU.
+pub const YADE_START_UP_S: f64 = 3.0;
+/// See [`YADE_START_UP_S`].
+pub const YADE_STEP_S: f64 = 4.0e-5;
 
 /// A DEM code as an impact solver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,6 +95,16 @@ impl Code {
         match self {
             Code::Lammps(model) => model.solver_name(),
             Code::Yade => YadeLaw::Mindlin.solver_name(),
+        }
+    }
+
+    /// The expected wall time of one process over a sweep of `steps` integration steps in all
+    /// [s]: its start-up and its cost a step ([`super::cost`], which multiplies it by the
+    /// variants).
+    pub fn estimated_seconds(self, steps: f64) -> f64 {
+        match self {
+            Code::Lammps(_) => LAMMPS_START_UP_S + LAMMPS_STEP_S * steps,
+            Code::Yade => YADE_START_UP_S + YADE_STEP_S * steps,
         }
     }
 
@@ -204,13 +235,25 @@ fn variant_points(case: &ImpactCase, variant: Variant) -> Vec<Point> {
         .collect()
 }
 
-/// Runs `code` over every sweep point of `case` in `variant`, in one process.
-pub fn run_sweep(case: &ImpactCase, code: Code, variant: Variant) -> SolverRun {
-    run_sweep_with(case, code, variant, &Toolchain::default())
+/// Runs `code` over every sweep point of `case` in `variant`, in one process, each point done
+/// reported as `tally` places it.
+pub(super) fn run_sweep(case: &ImpactCase, code: Code, variant: Variant, tally: Tally) -> SolverRun {
+    sweep_with(case, code, variant, &Toolchain::default(), tally)
 }
 
 /// [`run_sweep`] with the executables of `toolchain`.
 pub fn run_sweep_with(case: &ImpactCase, code: Code, variant: Variant, toolchain: &Toolchain) -> SolverRun {
+    sweep_with(case, code, variant, toolchain, Tally::alone(case.points().len()))
+}
+
+/// [`run_sweep_with`], reported as `tally` places it.
+fn sweep_with(
+    case: &ImpactCase,
+    code: Code,
+    variant: Variant,
+    toolchain: &Toolchain,
+    tally: Tally,
+) -> SolverRun {
     let points = variant_points(case, variant);
     let placements: Vec<Placement> = points
         .iter()
@@ -220,7 +263,7 @@ pub fn run_sweep_with(case: &ImpactCase, code: Code, variant: Variant, toolchain
     // The toolchain probe (once per process, every tool) is not the sweep's time.
     let available = toolchain.require(code.tool()).map_err(SolveError::Unavailable);
     let start = Instant::now();
-    let result = available.and_then(|_version| run_in_folder(code, &placements, toolchain));
+    let result = available.and_then(|_version| run_in_folder(code, &placements, toolchain, tally));
     let (results, trace, unavailable) = match result {
         Ok(integrations) => {
             let trace = integrations.first().map(|i| i.trace.clone()).unwrap_or_default();
@@ -248,11 +291,14 @@ pub fn run_sweep_with(case: &ImpactCase, code: Code, variant: Variant, toolchain
     }
 }
 
-/// Writes the input, runs the code and reads every point back, in a fresh folder (kept on failure).
+/// Writes the input, runs the code and reads every point back, in a fresh folder (kept on
+/// failure); the points done reported as `tally` places them, while the code runs too
+/// ([`watcher`]).
 fn run_in_folder(
     code: Code,
     placements: &[Placement],
     toolchain: &Toolchain,
+    tally: Tally,
 ) -> Result<Vec<Integration>, SolveError> {
     program::in_run_folder(code.name(), |dir| {
         let job = code
@@ -260,7 +306,10 @@ fn run_in_folder(
             .map_err(|e| SolveError::Failed(format!("writing the {} input: {e}", code.tool().name())))?;
         let program_name = code.tool().name();
         let meaning = |_| "the code stopped with an error (see its output)";
-        program::run_to_success(&job, dir, "code", program_name, meaning, &Environment::Inherited)?;
+        progress::watching(watcher(dir, placements.len(), tally), || {
+            program::run_to_success(&job, dir, "code", program_name, meaning, &Environment::Inherited)
+        })?;
+        tally.tick(placements.len());
         placements
             .iter()
             .map(|p| {
@@ -276,4 +325,42 @@ fn run_in_folder(
             })
             .collect()
     })
+}
+
+/// How far a code is over its sweep of `points` points in `dir` ([`progress::watching`]): each
+/// point's output file (`point-<i>.txt`) is created when the point starts (LAMMPS's `fix print`,
+/// the YADE script), so the points before the last file there are done.
+fn watcher(dir: &Path, points: usize, tally: Tally) -> progress::Watcher {
+    let dir = dir.to_path_buf();
+    let mut started = 0;
+    Box::new(move || {
+        let before = started;
+        while started < points && dir.join(code_readback::file_name(started)).exists() {
+            started += 1;
+        }
+        (started > before && started > 1).then(|| tally.at(started - 1))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Requirement (issue 42): a DEM code's sweep reports its points done while it runs, read
+    /// from the point files it has started, each advance once, placed within the whole run.
+    #[test]
+    fn the_watcher_counts_the_points_a_code_has_finished() {
+        let dir = tempfile::tempdir().unwrap();
+        let tally = Tally::alone(3);
+        let mut watch = watcher(dir.path(), 3, tally);
+        let start = |i: usize| std::fs::write(dir.path().join(code_readback::file_name(i)), "").unwrap();
+        assert_eq!(watch(), None);
+        start(0);
+        assert_eq!(watch(), None, "point 0 runs: none done");
+        start(1);
+        assert_eq!(watch(), Some((1, 3)));
+        assert_eq!(watch(), None, "no change, no tick");
+        start(2);
+        assert_eq!(watch(), Some((2, 3)), "the last point runs until the code ends");
+    }
 }

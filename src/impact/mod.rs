@@ -27,6 +27,7 @@ pub mod code_readback;
 pub mod code_rule;
 pub mod code_run;
 pub mod command;
+pub mod cost;
 #[cfg(test)]
 mod cross_check;
 pub mod files;

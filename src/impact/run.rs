@@ -1,5 +1,7 @@
 //! Running an impact case: each solver's contact law through the integrator at every sweep
-//! point, in each variant (prescribed restitution, and elastic when e < 1).
+//! point, in each variant (prescribed restitution, and elastic when e < 1). A solver's run over
+//! every variant is announced when its estimate ([`super::cost`]) is long and metered in sweep
+//! points ([`crate::progress`]), as a path run is in steps.
 
 use std::time::Instant;
 
@@ -11,6 +13,7 @@ use super::law::{ContactLaw, DemLaw, MdrLaw};
 use super::outcome::Outcome;
 use crate::analytic;
 use crate::hertz::Hertz;
+use crate::progress::{self, Work};
 
 /// The name of the exact reference: MDR's spring bed as the contact law.
 pub use crate::case::impact::REFERENCE;
@@ -85,11 +88,45 @@ pub fn impact(
         .map_err(|e: IntegrationError| e.to_string())
 }
 
+/// Where one variant's sweep stands in its solver's metered run ([`run_case`]): the points of
+/// the variants run before it, and the points of the whole run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Tally {
+    before: usize,
+    total: usize,
+}
+
+impl Tally {
+    /// A sweep of `points` metered alone.
+    pub(super) fn alone(points: usize) -> Self {
+        Self {
+            before: 0,
+            total: points,
+        }
+    }
+
+    /// The run's points done and in all, with `done` points of this sweep done.
+    pub(super) fn at(self, done: usize) -> (usize, usize) {
+        (self.before + done, self.total)
+    }
+
+    /// Reports `done` points of this sweep done to the run's meter.
+    pub(super) fn tick(self, done: usize) {
+        let (done, total) = self.at(done);
+        progress::tick(done, total);
+    }
+}
+
 /// Runs `solver` over every sweep point of `case` in `variant` (a DEM code: one process for the
 /// sweep, [`super::code_run`]).
 pub fn run_solver(case: &ImpactCase, solver: &str, variant: Variant) -> SolverRun {
+    run_tallied(case, solver, variant, Tally::alone(case.points().len()))
+}
+
+/// [`run_solver`], each point done reported as `tally` places it.
+fn run_tallied(case: &ImpactCase, solver: &str, variant: Variant, tally: Tally) -> SolverRun {
     if let Some(code) = super::code_run::Code::named(solver) {
-        return super::code_run::run_sweep(case, code, variant);
+        return super::code_run::run_sweep(case, code, variant, tally);
     }
     let start = Instant::now();
     let mut trace = Vec::new();
@@ -108,6 +145,7 @@ pub fn run_solver(case: &ImpactCase, solver: &str, variant: Variant) -> SolverRu
                 }
                 Outcome::of(&point, &integration)
             });
+            tally.tick(index + 1);
             (point.value, result)
         })
         .collect();
@@ -123,9 +161,32 @@ pub fn run_solver(case: &ImpactCase, solver: &str, variant: Variant) -> SolverRu
 
 /// Every solver the case needs (its list, then those its checks name), in every variant.
 pub fn run_case(case: &ImpactCase, solvers: &[String]) -> Vec<SolverRun> {
-    let variants = case.variants();
     solvers
         .iter()
-        .flat_map(|solver| variants.iter().map(move |&v| run_solver(case, solver, v)))
+        .flat_map(|solver| run_metered(case, solver))
         .collect()
+}
+
+/// `solver` over the sweep in every variant, under the label `CASE SOLVER`: announced when its
+/// estimate is long and metered in sweep points ([`progress::metered`]).
+fn run_metered(case: &ImpactCase, solver: &str) -> Vec<SolverRun> {
+    let points = case.points().len();
+    let total = super::cost::points(case);
+    let label = format!("{} {solver}", case.name);
+    let seconds = super::cost::seconds(case, solver);
+    progress::metered(&label, Some(seconds), Work::points(total), || {
+        // The rate is counted from the start: there is no set-up to leave out.
+        progress::tick(0, total);
+        case.variants()
+            .into_iter()
+            .enumerate()
+            .map(|(k, variant)| {
+                let tally = Tally {
+                    before: k * points,
+                    total,
+                };
+                run_tallied(case, solver, variant, tally)
+            })
+            .collect()
+    })
 }

@@ -1,7 +1,7 @@
 //! Bounded and reported (issue 27): every accepted resolution solves within the memory budget or
-//! is refused before it allocates, and a long run says so before it starts and shows progress.
-//! One regression test per finding; each failed before its fix. The cases are in
-//! `tests/hostile/bounded/`.
+//! is refused before it allocates, and a long run says so before it starts and shows progress;
+//! an impact run too (issue 42), in sweep points. One regression test per finding; each failed
+//! before its fix. The cases are in `tests/hostile/bounded/`.
 //!
 //! Run: `cargo test --test suite hostile_bounded::`.
 
@@ -10,6 +10,8 @@ use crate::common;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
+use std::sync::{mpsc, Arc, Mutex};
+use std::time::Duration;
 
 use spherecontact::limits::MEMORY_BUDGET;
 
@@ -34,6 +36,50 @@ fn measured(args: &[&str], dir: &Path, progress: Option<&str>) -> (Output, u64) 
 
 fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// How long [`stderr_until`] waits for its line before it stops the program: a guard, not an
+/// assertion (a run that never announces itself would otherwise hold the test for hours; it is
+/// stopped, and the test fails on what it printed).
+const SILENCE_GUARD: Duration = Duration::from_secs(300);
+
+/// The first lines `spherecontact ARGS` (in `dir`, `SPHERECONTACT_PROGRESS` unset) prints on
+/// stderr, up to the first that starts with `wanted` (at most `limit`); then it is stopped.
+fn stderr_until(args: &[&str], dir: &Path, wanted: &str, limit: usize) -> Vec<String> {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("SPHERECONTACT_PROGRESS")
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    // The child is killed through the lock only (a reaped child is not signalled again).
+    let child = Arc::new(Mutex::new(child));
+    let (done, finished) = mpsc::channel::<()>();
+    let guarded = Arc::clone(&child);
+    let guard = std::thread::spawn(move || {
+        if finished.recv_timeout(SILENCE_GUARD).is_err() {
+            let _ = guarded.lock().unwrap().kill();
+        }
+    });
+    let mut seen = Vec::new();
+    for line in lines.take(limit) {
+        let line = line.unwrap();
+        let found = line.starts_with(wanted);
+        seen.push(line);
+        if found {
+            break;
+        }
+    }
+    let _ = done.send(());
+    let mut child = child.lock().unwrap();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    drop(child);
+    guard.join().unwrap();
+    seen
 }
 
 // --- Finding: fem-axisym frictional at c/226 … c/320 aborted the process (4.5 GB, exit 134) -----
@@ -113,28 +159,15 @@ fn the_memory_estimate_is_within_its_factor_of_the_measured_peak() {
 fn a_long_run_says_so_before_it_starts() {
     let dir = tempfile::tempdir().unwrap();
     let file = case("million-increments-mdr.toml");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
-        .args(["run", file.to_str().unwrap(), "--out", "out"])
-        .current_dir(dir.path())
-        .env_remove("SPHERECONTACT_PROGRESS")
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let lines = BufReader::new(child.stderr.take().unwrap()).lines();
     // The first lines on stderr, up to the announcement (the run itself would take half an hour:
     // it is stopped once it has said so).
-    let mut seen = Vec::new();
-    for line in lines.take(5) {
-        let line = line.unwrap();
-        let found = line.starts_with("note: million-increments-mdr mdr: estimated");
-        seen.push(line);
-        if found {
-            break;
-        }
-    }
-    child.kill().unwrap();
-    child.wait().unwrap();
+    let args = ["run", file.to_str().unwrap(), "--out", "out"];
+    let seen = stderr_until(
+        &args,
+        dir.path(),
+        "note: million-increments-mdr mdr: estimated",
+        5,
+    );
     let note = seen.last().cloned().unwrap_or_default();
     assert!(
         note.starts_with("note: million-increments-mdr mdr: estimated"),
@@ -168,4 +201,97 @@ fn progress_lines_appear_when_forced_and_change_no_result() {
     // The progress lines only read the walker's counters.
     let csv = |out: &str| std::fs::read(dir.path().join(out).join("mdr.csv")).unwrap();
     assert_eq!(csv("forced"), csv("quiet"));
+}
+
+// --- Finding (issue 42): a valid 200-angle impact sweep ran for hours in silence ----------------
+
+/// Requirement: `verify` announces an impact run estimated long before it runs, with its
+/// estimate (integration steps × springs × sweep points × variants) and its points, in a CI log
+/// too (stderr not a terminal). The sweep would take a day and a half: it is stopped once it has
+/// said so.
+#[test]
+fn a_long_impact_sweep_is_announced_with_its_estimate_before_it_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = case("impact-200-angles.toml");
+    let none = dir.path().join("no-baselines");
+    let args = [
+        "verify",
+        file.to_str().unwrap(),
+        "--baselines",
+        none.to_str().unwrap(),
+    ];
+    let seen = stderr_until(&args, dir.path(), "note: impact-200-angles mdr:", 5);
+    let note = seen.last().cloned().unwrap_or_default();
+    // 400 points (200 angles, damped and elastic) of 10⁵ steps over 10⁶ springs: 33.3 h.
+    assert_eq!(
+        note,
+        "note: impact-200-angles mdr: estimated 33.3 h for 400 points (a coarse estimate, within a \
+         factor of about 3); progress is shown on a terminal, or with SPHERECONTACT_PROGRESS=on",
+        "{seen:?}"
+    );
+}
+
+/// `spherecontact run CASE --solver SOLVER --out OUT` in `dir` with `SPHERECONTACT_PROGRESS` set
+/// to `progress` (or unset): its stderr.
+fn impact_run(dir: &Path, solver: &str, out: &str, progress: Option<&str>) -> String {
+    let file = common::root().join("cases/impact/chung-ooi-4.toml");
+    let args = ["run", file.to_str().unwrap(), "--solver", solver, "--out", out];
+    let (output, _) = measured(&args, dir, progress);
+    assert!(output.status.success(), "{}", stderr(&output));
+    stderr(&output)
+}
+
+/// The points done that the progress lines of `label` report, in order.
+fn points_reported(stderr: &str, label: &str) -> Vec<usize> {
+    let prefix = format!("progress: {label}: ");
+    stderr
+        .lines()
+        .filter(|l| l.starts_with("progress:"))
+        .map(|line| {
+            let rest = line.strip_prefix(&prefix).unwrap_or_else(|| panic!("{line}"));
+            let (done, rest) = rest.split_once('/').unwrap_or_else(|| panic!("{line}"));
+            assert!(
+                rest.starts_with("34 points (") && rest.contains(" left"),
+                "{line}"
+            );
+            done.parse().unwrap()
+        })
+        .collect()
+}
+
+/// Requirement: an impact run shows the progress lines of a path run, in sweep points
+/// (`k/n points`), when `SPHERECONTACT_PROGRESS` says so (here every point: `0` s apart), none
+/// when stderr is not a terminal and it is unset; its results are the same bit for bit.
+#[test]
+fn an_impact_run_shows_its_progress_in_points_and_the_same_results() {
+    let dir = tempfile::tempdir().unwrap();
+    // Test 4: 17 angles, e = 0.98: 34 points over both variants, about a second.
+    let forced = impact_run(dir.path(), "mdr", "forced", Some("0"));
+    let points = points_reported(&forced, "chung-ooi-4 mdr");
+    assert_eq!(points, (1..=34).collect::<Vec<_>>(), "{forced}");
+    let quiet = impact_run(dir.path(), "mdr", "quiet", None);
+    assert!(!quiet.contains("progress:"), "{quiet}");
+    for name in ["mdr.csv", "mdr-elastic.csv", "mdr-trace.csv"] {
+        let file = |out: &str| std::fs::read(dir.path().join(out).join(name)).unwrap();
+        assert_eq!(file("forced"), file("quiet"), "{name}");
+    }
+}
+
+/// Requirement: a DEM code that runs a whole sweep in one process (LAMMPS) shows its progress
+/// while it runs, point by point within a variant, not only when each variant's process ends.
+#[test]
+fn a_dem_codes_sweep_shows_its_progress_while_the_code_runs() {
+    let probe = spherecontact::external::toolchain::Toolchain::default()
+        .probe(spherecontact::external::toolchain::Tool::Lammps);
+    if !probe.available() {
+        eprintln!("skipped: {} (run scripts/setup.sh)", probe.line());
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let forced = impact_run(dir.path(), "lammps-mindlin", "forced", Some("0"));
+    let points = points_reported(&forced, "chung-ooi-4 lammps-mindlin");
+    assert!(points.windows(2).all(|w| w[0] < w[1]), "{forced}");
+    // Points within a variant's process (neither 17 nor 34, its ends), from its files.
+    assert!(points.iter().any(|&k| k != 17 && k != 34), "{forced}");
+    assert_eq!(points.last(), Some(&34), "{forced}");
 }
