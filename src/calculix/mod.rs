@@ -140,7 +140,7 @@ impl Meshed {
     /// The mesh of `mesh` (gmsh's files) and the positions of `plan`.
     fn read(mesh: &QuadraticMesh, plan: &Plan) -> Result<Self, SolveError> {
         let meridian = crate::fem::mesh::msh::read(&mesh.msh41)
-            .map_err(|e| SolveError::Failed(format!("reading gmsh's mesh {}: {e}", mesh.msh41.display())))?;
+            .map_err(|e| SolveError::Failed(format!("reading gmsh's mesh: {e}")))?;
         let positions = plan
             .steps
             .iter()

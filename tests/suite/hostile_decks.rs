@@ -421,6 +421,30 @@ fn meshio_s_words_about_a_field_file_are_not_shown() {
     }
 }
 
+/// Findings: the meshes of a folder were read with no limit (a FIFO blocked), and mshio's error
+/// printed a hex dump of the file from the fault on. A mesh file that is a FIFO fails at once; a
+/// garbage one is named with the line of the fault, no byte of it shown.
+#[test]
+fn a_mesh_file_is_read_as_foreign_input() {
+    let Some(folder) = Folder::ccx_axisym() else {
+        return;
+    };
+    folder.fifo("mesh.msh");
+    assert_refused(&folder, &folder.read(), 1, &["mesh.msh", "a FIFO"]);
+    folder.write(
+        "mesh.msh",
+        &format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n{SECRET} {SECRET}\n$EndNodes\n"),
+    );
+    let output = folder.read();
+    assert_refused(&folder, &output, 1, &["mesh.msh", "line 5"]);
+    assert!(!text(&output).contains("Hex dump"), "{}", text(&output));
+    let Some(freefem) = Folder::freefem_axisym() else {
+        return;
+    };
+    freefem.fifo("mesh_p1_mm.msh");
+    assert_refused(&freefem, &freefem.read(), 1, &["mesh_p1_mm.msh", "a FIFO"]);
+}
+
 /// Finding: ccx's `*ERROR` lines in `deck.stdout` were quoted in `deck read`'s message. The
 /// error is reported by the file and its line, the lines themselves not shown.
 #[test]
