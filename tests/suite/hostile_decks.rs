@@ -459,3 +459,30 @@ fn a_ccx_error_in_deck_stdout_is_named_by_its_line_not_quoted() {
     let output = folder.read();
     assert_refused(&folder, &output, 1, &["deck.stdout:3", "*ERROR"]);
 }
+
+/// The manifest is read as foreign input too: linked out of its folder it is refused (exit 2,
+/// bad input: the folder is not one `deck write` wrote), and a format it does not know is not
+/// quoted.
+#[test]
+fn a_manifest_linked_out_or_of_another_format_is_refused_without_echo() {
+    let Some(folder) = Folder::fenicsx_3d() else {
+        return;
+    };
+    let manifest = folder.text("manifest.json");
+    folder.link("manifest.json", &folder.secret());
+    let output = folder.read();
+    assert_refused(&folder, &output, 2, &["manifest.json", "leads out of its folder"]);
+    let format = "\"format\": \"spherecontact deck folder 1\"";
+    assert!(manifest.contains(format), "{manifest}");
+    folder.write(
+        "manifest.json",
+        &manifest.replace(format, &format!("\"format\": \"{SECRET}\"")),
+    );
+    let output = folder.read();
+    assert_refused(
+        &folder,
+        &output,
+        2,
+        &["manifest.json", "spherecontact deck folder 1"],
+    );
+}
