@@ -10,7 +10,9 @@ Writes OUT.csv with columns file,r,pressure,gap: the points on the spherical sur
 within 1e-7 R of R), r <= W, sorted by r, one block per FIELD in the order given; gap = z + u_z
 is the deformed surface's height above the contact plane (negative: penetration).
 Exit codes: 0 done; 3 a field file is missing, unreadable, has no `pressure`, no surface points,
-or a non-finite value (the message says which).
+or a non-finite value: one line on stderr, `read_fields: FILE: what is wrong`. The line never
+quotes the file (its values, its field names, meshio's words about it): a field file may come
+from elsewhere (docs/security.md, "Deck folders").
 """
 import argparse
 import csv
@@ -38,22 +40,31 @@ def read(path):
     return mesh.points, mesh.point_data
 
 
+class FieldError(Exception):
+    """What is wrong with a field file, in this script's own words."""
+
+
 def surface_pressure(path, radius, window):
-    points, data = read(path)
+    try:
+        points, data = read(path)
+    # meshio.read ends with sys.exit(1) on a file it cannot read; its message may quote the
+    # file: only the kind of failure is kept
+    except (Exception, SystemExit) as e:  # noqa: BLE001
+        raise FieldError(f"not a VTU or XDMF file that meshio reads ({type(e).__name__})") from e
     for name in ("pressure", "u"):
         if name not in data:
-            raise ValueError(f"{path}: no `{name}` field (has {sorted(data)})")
+            raise FieldError(f"no `{name}` field")
     p = np.asarray(data["pressure"], dtype=float).reshape(len(points), -1)[:, 0]
     r, z = points[:, 0], points[:, 1]
     on_sphere = np.abs(np.hypot(r, z - radius) - radius) < 1e-7 * radius
     keep = on_sphere & (r <= window) & (z < radius)
     if not keep.any():
-        raise ValueError(f"{path}: no point on the spherical surface within r <= {window}")
+        raise FieldError(f"no point on the spherical surface within r <= {window}")
     u = np.asarray(data["u"], dtype=float).reshape(len(points), -1)
     gap = z + u[:, 1]
     rows = sorted(zip(r[keep], p[keep], gap[keep]))
     if not np.all(np.isfinite(np.array(rows))):
-        raise ValueError(f"{path}: non-finite pressure or coordinate")
+        raise FieldError("non-finite pressure or coordinate")
     return rows
 
 
@@ -64,11 +75,16 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("fields", nargs="+")
     args = ap.parse_args()
-    try:
-        blocks = [(f, surface_pressure(f, args.radius, args.window)) for f in args.fields]
-    except Exception as e:  # noqa: BLE001 - every failure is reported, with its file
-        print(f"read_fields: {e}", file=sys.stderr)
-        sys.exit(3)
+    blocks = []
+    for f in args.fields:
+        try:
+            blocks.append((f, surface_pressure(f, args.radius, args.window)))
+        except FieldError as e:
+            print(f"read_fields: {f}: {e}", file=sys.stderr)
+            sys.exit(3)
+        except Exception as e:  # noqa: BLE001 - every failure is reported, with its file
+            print(f"read_fields: {f}: unreadable ({type(e).__name__})", file=sys.stderr)
+            sys.exit(3)
     with open(args.out, "w", newline="") as f:
         out = csv.writer(f)
         out.writerow(["file", "r", "pressure", "gap"])

@@ -143,6 +143,53 @@ pub const MAX_HISTORY_BYTES: u64 = 256 << 20;
 /// a resolution and warnings in a few lines; read whole.
 pub const MAX_METADATA_BYTES: u64 = 1 << 20;
 
+/// The largest per-step CSV of a deck (`steps.csv`, `surface.csv`, the 3D deck's
+/// `triangles.csv`) read back [bytes] (256 MiB). Each is read whole and parsed: reading back
+/// fenicsx-axisym's run of `cases/paper-fig7.toml` at c_max/40 (1101 steps, 101 candidate nodes:
+/// surface.csv 13 MB, 117 bytes a node and step; steps.csv 82 kB) peaked at 134 MB, about ten
+/// times the file, so this keeps a read-back within [`MEMORY_BUDGET`]. That path at the finest
+/// pole size (c_max/320, eight times the candidates) writes about 105 MB; a steps.csv of
+/// [`MAX_INCREMENTS`] steps about 75 MB.
+pub const MAX_DECK_TABLE_BYTES: u64 = 256 << 20;
+
+/// The largest `timing.csv` of a deck [bytes] (64 KiB): its own clock, a few `phase,seconds`
+/// lines (45 to 164 bytes measured: FreeFEM, dolfinx, the 3D deck).
+pub const MAX_DECK_CLOCK_BYTES: u64 = 64 << 10;
+
+/// The largest `deck.stdout` of a CalculiX deck read back [bytes] (64 MiB), searched whole for
+/// ccx's `*ERROR` lines (ccx exits with code 0 after some errors): ccx prints about 10 kB a step
+/// (measured: 39 kB for the four steps of `cases/ccx-axisym.toml`, 25 kB for the three of
+/// `cases/ccx-3d.toml`), so this holds some 6000 steps; a run of the harness's own logs at most
+/// [`MAX_PROGRAM_LOG_BYTES`].
+pub const MAX_DECK_LOG_BYTES: u64 = 64 << 20;
+
+/// The largest CalculiX result file (`job.dat`, `job.frd`) read back [bytes] (1 GiB). Read whole:
+/// the `.frd` holds a line of about 90 bytes per node in every output block (DISP, CONTACT):
+/// 9.4 MB for `cases/ccx-axisym.toml` (21 526 nodes at c_max/20, four blocks of each; the read
+/// peaked at 30 MB, 2.6 times the file above the process's own 5 MB), 5.4 MB for
+/// `cases/ccx-3d.toml`. The nodes grow as (c_max/h)² on the meridian: that case at c_max/160
+/// writes about 600 MB; 1 GiB keeps a read-back within [`MEMORY_BUDGET`].
+pub const MAX_CCX_RESULTS_BYTES: u64 = 1 << 30;
+
+/// The largest field file a deck leaves at a path position (`field_*.vtu`, `field_*.xdmf` and the
+/// `.h5` an XDMF names) [bytes] (1 GiB): meshio reads them in its own process under its time
+/// limit (`scripts/read_fields.py`), the harness only checks them. FreeFEM's VTU is 1.0 MB and
+/// dolfinx's HDF5 2.7 MB on `cases/paper-fig7.toml` at c_max/40; both grow as (c_max/h)²: about
+/// 170 MB at the finest pole size, c_max/320.
+pub const MAX_FIELD_FILE_BYTES: u64 = 1 << 30;
+
+/// The largest XDMF file [bytes] (1 MiB), read whole for the HDF5 files it names before meshio
+/// opens it: dolfinx's is an index of the `.h5` file's data sets, 3.4 kB whatever the mesh
+/// (`cases/paper-fig7.toml`, 1.6 kB for the 3D deck).
+pub const MAX_XDMF_BYTES: u64 = 1 << 20;
+
+/// The largest gmsh mesh read from a deck's or a run's folder (`mesh.msh`, `mesh_p1_mm.msh`,
+/// `body.msh`) [bytes] (256 MiB), read whole and parsed: the quadratic meridian mesh of
+/// `cases/paper-fig7.toml` at c_max/40 is 1.5 MB (11 000 triangles), and its triangles grow as
+/// (c_max/h)²: about 100 MB at c_max/320, the finest allowed. The solid meshes are graded:
+/// `body.msh` 1.2 MB at c_max/5, 4.3 MB at c_max/14, the finest.
+pub const MAX_MESH_BYTES: u64 = 256 << 20;
+
 #[cfg(test)]
 mod tests {
     use super::*;

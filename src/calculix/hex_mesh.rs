@@ -109,7 +109,7 @@ pub fn mesh(
 
 /// Reads the MSH 4.1 file at `path`; the error names the file.
 pub fn read(path: &Path) -> Result<HexMesh, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot be read: {e}", path.display()))?;
+    let bytes = crate::fem::mesh::msh::file_bytes(path).map_err(|e| e.to_string())?;
     parse(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 

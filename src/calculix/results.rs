@@ -2,7 +2,8 @@
 //! on a node set at each output time) and the `.frd` ASCII results (the node coordinates and the
 //! `CONTACT` blocks: COPEN, CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2 at the slave nodes).
 //! Missing, truncated or non-finite output is an error that names the file and the line, never a
-//! panic.
+//! panic, and quotes nothing of the file (a deck's folder may come from elsewhere: docs/security.md,
+//! "Deck folders").
 //!
 //! CalculiX may print a step's output twice (after the step's last increment and after an extra
 //! increment of 1e-6 step time that a change of the contact set triggers); the last block of each
@@ -36,7 +37,7 @@ pub fn totals(dat: &str, set: &str) -> Result<Vec<Total>, String> {
             .ok_or_else(|| at("the totals are missing (truncated output)"))?;
         let force: Vec<f64> = values.split_whitespace().filter_map(finite).collect();
         let [fx, fy, fz] = force[..] else {
-            return Err(at(&format!("`{}` is not three finite forces", values.trim())));
+            return Err(at("not three finite forces (allowed: the totals fx fy fz)"));
         };
         totals.push(Total {
             time,
@@ -240,21 +241,22 @@ pub fn on_meridian(
         .map(|(id, v)| (id, (v[0], v[3])))
         .filter(|(_, v)| *v != (0.0, 0.0))
     {
-        let [x, y, z] = *nodes
-            .get(id)
-            .ok_or_else(|| format!("job.frd: contact output at node {id}, which has no coordinates"))?;
+        let [x, y, z] = *nodes.get(id).ok_or_else(|| {
+            "job.frd: contact output at a node without coordinates (allowed: the nodes of the node block)"
+                .to_owned()
+        })?;
         let (r, height) = (x.hypot(z), y);
         let i = nearest(points, r, height)
             .filter(|&i| (points[i][0] - r).hypot(points[i][1] - height) <= tolerance)
             .ok_or_else(|| {
-                format!(
-                    "job.frd: contact output at node {id} (r = {r} mm, z = {y} mm), off the slave surface"
-                )
+                "job.frd: contact output at a node off the slave surface (allowed: the slave nodes)"
+                    .to_owned()
             })?;
         match found[i] {
             Some((_, p)) if (p - pressure).abs() > 1e-6 * p.abs().max(1.0) => {
                 return Err(format!(
-                    "job.frd: the copies of the meridian node at r = {} mm carry {p} and {pressure} MPa",
+                    "job.frd: the copies of the meridian node at r = {} mm carry different pressures \
+                     (allowed: one pressure, within 1e-6)",
                     points[i][0]
                 ))
             }

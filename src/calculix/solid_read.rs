@@ -18,6 +18,7 @@ use super::solid_inp::SolidDeckSpec;
 use crate::external::readback::read_output;
 use crate::external::surface3d::{Node3, Surface3};
 use crate::fem::element::tri6::Lame;
+use crate::limits::MAX_CCX_RESULTS_BYTES;
 use crate::pair::Material;
 
 /// Largest disagreement between the reactions of the far face and of the plate (x and z),
@@ -67,10 +68,10 @@ impl SolidRun {
 /// Reads `job.dat` and `job.frd` in `dir` for the deck written from `spec`.
 pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
     let n = spec.steps.len();
-    let dat = read_output(dir, "job.dat")?;
+    let dat = read_output(dir, "job.dat", MAX_CCX_RESULTS_BYTES)?;
     let far = results::last_per_step(&results::totals(&dat, "NFAR1")?, |t| t.time, n, "job.dat NFAR1")?;
     let other = results::last_per_step(&results::totals(&dat, "NFAR2")?, |t| t.time, n, "job.dat NFAR2")?;
-    let frd = results::parse_frd(&read_output(dir, "job.frd")?)?;
+    let frd = results::parse_frd(&read_output(dir, "job.frd", MAX_CCX_RESULTS_BYTES)?)?;
     let surface = spec.mesh.corners(spec.candidate_radius)?;
     let lame = Lame::of(&Material {
         young: spec.young,
@@ -96,9 +97,11 @@ pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
         let on_other = [2.0 * other.force[2] + 0.0, -2.0 * other.force[0] + 0.0];
         let scale = on_far[0].abs().max(on_other[0].abs()).max(1.0);
         for (what, a, b) in [("P", on_far[0], on_other[0]), ("Q", on_far[1], on_other[1])] {
-            if (a - b).abs() > EQUILIBRIUM * scale {
+            let departure = (a - b).abs() / scale;
+            if departure > EQUILIBRIUM {
                 return Err(format!(
-                    "job.dat step {}: {what} = {a} N from sphere 1's far face, {b} N from sphere 2's: not in equilibrium",
+                    "job.dat step {}: {what} from sphere 1's far face and from sphere 2's differ by \
+                     {departure:.1e} of the larger P and 1 N: not in equilibrium (allowed: {EQUILIBRIUM:e})",
                     k + 1
                 ));
             }
@@ -109,9 +112,9 @@ pub fn read_back(dir: &Path, spec: &SolidDeckSpec) -> Result<SolidRun, String> {
             None if on_far[0].abs() <= EQUILIBRIUM => &empty,
             None => {
                 return Err(format!(
-                    "job.frd: no contact output at step {} although P = {} N",
-                    k + 1,
-                    on_far[0]
+                    "job.frd: no contact output at step {} although the far face carries a load \
+                     (allowed: none only below {EQUILIBRIUM} N)",
+                    k + 1
                 ))
             }
         };

@@ -16,6 +16,7 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use super::deck::{self, ComputedStep, Deck, DeckInput, RunDir, TimeBudget};
+use super::field_files;
 use super::geo::{self, MeshFiles};
 use super::readback::{self, DeckRow};
 use super::record::{self, Run};
@@ -24,7 +25,7 @@ use super::surface::{self, Surface};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
 use crate::history::History;
-use crate::limits::MERIDIAN_POLE;
+use crate::limits::{MAX_DECK_CLOCK_BYTES, MAX_DECK_TABLE_BYTES, MERIDIAN_POLE};
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::split::{DeckCommand, SplitDeck};
@@ -237,9 +238,9 @@ impl<D: Deck<Mesh = MeshFiles>> AxisymSolver<D> {
         let radius_mm = scene.pair.body1.radius * 1e3;
         let (rows, surfaces) =
             read_back(dir, plan, radius_mm, &self.options.toolchain).map_err(SolveError::Failed)?;
-        let deck_clock = readback::read_output(dir, "timing.csv")
-            .map(|t| readback::parse_timing(&t))
-            .unwrap_or((None, None));
+        let deck_clock = readback::read_optional_output(dir, "timing.csv", MAX_DECK_CLOCK_BYTES)
+            .map_err(SolveError::Failed)?
+            .map_or((None, None), |t| readback::parse_timing(&t));
         Ok(Run {
             rows,
             surfaces,
@@ -326,15 +327,15 @@ fn read_back(
     radius_mm: f64,
     toolchain: &Toolchain,
 ) -> Result<(Vec<DeckRow>, Vec<Surface>), String> {
-    let rows = readback::parse_steps(&readback::read_output(dir, "steps.csv")?, &plan.steps)?;
+    let read = |name: &str| readback::read_output(dir, name, MAX_DECK_TABLE_BYTES);
+    let rows = readback::parse_steps(&read("steps.csv")?, &plan.steps)?;
     let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
-    let surfaces = surface::parse_surface(&readback::read_output(dir, "surface.csv")?, &indices)?;
+    let surfaces = surface::parse_surface(&read("surface.csv")?, &indices)?;
     if let Some(s) = surfaces.iter().find(|s| s.edge_loaded()) {
         return Err(format!(
-            "step {}: the contact reached the outermost candidate node (r = {:e} m): the candidate \
-             zone, {CANDIDATE_ZONE} × the largest Hertz contact radius, is too small for this model",
-            s.step,
-            s.nodes.last().map_or(0.0, |n| n.r)
+            "step {}: the contact reached the outermost candidate node: the candidate zone, \
+             {CANDIDATE_ZONE} × the largest Hertz contact radius, is too small for this model",
+            s.step
         ));
     }
     let at_positions: Vec<(&DeckRow, &Surface)> = rows
@@ -350,7 +351,7 @@ fn read_back(
         return Err("steps.csv: a path position has no field file".into());
     }
     let window_mm = plan.candidate_radius * 1e3;
-    let profiles = readback::read_profiles(dir, &files, radius_mm, window_mm, toolchain, BUDGET.start)?;
+    let profiles = field_files::read_profiles(dir, &files, radius_mm, window_mm, toolchain, BUDGET.start)?;
     for ((file, profile), (_, surface)) in files.iter().zip(&profiles).zip(&at_positions) {
         record::check_field_file(file, profile, surface)?;
     }

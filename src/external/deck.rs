@@ -226,10 +226,13 @@ pub fn write_deck(
 }
 
 /// Checks that the run directory `dir` was written for `steps` (of scene `scene`): its
-/// [`PATH_FILE`] lists them, as a deck run elsewhere is read back.
+/// [`PATH_FILE`] lists them, as a deck run elsewhere is read back. The file may be no longer
+/// than the list expected.
 pub fn check_path_file(dir: &Path, steps: &[ComputedStep], scene: &str) -> Result<(), SolveError> {
-    let listed = super::readback::read_output(dir, PATH_FILE).map_err(SolveError::Failed)?;
-    if listed != path_file(steps) {
+    let expected = path_file(steps);
+    let listed =
+        super::readback::read_output(dir, PATH_FILE, expected.len() as u64).map_err(SolveError::Failed)?;
+    if listed != expected {
         return Err(SolveError::Failed(format!(
             "{}: the steps it lists are not those of scene `{scene}`",
             dir.join(PATH_FILE).display()

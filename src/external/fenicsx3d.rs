@@ -22,7 +22,7 @@ use super::surface3d::{self, Surface3};
 use super::toolchain::{Tool, Toolchain};
 use crate::domain::Grip;
 use crate::history::{History, Metadata};
-use crate::limits::SOLID_POLE;
+use crate::limits::{MAX_DECK_CLOCK_BYTES, MAX_DECK_TABLE_BYTES, SOLID_POLE};
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::split::{DeckCommand, SplitDeck};
@@ -213,7 +213,10 @@ impl Solid3dDeck {
             .timing
             .iter()
             .find(|(phase, _)| phase == "ranks")
-            .map_or(self.deck.ranks, |(_, n)| n.round() as u32);
+            .and_then(|(_, n)| {
+                (n.fract() == 0.0 && (1.0..=f64::from(MAX_RANKS)).contains(n)).then_some(*n as u32)
+            })
+            .unwrap_or(self.deck.ranks);
         let mut history = history(scene, split::RUN_ELSEWHERE, &plan, &run, ranks);
         history.metadata.solver = NAME.into();
         Ok(history)
@@ -224,14 +227,18 @@ impl Solid3dDeck {
 /// and checks them against each other; the wall times of meshing and solving are left at zero.
 fn read_outputs(dir: &Path, plan: &Plan, resolution: f64) -> Result<Run3, SolveError> {
     let start = Instant::now();
-    let read = |name: &str| readback::read_output(dir, name).map_err(SolveError::Failed);
+    let read =
+        |name: &str| readback::read_output(dir, name, MAX_DECK_TABLE_BYTES).map_err(SolveError::Failed);
     let rows = readback::parse_steps(&read("steps.csv")?, &plan.steps).map_err(SolveError::Failed)?;
     let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
     let surfaces = surface3d::parse_surface3(&read("surface.csv")?, &indices).map_err(SolveError::Failed)?;
     check_consistency(&rows, &surfaces, resolution)?;
     let nodes = surfaces.first().map_or(0, |s| s.nodes.len());
     let triangles = surface3d::parse_triangles(&read("triangles.csv")?, nodes).map_err(SolveError::Failed)?;
-    let timing = read("timing.csv").map(|t| parse_phases(&t)).unwrap_or_default();
+    let timing = readback::read_optional_output(dir, "timing.csv", MAX_DECK_CLOCK_BYTES)
+        .map_err(SolveError::Failed)?
+        .map(|t| parse_phases(&t))
+        .unwrap_or_default();
     Ok(Run3 {
         rows,
         surfaces,
@@ -252,10 +259,12 @@ const SUM_AGREEMENT: f64 = 1e-9;
 fn check_consistency(rows: &[DeckRow], surfaces: &[Surface3], resolution: f64) -> Result<(), SolveError> {
     for (row, surface) in rows.iter().zip(surfaces) {
         let sum = surface.normal_force();
-        if (sum - row.force_contact).abs() > SUM_AGREEMENT * row.force_contact.abs().max(1.0) {
+        let departure = (sum - row.force_contact).abs() / row.force_contact.abs().max(1.0);
+        if departure > SUM_AGREEMENT {
             return Err(SolveError::Failed(format!(
-                "step {}: P = {:e} N in steps.csv but 2 Σ ω p = {sum:e} N in surface.csv",
-                row.step, row.force_contact
+                "step {}: P of steps.csv and 2 Σ ω p of surface.csv differ by {departure:.1e} of the \
+                 larger of P and 1 N (allowed: {SUM_AGREEMENT:e}: the same sum, written twice)",
+                row.step
             )));
         }
         if surface.edge_loaded(resolution) {

@@ -200,12 +200,13 @@ const MSH41_NAME: &str = "mesh.msh";
 /// FreeFEM's first-order MSH 2.2 file's name in the mesh folder.
 const MSH22_MM_NAME: &str = "mesh_p1_mm.msh";
 
-/// A mesh file that [`mesh`] or [`mesh_quadratic`] wrote into `dir`, if it is there.
+/// A mesh file that [`mesh`] or [`mesh_quadratic`] wrote into `dir`, if something is there (what
+/// it is, is judged where it is read: a mesh is read as foreign input, `fem::mesh::msh`).
 fn found(dir: &Path, name: &str) -> Result<PathBuf, SolveError> {
     let file = dir.join(name);
-    match file.is_file() {
-        true => Ok(file),
-        false => Err(SolveError::Failed(format!(
+    match std::fs::symlink_metadata(&file) {
+        Ok(_) => Ok(file),
+        Err(_) => Err(SolveError::Failed(format!(
             "{}: mesh file missing (the folder is not the one the deck was written into)",
             file.display()
         ))),
@@ -233,7 +234,7 @@ impl MeshFiles {
         Ok(Self {
             geo: quadratic.geo,
             msh41: quadratic.msh41,
-            triangles: triangle_count(&msh22_mm),
+            triangles: triangle_count(&msh22_mm)?,
             msh22_mm,
             resolution,
             wall_s: 0.0,
@@ -275,7 +276,7 @@ pub fn mesh(
         "1000",
     ];
     let (msh22_mm, linear_s) = mesh_2d(toolchain, dir, &linear_mm, MSH22_MM_NAME)?;
-    let triangles = triangle_count(&msh22_mm);
+    let triangles = triangle_count(&msh22_mm)?;
     Ok(MeshFiles {
         geo: quadratic.geo,
         msh41: quadratic.msh41,
@@ -373,10 +374,14 @@ pub(super) fn run_gmsh(
     Err(SolveError::Failed(format!("{what} {how}: {}", run.tail(8))))
 }
 
-/// The number of linear triangles (element type 2) in an MSH 2.2 file; 0 if unreadable.
-fn triangle_count(msh22: &Path) -> usize {
-    let text = std::fs::read_to_string(msh22).unwrap_or_default();
-    text.split("$Elements")
+/// The number of linear triangles (element type 2) in the MSH 2.2 file `msh22`, read as every
+/// mesh is ([`crate::fem::mesh::msh::file_bytes`]: a regular file of bounded size); 0 where it
+/// holds no `$Elements` section.
+fn triangle_count(msh22: &Path) -> Result<usize, SolveError> {
+    let bytes = crate::fem::mesh::msh::file_bytes(msh22).map_err(|e| SolveError::Failed(e.to_string()))?;
+    let text = String::from_utf8_lossy(&bytes);
+    Ok(text
+        .split("$Elements")
         .nth(1)
         .and_then(|rest| rest.split("$EndElements").next())
         .map_or(0, |block| {
@@ -385,7 +390,7 @@ fn triangle_count(msh22: &Path) -> usize {
                 .skip(2) // the rest of the "$Elements" line, then the count
                 .filter(|l| l.split_whitespace().nth(1) == Some("2"))
                 .count()
-        })
+        }))
 }
 
 #[cfg(test)]

@@ -12,7 +12,8 @@
 //! - [`solid_geo`]: the 3D geometry (half of a hemisphere or cap) and its quadratic tetrahedra;
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
 //! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
-//! - [`readback`]: the decks' per-step CSV and the field files through meshio;
+//! - [`readback`]: the decks' per-step CSV, each result file read as foreign input;
+//!   [`field_files`]: the field files, checked, then read through meshio;
 //! - [`surface`]: the contact line's nodal state at every step, and what is measured from it;
 //! - [`fenicsx3d`]: the 3D deck under MPI (heavy), [`surface3d`]: its contact surface read back;
 //! - [`split`]: a deck's folder for a run elsewhere (`deck write|read`: manifest, README, script);
@@ -29,6 +30,7 @@ pub mod descendants;
 pub mod excerpt;
 pub mod fenicsx;
 pub mod fenicsx3d;
+pub mod field_files;
 pub mod freefem;
 pub mod geo;
 pub mod mask;

@@ -1,20 +1,23 @@
-//! Reading back what a deck wrote: its per-step CSV (`steps.csv`, one row per computed step), its
-//! clock (`timing.csv`), and the surface pressure p(r) of its field files, extracted through meshio
-//! by `scripts/read_fields.py` run as a subprocess (the contact line's nodal state, `surface.csv`,
-//! is read by [`super::surface`]). Missing, truncated or non-finite output is an error with a
-//! message that names the file, the row and the column, never a panic.
+//! Reading back what a deck wrote: its per-step CSV (`steps.csv`, one row per computed step) and
+//! its clock (`timing.csv`); the CSV reading the other tables share ([`records`], [`Row`]); and
+//! [`read_output`], the one way every deck's result file is opened (the contact line's nodal
+//! state, `surface.csv`, is read by [`super::surface`]; the field files by
+//! [`super::field_files`]).
+//!
+//! A deck's folder is foreign input (docs/security.md, "Deck folders"): it comes back from a
+//! cluster or a colleague, so each file is read by the rule of files from elsewhere
+//! ([`crate::input::foreign`]): a regular file in the folder (a link only to a file inside it), of
+//! at most its limit (`crate::limits`), and a fault is named by file, line and column with the
+//! form allowed, never by the file's text. Missing, truncated or non-finite output is such an
+//! error, never a panic. A deck's own run reads its private temporary folder by the same rule.
 //!
 //! Units: the decks work in mm, N, MPa; the rows here are converted to SI.
 
-use std::path::{Path, PathBuf};
-use std::time::Duration;
+use std::fmt::Display;
+use std::path::Path;
 
-use super::deck::ComputedStep;
-use super::process::{self, Job};
-use super::toolchain::Toolchain;
-
-/// The glue script, compiled in and written beside the field files when needed.
-pub const READ_FIELDS_PY: &str = include_str!("../../scripts/read_fields.py");
+use super::deck::{ComputedStep, PATH_FILE};
+use crate::input::foreign;
 
 /// The columns a deck's `steps.csv` has, in order.
 pub const STEP_COLUMNS: [&str; 10] = [
@@ -72,130 +75,229 @@ pub struct DeckRow {
 /// Fails on a wrong header, fewer or more rows than expected (a truncated run), a step or
 /// displacement that is not the one asked for, or a value that is not a finite number.
 pub fn parse_steps(text: &str, expected: &[ComputedStep]) -> Result<Vec<DeckRow>, String> {
-    let records = records(text, "steps.csv", &STEP_COLUMNS)?;
-    let mut rows = Vec::new();
-    for (k, record) in records.iter().enumerate() {
-        let row = parse_row(record).map_err(|e| format!("steps.csv row {}: {e}", k + 1))?;
-        let Some(asked) = expected.get(k) else {
-            return Err(format!(
-                "steps.csv row {}: more rows than the {} steps asked for",
-                k + 1,
-                expected.len()
-            ));
-        };
-        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1e-12);
-        if row.step != asked.step || !close(row.d, asked.d) || !close(row.t, asked.t) {
-            return Err(format!(
-                "steps.csv row {}: step {} at d = {:e} m, t = {:e} m; expected step {} at d = {:e} m, t = {:e} m",
-                k + 1,
-                row.step,
-                row.d,
-                row.t,
-                asked.step,
-                asked.d,
-                asked.t
-            ));
-        }
-        rows.push(row);
+    let rows = records(text, "steps.csv", &STEP_COLUMNS)?;
+    if let Some(extra) = rows.get(expected.len()) {
+        return Err(extra.error(format!(
+            "a row past the {} computed steps of {PATH_FILE} (allowed: one row per computed step)",
+            expected.len()
+        )));
     }
-    if rows.len() != expected.len() {
+    if rows.len() < expected.len() {
         return Err(format!(
             "steps.csv has {} rows, expected {} (truncated output: the deck stopped early)",
             rows.len(),
             expected.len()
         ));
     }
-    Ok(rows)
+    rows.iter()
+        .zip(expected)
+        .map(|(row, asked)| parse_row(row, asked))
+        .collect()
 }
 
 /// The records of a deck's CSV `file` (text `text`), whose header must be `columns`: every
-/// record well-formed and with one field per column, else an error naming the row.
-pub fn records(text: &str, file: &str, columns: &[&str]) -> Result<Vec<csv::StringRecord>, String> {
+/// record well-formed and with one cell per column, else an error naming the line.
+pub fn records<'a>(text: &str, file: &'a str, columns: &'a [&'a str]) -> Result<Vec<Row<'a>>, String> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
         .from_reader(text.as_bytes());
-    let header = reader.headers().map_err(|e| format!("{file}: {e}"))?;
-    if header.iter().ne(columns.iter().copied()) {
-        return Err(format!(
-            "{file}: header is `{}`, expected `{}`",
-            header.iter().collect::<Vec<_>>().join(","),
-            columns.join(",")
+    let mut lines = Lines { text, at: 0, line: 1 };
+    let not_csv =
+        |line: u64| format!("{file}:{line}: not a CSV record (allowed: comma-separated UTF-8 text)");
+    check_header(reader.headers().map_err(|_| not_csv(1))?, file, columns)?;
+    let mut rows = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| not_csv(lines.of(e.position())))?;
+        let row = Row {
+            file,
+            columns,
+            line: lines.of(record.position()),
+            record,
+        };
+        if row.record.len() != columns.len() {
+            return Err(row.error(format!(
+                "{} cells in a row under a header of {} columns (a truncated line?)",
+                row.record.len(),
+                columns.len()
+            )));
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// The lines of a CSV text, counted forward as its records are read. The csv reader's own line
+/// is one short in a file of CRLF line ends (Python's csv writes them: the dolfinx decks), as it
+/// ends a record at the CR and starts the next at the LF; here a record's line is counted past
+/// any line break at its first byte.
+struct Lines<'t> {
+    text: &'t str,
+    /// A byte offset, at or before the next record's start.
+    at: usize,
+    /// The line at `at` (1-based).
+    line: u64,
+}
+
+impl Lines<'_> {
+    /// The line where the record at `position` starts (positions come in order).
+    fn of(&mut self, position: Option<&csv::Position>) -> u64 {
+        let byte = position.map_or(self.at, |p| usize::try_from(p.byte()).unwrap_or(usize::MAX));
+        let byte = byte.clamp(self.at, self.text.len());
+        let rest = &self.text[byte..];
+        let start = byte + rest.len() - rest.trim_start_matches(['\r', '\n']).len();
+        self.line += self.text[self.at..start].matches('\n').count() as u64;
+        self.at = start;
+        self.line
+    }
+}
+
+/// Checks that `header` is `columns`: the first column that is not, by its position, with the
+/// header expected (never the header's own text).
+fn check_header(header: &csv::StringRecord, file: &str, columns: &[&str]) -> Result<(), String> {
+    let problem = match header
+        .iter()
+        .zip(columns)
+        .position(|(found, name)| found != *name)
+    {
+        Some(k) => format!("column {} is not `{}`", k + 1, columns[k]),
+        None if header.len() != columns.len() => {
+            format!("{} columns where {} belong", header.len(), columns.len())
+        }
+        None => return Ok(()),
+    };
+    Err(format!(
+        "{file}:1: header: {problem} (allowed: the header `{}`)",
+        columns.join(",")
+    ))
+}
+
+/// One record of a deck's CSV with where it lies: its cells read as the column allows, a
+/// fault named by file, line and column, never by the cell's text.
+pub struct Row<'a> {
+    file: &'a str,
+    columns: &'a [&'a str],
+    line: u64,
+    record: csv::StringRecord,
+}
+
+impl Row<'_> {
+    /// `FILE:LINE: what`.
+    pub fn error(&self, what: impl Display) -> String {
+        format!("{}:{}: {what}", self.file, self.line)
+    }
+
+    /// `FILE:LINE: column `NAME`: why` of cell `i`.
+    pub fn cell_error(&self, i: usize, why: impl Display) -> String {
+        self.error(format!("column `{}`: {why}", self.columns[i]))
+    }
+
+    /// Cell `i`'s text.
+    pub fn text(&self, i: usize) -> &str {
+        &self.record[i]
+    }
+
+    /// Cell `i` as a finite number, times `scale`.
+    pub fn finite(&self, i: usize, scale: f64) -> Result<f64, String> {
+        match self.text(i).parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v * scale),
+            _ => Err(self.cell_error(
+                i,
+                "not a finite number (allowed: a finite number in the column's unit)",
+            )),
+        }
+    }
+
+    /// Cell `i` as a whole number (`what` it is, for the message).
+    pub fn whole<T: std::str::FromStr>(&self, i: usize, what: &str) -> Result<T, String> {
+        self.text(i)
+            .parse()
+            .map_err(|_| self.cell_error(i, format!("not {what} (allowed: a whole number from 0)")))
+    }
+
+    /// Cell `i` as the value of one of `choices` (its text, its value).
+    pub fn choice<T: Copy>(&self, i: usize, choices: &[(&str, T)]) -> Result<T, String> {
+        choices
+            .iter()
+            .find(|(text, _)| *text == self.text(i))
+            .map(|&(_, value)| value)
+            .ok_or_else(|| {
+                let names: Vec<&str> = choices.iter().map(|(text, _)| *text).collect();
+                self.cell_error(i, format!("not an allowed value (allowed: {})", names.join(", ")))
+            })
+    }
+}
+
+/// The row of computed step `asked`, in SI, checked against it (step index, d and t within 1e-9).
+fn parse_row(row: &Row, asked: &ComputedStep) -> Result<DeckRow, String> {
+    let number = |i: usize, scale: f64| row.finite(i, scale);
+    let step = row.whole(0, "a step index")?;
+    if step != asked.step {
+        return Err(row.cell_error(
+            0,
+            format!(
+                "not the computed step (allowed: {}, the next step of {PATH_FILE})",
+                asked.step
+            ),
         ));
     }
-    reader
-        .records()
-        .enumerate()
-        .map(|(k, record)| {
-            let record = record.map_err(|e| format!("{file} row {}: {e}", k + 1))?;
-            if record.len() != columns.len() {
-                return Err(format!(
-                    "{file} row {}: {} fields, expected {} (truncated line?)",
-                    k + 1,
-                    record.len(),
-                    columns.len()
-                ));
-            }
-            Ok(record)
-        })
-        .collect()
-}
-
-/// Field `i` of `record` (columns `columns`) as a finite number, times `scale`.
-pub fn finite(record: &csv::StringRecord, columns: &[&str], i: usize, scale: f64) -> Result<f64, String> {
-    match record[i].parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v * scale),
-        _ => Err(format!(
-            "{} = `{}` is not a finite number",
-            columns[i], &record[i]
-        )),
+    let (d, t) = (number(1, 1e-3)?, number(2, 1e-3)?);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1e-12);
+    for (i, found, value) in [(1, d, asked.d), (2, t, asked.t)] {
+        if !close(found, value) {
+            return Err(row.cell_error(
+                i,
+                format!(
+                    "not the step's (allowed: {:e}, from {PATH_FILE}, within 1e-9)",
+                    value * 1e3
+                ),
+            ));
+        }
     }
-}
-
-fn parse_row(record: &csv::StringRecord) -> Result<DeckRow, String> {
-    let number = |i: usize, scale: f64| finite(record, &STEP_COLUMNS, i, scale);
-    let count = |i: usize| -> Result<u32, String> {
-        record[i]
-            .parse()
-            .map_err(|_| format!("{} = `{}` is not a count", STEP_COLUMNS[i], &record[i]))
-    };
-    let outcome = match &record[8] {
-        "1" => Outcome::Converged,
-        "2" => Outcome::Cycle,
-        "0" => Outcome::Capped,
-        other => return Err(format!("outcome = `{other}` is not 0, 1 or 2")),
-    };
     Ok(DeckRow {
-        step: record[0]
-            .parse()
-            .map_err(|_| format!("step = `{}` is not a step index", &record[0]))?,
-        d: number(1, 1e-3)?,
-        t: number(2, 1e-3)?,
+        step,
+        d,
+        t,
         force_contact: number(3, 1.0)?,
-        force_reaction: if record[4].is_empty() {
+        force_reaction: if row.text(4).is_empty() {
             None
         } else {
             Some(number(4, 1.0)?)
         },
         tangential_force: number(5, 1.0)?,
-        iterations_normal: count(6)?,
-        iterations_tangential: count(7)?,
-        outcome,
-        field_file: match &record[9] {
+        iterations_normal: row.whole(6, "a count")?,
+        iterations_tangential: row.whole(7, "a count")?,
+        outcome: row.choice(
+            8,
+            &[
+                ("0", Outcome::Capped),
+                ("1", Outcome::Converged),
+                ("2", Outcome::Cycle),
+            ],
+        )?,
+        field_file: match row.text(9) {
             "-" => None,
-            name if is_plain_name(name) => Some(name.to_owned()),
-            name => {
-                return Err(format!(
-                    "field_file = `{name}` is not a file name (allowed: a name in the run folder, or -)"
+            name if is_field_file_name(name) => Some(name.to_owned()),
+            _ => {
+                return Err(row.cell_error(
+                    9,
+                    "not a field file's name (allowed: `-`, or the name of a .vtu or .xdmf file in \
+                     the deck's folder)",
                 ))
             }
         },
     })
 }
 
+/// Whether `name` names a field file in its folder itself: one normal component (no folder, no
+/// `..`, not absolute) ending `.vtu` or `.xdmf`, the files `scripts/read_fields.py` reads.
+pub fn is_field_file_name(name: &str) -> bool {
+    is_plain_name(name) && (name.ends_with(".vtu") || name.ends_with(".xdmf"))
+}
+
 /// Whether `name` names a file in its folder itself: one normal component (no folder, no `..`,
 /// not absolute).
-fn is_plain_name(name: &str) -> bool {
+pub fn is_plain_name(name: &str) -> bool {
     let mut components = Path::new(name).components();
     matches!(
         (components.next(), components.next()),
@@ -203,10 +305,39 @@ fn is_plain_name(name: &str) -> bool {
     )
 }
 
-/// Reads the file `name` of the run directory `dir` ("output missing" when absent).
-pub fn read_output(dir: &Path, name: &str) -> Result<String, String> {
+/// The text of the result file `name` of the run directory `dir`, a file from elsewhere of at
+/// most `limit` bytes ([`foreign::read_text`]); "output missing" when it is absent.
+pub fn read_output(dir: &Path, name: &str, limit: u64) -> Result<String, String> {
     let file = dir.join(name);
-    std::fs::read_to_string(&file).map_err(|e| format!("{}: output missing ({e})", file.display()))
+    present(&file)?;
+    foreign::read_text(&file, limit).map_err(|e| e.to_string())
+}
+
+/// [`read_output`] of a file a deck may leave out: `None` when it is absent; a file there that
+/// cannot be read (a FIFO, a link out of the folder, too large) is an error.
+pub fn read_optional_output(dir: &Path, name: &str, limit: u64) -> Result<Option<String>, String> {
+    if is_absent(&dir.join(name)) {
+        Ok(None)
+    } else {
+        read_output(dir, name, limit).map(Some)
+    }
+}
+
+/// `Ok` when something (a file, a link, a FIFO) is at the result file `file`, else its "output
+/// missing" error.
+pub fn present(file: &Path) -> Result<(), String> {
+    match is_absent(file) {
+        true => Err(format!(
+            "{}: output missing (the deck writes it when it runs)",
+            file.display()
+        )),
+        false => Ok(()),
+    }
+}
+
+/// Whether nothing, not even a dangling link, is at `file`.
+fn is_absent(file: &Path) -> bool {
+    matches!(std::fs::symlink_metadata(file), Err(e) if e.kind() == std::io::ErrorKind::NotFound)
 }
 
 /// The deck's own clock of its set-up (assembly, factorisation, condensation) and of the path
@@ -220,105 +351,6 @@ pub fn parse_timing(text: &str) -> (Option<f64>, Option<f64>) {
             .filter(|v| v.is_finite())
     };
     (value("setup"), value("path"))
-}
-
-/// One point of the spherical surface in a field file, SI.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfacePoint {
-    /// Radius r [m].
-    pub r: f64,
-    /// Contact pressure [Pa].
-    pub pressure: f64,
-    /// Height of the deformed surface above the contact plane, z + u_z [m] (negative inside the
-    /// contact by the penalty's penetration p/k).
-    pub gap: f64,
-}
-
-/// The surface of one field file, sorted by r.
-pub type Profile = Vec<SurfacePoint>;
-
-/// Extracts p(r) on the spherical surface (radius `radius_mm`, r ≤ `window_mm`) from each field
-/// file in `dir`, through meshio (`scripts/read_fields.py` run by the toolchain's Python). The
-/// script, its output and its logs live in a private temporary folder: nothing is written into
-/// `dir` (a run folder read back by `deck read` stays as the deck left it).
-pub fn read_profiles(
-    dir: &Path,
-    files: &[String],
-    radius_mm: f64,
-    window_mm: f64,
-    toolchain: &Toolchain,
-    timeout: Duration,
-) -> Result<Vec<Profile>, String> {
-    let work = tempfile::Builder::new()
-        .prefix("spherecontact-meshio-")
-        .tempdir()
-        .map_err(|e| format!("meshio: no temporary folder: {e}"))?;
-    let script = work.path().join("read_fields.py");
-    std::fs::write(&script, READ_FIELDS_PY).map_err(|e| format!("{}: {e}", script.display()))?;
-    let out: PathBuf = work.path().join("profiles.csv");
-    let dir = std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let paths: Vec<String> = files.iter().map(|f| dir.join(f).display().to_string()).collect();
-    let mut args = vec![
-        script.display().to_string(),
-        "--radius".into(),
-        radius_mm.to_string(),
-        "--window".into(),
-        window_mm.to_string(),
-        "--out".into(),
-        out.display().to_string(),
-    ];
-    args.extend(paths.iter().cloned());
-    let job = Job {
-        program: toolchain.python.clone(),
-        args,
-        env: vec![],
-        timeout,
-    };
-    let run = process::run(&job, work.path(), "read_fields").map_err(|e| format!("meshio: {e}"))?;
-    if let Some(failure) = run
-        .ending
-        .failure("python (meshio)", timeout, |_| "reading the field files failed")
-    {
-        return Err(format!("{failure}; {}", run.tail(4)));
-    }
-    let text =
-        std::fs::read_to_string(&out).map_err(|e| format!("{}: output missing ({e})", out.display()))?;
-    parse_profiles(&text, &paths)
-}
-
-/// Splits `read_fields.py`'s CSV (file, r [mm], p [MPa], gap [mm]) into one SI profile per file.
-pub fn parse_profiles(text: &str, files: &[String]) -> Result<Vec<Profile>, String> {
-    let mut profiles = vec![Profile::new(); files.len()];
-    let mut reader = csv::Reader::from_reader(text.as_bytes());
-    for (k, record) in reader.records().enumerate() {
-        let record = record.map_err(|e| format!("profiles.csv row {}: {e}", k + 1))?;
-        let values: Option<Vec<f64>> = (record.len() == 4)
-            .then(|| (1..4).map(|i| record[i].parse::<f64>().ok()).collect())
-            .flatten()
-            .filter(|v: &Vec<f64>| v.iter().all(|x| x.is_finite()));
-        let Some(v) = values else {
-            return Err(format!(
-                "profiles.csv row {}: not a finite (r, p, gap) triple",
-                k + 1
-            ));
-        };
-        let Some(i) = files.iter().position(|f| f == &record[0]) else {
-            return Err(format!(
-                "profiles.csv row {}: unknown file `{}`",
-                k + 1,
-                &record[0]
-            ));
-        };
-        profiles[i].push(SurfacePoint {
-            r: v[0] * 1e-3,
-            pressure: v[1] * 1e6,
-            gap: v[2] * 1e-3,
-        });
-    }
-    if let Some(i) = profiles.iter().position(Vec::is_empty) {
-        return Err(format!("no surface pressure read from {}", files[i]));
-    }
-    Ok(profiles)
 }
 
 #[cfg(test)]
@@ -374,38 +406,92 @@ mod tests {
         let text = two_rows();
         let cut = &text[..text.len() - 30];
         let e = parse_steps(cut, &asked()).unwrap_err();
-        assert!(e.contains("row 2"), "{e}");
+        assert!(
+            e.starts_with("steps.csv:3: ") && e.contains("truncated line"),
+            "{e}"
+        );
         let one_row: String = text.lines().take(2).collect::<Vec<_>>().join("\n");
         let e = parse_steps(&one_row, &asked()).unwrap_err();
         assert!(e.contains("truncated"), "{e}");
     }
 
+    /// Requirement: a bad cell, header or row is named by line and column with the form allowed,
+    /// and its text is never quoted.
     #[test]
-    fn nan_wrong_step_and_bad_outcome_are_errors() {
-        let text = two_rows().replace("806.56,,", "nan,,");
-        let e = parse_steps(&text, &asked()).unwrap_err();
-        assert!(e.contains("P_contact_N") && e.contains("finite"), "{e}");
-        let mut other = asked();
-        other[1].t = 6e-7;
-        let e = parse_steps(&two_rows(), &other).unwrap_err();
-        assert!(e.contains("expected step 5"), "{e}");
-        let e = parse_steps(&two_rows().replace(",2,field", ",7,field"), &asked()).unwrap_err();
-        assert!(e.contains("outcome"), "{e}");
-        let e = parse_steps("a,b\n1,2\n", &asked()).unwrap_err();
-        assert!(e.contains("header"), "{e}");
+    fn faults_are_located_and_never_quoted() {
+        let cases = [
+            (
+                two_rows().replace("806.56,,", "SECRET,,"),
+                "steps.csv:2: column `P_contact_N`: not a finite number",
+            ),
+            (
+                two_rows().replace("806.56,,", "nan,,"),
+                "steps.csv:2: column `P_contact_N`: not a finite number",
+            ),
+            (
+                two_rows().replace(",2,field", ",SECRET,field"),
+                "steps.csv:3: column `outcome`: not an allowed value (allowed: 0, 1, 2)",
+            ),
+            (
+                two_rows().replace("\n4,", "\nSECRET,"),
+                "steps.csv:2: column `step`: not a step index",
+            ),
+            (
+                two_rows().replace(",3,2,1,", ",SECRET,2,1,"),
+                "steps.csv:2: column `iterations_normal`: not a count",
+            ),
+            (
+                two_rows().replace("\n5,", "\n6,"),
+                "steps.csv:3: column `step`: not the computed step (allowed: 5",
+            ),
+            (
+                two_rows().replace("0.0005", "0.0006"),
+                "steps.csv:3: column `t_mm`: not the step's (allowed: ",
+            ),
+            (
+                "a,SECRET\n1,2\n".to_owned(),
+                "steps.csv:1: header: column 1 is not `step`",
+            ),
+            (
+                format!("{HEADER},SECRET\n"),
+                "steps.csv:1: header: 11 columns where 10 belong",
+            ),
+        ];
+        for (text, expected) in cases {
+            // The same lines in a file of CRLF line ends (Python's csv writes them).
+            for text in [text.clone(), text.replace('\n', "\r\n")] {
+                let e = parse_steps(&text, &asked()).unwrap_err();
+                assert!(e.starts_with(expected), "{e}");
+                assert!(
+                    !e.contains("SECRET") && !e.contains("nan") && !e.contains("0.0006"),
+                    "{e}"
+                );
+            }
+        }
+        let e = parse_steps("a,b\n", &asked()).unwrap_err();
+        assert!(e.contains(&format!("(allowed: the header `{HEADER}`)")), "{e}");
         let e = parse_steps(&two_rows(), &asked()[..1]).unwrap_err();
-        assert!(e.contains("more rows"), "{e}");
-        for name in ["../x.vtu", "/etc/passwd", "a/b.vtu"] {
+        assert!(
+            e.starts_with("steps.csv:3: a row past the 1 computed steps"),
+            "{e}"
+        );
+        for name in ["../x.vtu", "/etc/passwd", "a/b.vtu", "field.csv", "SECRET"] {
             let e = parse_steps(&two_rows().replace("field_2.vtu", name), &asked()).unwrap_err();
-            assert!(e.contains("field_file") && e.contains("not a file name"), "{e}");
+            assert!(e.contains("column `field_file`: not a field file's name"), "{e}");
+            assert!(!e.contains(name), "{e}");
         }
     }
 
     #[test]
-    fn missing_output_is_an_error() {
+    fn a_missing_output_is_named_and_a_fifo_refused_at_once() {
         let dir = tempfile::tempdir().unwrap();
-        let e = read_output(dir.path(), "steps.csv").unwrap_err();
+        let e = read_output(dir.path(), "steps.csv", 100).unwrap_err();
         assert!(e.contains("output missing"), "{e}");
+        assert_eq!(read_optional_output(dir.path(), "timing.csv", 100), Ok(None));
+        let fifo = dir.path().join("timing.csv");
+        rustix::fs::mkfifoat(rustix::fs::CWD, &fifo, rustix::fs::Mode::from_raw_mode(0o600)).unwrap();
+        let e = read_optional_output(dir.path(), "timing.csv", 100).unwrap_err();
+        assert!(e.contains("a FIFO"), "{e}");
     }
 
     #[test]
@@ -415,19 +501,5 @@ mod tests {
             (Some(12.5), Some(3.0))
         );
         assert_eq!(parse_timing("phase,seconds\nsetup,nan\n"), (None, None));
-    }
-
-    #[test]
-    fn profiles_split_by_file_and_reject_nan() {
-        let files = vec!["a.vtu".to_string(), "b.vtu".to_string()];
-        let text =
-            "file,r,pressure,gap\na.vtu,0.0,450.0,-1e-8\nb.vtu,0.0,550.0,-1e-8\nb.vtu,0.5,300.0,-1e-8\n";
-        let p = parse_profiles(text, &files).unwrap();
-        assert_eq!(p[0].len(), 1);
-        assert_eq!(p[0][0].pressure, 450e6);
-        assert_eq!(p[1].len(), 2);
-        assert!(parse_profiles("file,r,pressure,gap\na.vtu,0.0,nan,0\n", &files).is_err());
-        let e = parse_profiles("file,r,pressure,gap\na.vtu,0.0,1.0,0\n", &files).unwrap_err();
-        assert!(e.contains("b.vtu"), "{e}");
     }
 }

@@ -22,6 +22,8 @@ use serde_json::Value;
 use super::deck::Deck;
 use super::toolchain::Toolchain;
 use crate::history::History;
+use crate::input::foreign;
+use crate::limits::MAX_INPUT_BYTES;
 use crate::scene::Scene;
 use crate::solver::split::{DeckCommand, SplitDeck};
 use crate::solver::{self, SolveError, Solver};
@@ -250,24 +252,31 @@ pub fn write_folder(
     Ok(names)
 }
 
-/// The manifest of the deck folder `dir`.
+/// The manifest of the deck folder `dir`, read as a file from elsewhere
+/// ([`crate::input::foreign`]: a regular file, a link only inside the folder, at most
+/// [`MAX_INPUT_BYTES`], as large as the case file whose scene it holds; a parse error quotes
+/// nothing of it). Once it parses with this [`FORMAT`] it is taken for the harness's own file:
+/// [`Manifest::check_found`] names the case, solver and resolution it was written for.
 pub fn read_manifest(dir: &Path) -> Result<Manifest, FolderError> {
     let file = dir.join(MANIFEST);
     let error = |why: String| FolderError::Manifest {
         file: file.clone(),
         why,
     };
-    let text = crate::input::read_text(&file).map_err(|e| {
-        error(format!(
-            "{e} (allowed: a folder written by `spherecontact deck write`, which holds {MANIFEST})"
-        ))
+    let allowed = format!("a folder written by `spherecontact deck write`, which holds {MANIFEST}");
+    if std::fs::symlink_metadata(&file).is_err() {
+        return Err(error(format!("missing (allowed: {allowed})")));
+    }
+    let text = foreign::read_text(&file, MAX_INPUT_BYTES).map_err(|e| error(e.problem))?;
+    let manifest: Manifest = foreign::parse_json(&file, &text, "a deck manifest").map_err(|e| {
+        let at = e.location.map_or_else(String::new, |(line, column)| {
+            format!(" at line {line}, column {column}")
+        });
+        error(format!("not a deck manifest{at}: {}", e.problem))
     })?;
-    let manifest: Manifest =
-        serde_json::from_str(&text).map_err(|e| error(format!("not a deck manifest: {e}")))?;
     if manifest.format != FORMAT {
         return Err(error(format!(
-            "format `{}` (allowed: `{FORMAT}`)",
-            manifest.format
+            "not a deck manifest: its `format` is not `{FORMAT}` (allowed: {allowed})"
         )));
     }
     Ok(manifest)

@@ -132,24 +132,17 @@ impl Surface {
 /// Reads `surface.csv` from `text`: one block of candidate nodes per computed step, the steps
 /// `steps` in order, every block with the same radii.
 ///
-/// Fails, naming the row and column, on a wrong header, a value that is not a finite number, a
+/// Fails, naming the line and column, on a wrong header, a value that is not a finite number, a
 /// step that is not the one expected, blocks of different sizes, or missing blocks (a truncated
 /// run).
 pub fn parse_surface(text: &str, steps: &[usize]) -> Result<Vec<Surface>, String> {
     let mut surfaces: Vec<Surface> = Vec::with_capacity(steps.len());
-    for (k, record) in readback::records(text, "surface.csv", &SURFACE_COLUMNS)?
-        .iter()
-        .enumerate()
-    {
-        let row = k + 1;
-        let (step, node) = parse_node(record).map_err(|e| format!("surface.csv row {row}: {e}"))?;
+    for row in readback::records(text, "surface.csv", &SURFACE_COLUMNS)? {
+        let (step, node) = parse_node(&row)?;
         if surfaces.last().is_none_or(|s| s.step != step) {
             let expected = steps.get(surfaces.len()).copied();
             if expected != Some(step) {
-                return Err(format!(
-                    "surface.csv row {row}: step {step}, expected {}",
-                    expected.map_or_else(|| "no more steps".to_owned(), |e| e.to_string())
-                ));
+                return Err(row.cell_error(0, not_the_next_step(expected)));
             }
             surfaces.push(Surface {
                 step,
@@ -179,25 +172,25 @@ pub fn parse_surface(text: &str, steps: &[usize]) -> Result<Vec<Surface>, String
     Ok(surfaces)
 }
 
-fn parse_node(record: &csv::StringRecord) -> Result<(usize, Node), String> {
-    let number = |i: usize, scale: f64| readback::finite(record, &SURFACE_COLUMNS, i, scale);
-    let step = record[0]
-        .parse()
-        .map_err(|_| format!("step = `{}` is not a step index", &record[0]))?;
-    let stick = match &record[6] {
-        "0" => false,
-        "1" => true,
-        other => return Err(format!("stick = `{other}` is not 0 or 1")),
-    };
+/// What a step cell that does not continue the blocks is, with the step `expected` next.
+pub(crate) fn not_the_next_step(expected: Option<usize>) -> String {
+    match expected {
+        Some(step) => format!("not the next computed step (allowed: {step} or the current step)"),
+        None => "a step past the last computed one (allowed: the computed steps in order)".into(),
+    }
+}
+
+fn parse_node(row: &readback::Row) -> Result<(usize, Node), String> {
+    let number = |i: usize, scale: f64| row.finite(i, scale);
     Ok((
-        step,
+        row.whole(0, "a step index")?,
         Node {
             r: number(1, 1e-3)?,
             weight: number(2, 1e-6)?,
             gap: number(3, 1e-3)?,
             pressure: number(4, 1e6)?,
             traction_x: number(5, 1e6)?,
-            stick,
+            stick: row.choice(6, &[("0", false), ("1", true)])?,
             slip: number(7, 1e-3)?,
         },
     ))
@@ -270,12 +263,28 @@ mod tests {
         let e = parse_surface(cut, &[3, 7]).unwrap_err();
         assert!(e.contains("truncated"), "{e}");
         let e = parse_surface(&text, &[3, 8]).unwrap_err();
-        assert!(e.contains("step 7, expected 8"), "{e}");
+        assert!(
+            e.starts_with("surface.csv:31: column `step`: not the next computed step (allowed: 8"),
+            "{e}"
+        );
         let e = parse_surface(&text.replacen("-1e-7", "nan", 1), &[3, 7]).unwrap_err();
-        assert!(e.contains("gap_mm = `nan`"), "{e}");
+        assert!(
+            e.starts_with("surface.csv:2: column `gap_mm`: not a finite number"),
+            "{e}"
+        );
+        assert!(!e.contains("nan"), "{e}");
+        let e = parse_surface(&text.replacen(",1,0\n", ",SECRET,0\n", 1), &[3, 7]).unwrap_err();
+        assert!(
+            e.starts_with("surface.csv:2: column `stick`: not an allowed value (allowed: 0, 1)"),
+            "{e}"
+        );
+        assert!(!e.contains("SECRET"), "{e}");
         let e = parse_surface("a,b\n", &[3]).unwrap_err();
-        assert!(e.contains("header"), "{e}");
+        assert!(
+            e.starts_with("surface.csv:1: header: column 1 is not `step`"),
+            "{e}"
+        );
         let e = parse_surface(&text, &[3]).unwrap_err();
-        assert!(e.contains("no more steps"), "{e}");
+        assert!(e.contains("a step past the last computed one"), "{e}");
     }
 }

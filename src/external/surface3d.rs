@@ -179,26 +179,24 @@ pub const TRIANGLE_COLUMNS: [&str; 3] = ["a", "b", "c"];
 
 /// Reads `triangles.csv` from `text` for a surface of `nodes` nodes.
 ///
-/// Fails, naming the row, on a wrong header, an index that is not a node of the surface, or a
-/// file without triangles.
+/// Fails, naming the line and column, on a wrong header, an index that is not a node of the
+/// surface, or a file without triangles.
 pub fn parse_triangles(text: &str, nodes: usize) -> Result<Vec<[usize; 3]>, String> {
-    let records = readback::records(text, "triangles.csv", &TRIANGLE_COLUMNS)?;
-    let triangles = records
+    let rows = readback::records(text, "triangles.csv", &TRIANGLE_COLUMNS)?;
+    let triangles = rows
         .iter()
-        .enumerate()
-        .map(|(k, record)| {
+        .map(|row| {
             let index = |i: usize| {
-                record[i]
-                    .parse::<usize>()
-                    .ok()
-                    .filter(|&j| j < nodes)
-                    .ok_or_else(|| {
-                        format!(
-                            "triangles.csv row {}: {} = `{}` is not a node index below {nodes}",
-                            k + 1,
-                            TRIANGLE_COLUMNS[i],
-                            &record[i]
-                        )
+                row.whole::<usize>(i, "a node index")
+                    .and_then(|j| match j < nodes {
+                        true => Ok(j),
+                        false => Err(row.cell_error(
+                            i,
+                            format!(
+                                "not a node of the surface (allowed: 0 to {})",
+                                nodes.saturating_sub(1)
+                            ),
+                        )),
                     })
             };
             Ok([index(0)?, index(1)?, index(2)?])
@@ -213,44 +211,24 @@ pub fn parse_triangles(text: &str, nodes: usize) -> Result<Vec<[usize; 3]>, Stri
 /// Reads the 3D `surface.csv` from `text`: one block of candidate nodes per computed step, the
 /// steps `steps` in order, every block with the same nodes.
 ///
-/// Fails, naming the row and column, on a wrong header, a value that is not a finite number, a
+/// Fails, naming the line and column, on a wrong header, a value that is not a finite number, a
 /// step that is not the one expected, blocks of different sizes, or missing blocks.
 pub fn parse_surface3(text: &str, steps: &[usize]) -> Result<Vec<Surface3>, String> {
-    let records = readback::records(text, "surface.csv", &SURFACE3_COLUMNS)?;
+    let rows = readback::records(text, "surface.csv", &SURFACE3_COLUMNS)?;
     let mut surfaces: Vec<Surface3> = Vec::with_capacity(steps.len());
-    for (k, record) in records.iter().enumerate() {
-        let at = |e: String| format!("surface.csv row {}: {e}", k + 1);
-        let number = |i: usize, scale: f64| readback::finite(record, &SURFACE3_COLUMNS, i, scale).map_err(at);
-        let step: usize = record[0]
-            .parse()
-            .map_err(|_| at(format!("step = `{}` is not a step index", &record[0])))?;
-        let stick = match &record[8] {
-            "0" => false,
-            "1" => true,
-            other => return Err(at(format!("stick = `{other}` is not 0 or 1"))),
-        };
-        let node = Node3 {
-            point: [number(1, 1e-3)?, number(2, 1e-3)?],
-            weight: number(3, 1e-6)?,
-            gap: number(4, 1e-3)?,
-            pressure: number(5, 1e6)?,
-            traction: [number(6, 1e6)?, number(7, 1e6)?],
-            stick,
-            slip: [number(9, 1e-3)?, number(10, 1e-3)?],
-        };
+    for row in &rows {
+        let (step, node) = parse_node3(row)?;
         match surfaces.last_mut() {
             Some(s) if s.step == step => s.nodes.push(node),
             _ => {
                 let expected = steps.get(surfaces.len()).copied();
                 if expected != Some(step) {
-                    let expected =
-                        expected.map_or_else(|| "no further step".to_owned(), |s| format!("step {s}"));
-                    return Err(at(format!("step {step} where {expected} belongs")));
+                    return Err(row.cell_error(0, super::surface::not_the_next_step(expected)));
                 }
                 if let Some(previous) = surfaces.last() {
                     let size = surfaces[0].nodes.len();
                     if previous.nodes.len() != size {
-                        return Err(at(format!(
+                        return Err(row.error(format!(
                             "step {} has {} nodes, the first step {size}",
                             previous.step,
                             previous.nodes.len()
@@ -273,6 +251,23 @@ pub fn parse_surface3(text: &str, steps: &[usize]) -> Result<Vec<Surface3>, Stri
         ));
     }
     Ok(surfaces)
+}
+
+/// The step and the node of one row of the 3D `surface.csv`, SI.
+fn parse_node3(row: &readback::Row) -> Result<(usize, Node3), String> {
+    let number = |i: usize, scale: f64| row.finite(i, scale);
+    Ok((
+        row.whole(0, "a step index")?,
+        Node3 {
+            point: [number(1, 1e-3)?, number(2, 1e-3)?],
+            weight: number(3, 1e-6)?,
+            gap: number(4, 1e-3)?,
+            pressure: number(5, 1e6)?,
+            traction: [number(6, 1e6)?, number(7, 1e6)?],
+            stick: row.choice(8, &[("0", false), ("1", true)])?,
+            slip: [number(9, 1e-3)?, number(10, 1e-3)?],
+        },
+    ))
 }
 
 #[cfg(test)]
@@ -319,7 +314,10 @@ mod tests {
         assert_eq!(f.layout.triangles().map(<[_]>::len), Some(2));
         assert_eq!(parse_triangles("a,b,c\n0,1,2\n", 3).unwrap(), [[0, 1, 2]]);
         let e = parse_triangles("a,b,c\n0,1,3\n", 3).unwrap_err();
-        assert!(e.contains("row 1") && e.contains("c = `3`"), "{e}");
+        assert_eq!(
+            e,
+            "triangles.csv:2: column `c`: not a node of the surface (allowed: 0 to 2)"
+        );
     }
 
     #[test]
@@ -334,6 +332,9 @@ mod tests {
             .contains("truncated"));
         let garbled = format!("{header}\n{}", row(0).replace("10.0", "nan"));
         let e = parse_surface3(&garbled, &[0]).unwrap_err();
-        assert!(e.contains("row 1") && e.contains("p_MPa"), "{e}");
+        assert!(
+            e.starts_with("surface.csv:2: column `p_MPa`: not a finite number"),
+            "{e}"
+        );
     }
 }

@@ -61,13 +61,18 @@ pub fn open(path: &Path, limit: u64) -> Result<Bounded, ForeignError> {
     open_regular(path, limit, Links::Follow).map_err(|e| ForeignError::new(path, e.to_string()))
 }
 
-/// The text of the file from elsewhere at `path` ([`open`]), UTF-8.
-pub fn read_text(path: &Path, limit: u64) -> Result<String, ForeignError> {
+/// The bytes of the file from elsewhere at `path` ([`open`]).
+pub fn read_bytes(path: &Path, limit: u64) -> Result<Vec<u8>, ForeignError> {
     let mut bytes = Vec::new();
     open(path, limit)?
         .read_to_end(&mut bytes)
         .map_err(|e| ForeignError::new(path, e.to_string()))?;
-    String::from_utf8(bytes).map_err(|e| {
+    Ok(bytes)
+}
+
+/// The text of the file from elsewhere at `path` ([`open`]), UTF-8.
+pub fn read_text(path: &Path, limit: u64) -> Result<String, ForeignError> {
+    String::from_utf8(read_bytes(path, limit)?).map_err(|e| {
         ForeignError::new(
             path,
             format!(

@@ -371,7 +371,7 @@ fn a_truncated_or_missing_result_file_fails_naming_it_with_nothing_written() {
     let steps = work.join("deck/steps.csv");
     let text = read(&steps);
     let cuts = [
-        (text.len() * 2 / 3, "steps.csv row"),
+        (text.len() * 2 / 3, "steps.csv:"),
         (text.lines().next().unwrap().len() + 1, "truncated"),
     ];
     for (cut, expected) in cuts {

@@ -234,12 +234,12 @@ fn missing_truncated_nan_or_garbage_output_fails_clearly() {
         ),
         (
             "text = open('steps.csv').read().splitlines()\ntext[3] = text[3].replace(',0.0,,', ',nan,,')\nopen('steps.csv', 'w').write('\\n'.join(text) + '\\n')",
-            "P_contact_N = `nan` is not a finite number",
+            "column `P_contact_N`: not a finite number",
         ),
         ("import os\nos.remove('field_1.vtu')", "field_1.vtu"),
         (
             "points = np.array([[r, R - np.sqrt(R * R - r * r), 0.0] for r in radii])\nmeshio.write_points_cells('field_1.vtu', points, [('vertex', np.array([[0], [1], [2]]))], point_data={'pressure': np.full(3, 5.0), 'u': np.zeros((3, 3))})",
-            "in surface.csv",
+            "departs from surface.csv",
         ),
     ];
     for (fault, expected) in faults {

@@ -39,6 +39,7 @@ mod hostile_bounded;
 mod hostile_cases;
 mod hostile_cli;
 mod hostile_commands;
+mod hostile_decks;
 mod hostile_extreme;
 mod hostile_findings;
 mod hostile_reads;

@@ -48,7 +48,7 @@ impl<const E: usize, const F: usize> Groups<E, F> {
 
 /// Parses MSH 4.1 bytes for `kinds`; the error says what is missing or unsupported.
 pub fn parse<const E: usize, const F: usize>(bytes: &[u8], kinds: &Kinds) -> Result<Groups<E, F>, String> {
-    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| format!("not MSH 4.1: {e}"))?;
+    let msh = super::msh::parse_msh(bytes)?;
     let data = msh.data;
     let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements) else {
         return Err("needs $Entities, $Nodes and $Elements sections".into());

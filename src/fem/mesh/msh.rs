@@ -11,10 +11,13 @@
 use std::collections::HashMap;
 use std::path::Path;
 
+use mshio::error::MshParserErrorKind;
 use mshio::mshfile::ElementType;
 
 use super::meridian::{self, Mesh, MeshError};
 use crate::domain::Grip;
+use crate::input::foreign::{self, ForeignError};
+use crate::limits::MAX_MESH_BYTES;
 
 /// Physical curve tag of the contact surface.
 pub const CONTACT: i32 = 1;
@@ -54,14 +57,42 @@ pub fn node_table<P>(
 
 /// Reads the MSH 4.1 file at `path`.
 pub fn read(path: &Path) -> Result<Mesh, MeshError> {
-    let bytes =
-        std::fs::read(path).map_err(|e| MeshError::File(format!("cannot read {}: {e}", path.display())))?;
-    parse(&bytes)
+    let bytes = file_bytes(path).map_err(|e| MeshError::File(e.to_string()))?;
+    parse(&bytes).map_err(|e| match e {
+        MeshError::File(why) => MeshError::File(format!("{}: {why}", path.display())),
+        other => other,
+    })
+}
+
+/// The bytes of the mesh file at `path`, read as a file from elsewhere (a mesh may come back in a
+/// deck's folder: docs/security.md, "Deck folders"): a regular file, a link only to a file in its
+/// folder, at most [`MAX_MESH_BYTES`].
+pub fn file_bytes(path: &Path) -> Result<Vec<u8>, ForeignError> {
+    foreign::read_bytes(path, MAX_MESH_BYTES)
+}
+
+/// The MSH 4.1 file of `bytes`, parsed by mshio; its error is the line of the fault and mshio's
+/// words for it, never the bytes (mshio's own message ends with a hex dump of the file from the
+/// fault on).
+pub fn parse_msh(bytes: &[u8]) -> Result<mshio::MshFile<u64, i32, f64>, String> {
+    mshio::parse_msh_bytes(bytes).map_err(|e| {
+        // The deepest fault is the first of the backtrace; its input is the rest of the file.
+        let rest = e.backtrace.first().map_or(0, |(rest, _)| rest.len());
+        let fault = bytes.len().saturating_sub(rest);
+        let line = bytes[..fault].iter().filter(|&&b| b == b'\n').count() + 1;
+        let what = match e.first_msh_error() {
+            Some(MshParserErrorKind::Context(_) | MshParserErrorKind::NomError(_)) | None => {
+                "not in the form MSH 4.1 expects".to_owned()
+            }
+            Some(kind) => kind.to_string(),
+        };
+        format!("not MSH 4.1 at line {line}: {what}")
+    })
 }
 
 /// Parses MSH 4.1 bytes into a mesh.
 pub fn parse(bytes: &[u8]) -> Result<Mesh, MeshError> {
-    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| MeshError::File(format!("not MSH 4.1: {e}")))?;
+    let msh = parse_msh(bytes).map_err(MeshError::File)?;
     let data = msh.data;
     let (Some(entities), Some(nodes), Some(elements)) = (data.entities, data.nodes, data.elements) else {
         return Err(MeshError::File(

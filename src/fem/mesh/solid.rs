@@ -81,7 +81,8 @@ pub fn read(path: &Path) -> Result<SolidMesh, SolidMeshError> {
         path: path.to_path_buf(),
         problem,
     };
-    let bytes = std::fs::read(path).map_err(|e| file_error(format!("cannot be read: {e}")))?;
+    let bytes =
+        super::msh::file_bytes(path).map_err(|e| file_error(format!("cannot be read: {}", e.problem)))?;
     parse(&bytes).map_err(file_error)
 }
 
