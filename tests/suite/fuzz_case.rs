@@ -14,7 +14,7 @@
 //! secrets beside it, links, a FIFO and a sparse file: no panic, exit code 0/1/2 only, nothing of a
 //! file outside the case's tree and no raw control character in any output (docs/security.md).
 //!
-//! The foreign-input fuzzer ([`fuzz_foreign`]) mutates a baseline and a run file the harness wrote,
+//! The foreign-input fuzzer ([`fuzz_foreign`]) mutates a baseline, a run file and a deck's table,
 //! the secret planted in them: no panic, no leak, nothing accepted that does not fit its case.
 //!
 //! In CI (`cargo test`): 60 000 iterations from seeds 1 and 24 302, in two halves run in parallel
@@ -549,10 +549,10 @@ fn fuzz_the_commands_a_case_names() {
     fuzz_commands::fuzz(seed, env_number("FUZZ_COMMAND_ITERATIONS").unwrap_or(400));
 }
 
-/// The files from elsewhere, mutated: baselines and run files (`FUZZ_FOREIGN_ITERATIONS`,
-/// default 1 000 inputs; one in 100 also through the command line).
+/// The files from elsewhere, mutated: baselines, run files and a deck's table (`FUZZ_FOREIGN_ITERATIONS`,
+/// default 1 500 inputs; one in 100 also through the command line).
 #[test]
 fn fuzz_the_files_from_elsewhere() {
     let seed = env_number("FUZZ_SEED").unwrap_or(1).wrapping_add(0xf0e1);
-    fuzz_foreign::fuzz(seed, env_number("FUZZ_FOREIGN_ITERATIONS").unwrap_or(1_000));
+    fuzz_foreign::fuzz(seed, env_number("FUZZ_FOREIGN_ITERATIONS").unwrap_or(1_500));
 }

@@ -1,10 +1,11 @@
 //! The foreign-input fuzzer of `tests/fuzz_case.rs` (issue 42): it mutates the files from
 //! elsewhere that the harness reads — a baseline and a run file, each first written by the harness
-//! itself for a small case — as text (the parent's mutations) and as data (a leaf replaced by an
+//! itself for a small case, and a deck folder's `steps.csv` — as text (the parent's mutations) and as data (a leaf replaced by an
 //! edge value, an array cut or doubled), and plants the secret of `common::reads` in them as keys,
 //! values and raw text.
 //!
-//! Every mutant is loaded in the process ([`Baseline::load`], [`merge::merge`]): no panic; an
+//! Every mutant is loaded in the process ([`Baseline::load`], [`merge::merge`], the deck's table
+//! through [`readback::read_output`] and [`readback::parse_steps`]): no panic; an
 //! error that holds neither the secret nor a raw control character; a baseline it accepts keeps
 //! the promises of its check (finite values, steps and indices of the case), a run file it accepts
 //! holds only histories on the case's path. One mutant in 100 also goes through the command line
@@ -18,6 +19,8 @@ use super::common::reads::{raw_controls, spherecontact_guarded, text, SECRET};
 use super::{mutate_text, Rng};
 use spherecontact::baseline::{self, Baseline, Shape};
 use spherecontact::case::ReadRoots;
+use spherecontact::external::deck::ComputedStep;
+use spherecontact::external::readback;
 use spherecontact::merge;
 use spherecontact::plan::{CaseOptions, Member};
 
@@ -243,33 +246,75 @@ fn judge_command_line(work: &Workspace, run_file: bool) -> Option<String> {
     }
 }
 
-/// `iterations` mutants, alternately of the baseline and of the run file, from `seed`.
+/// A deck's `steps.csv` for two computed steps (as `readback`'s own tests write it).
+const STEPS: &str = "step,d_mm,t_mm,P_contact_N,P_top_N,Q_N,iterations_normal,iterations_tangential,outcome,\
+                     field_file\n4,0.0085,0,806.56,,0,3,2,1,-\n5,0.0085,0.0005,806.56,806.77,98.8,0,4,2,field_2.vtu\n";
+
+/// The steps [`STEPS`] answers.
+fn asked() -> Vec<ComputedStep> {
+    let step = |step, t, position| ComputedStep {
+        step,
+        d: 8.5e-6,
+        t,
+        position,
+    };
+    vec![step(4, 0.0, None), step(5, 5e-7, Some(2))]
+}
+
+/// Reads a mutated `steps.csv` as `deck read` does; the broken promise, if any.
+fn judge_steps(work: &Workspace) -> Option<String> {
+    let read = catch_unwind(AssertUnwindSafe(|| {
+        readback::read_output(&work.path("deck"), "steps.csv", 1 << 20)
+            .and_then(|text| readback::parse_steps(&text, &asked()).map(|_| ()))
+    }));
+    match read {
+        Err(_) => Some("panicked".into()),
+        Ok(Err(e)) => leak(&e),
+        Ok(Ok(())) => None,
+    }
+}
+
+/// What a mutant is of.
+#[derive(Clone, Copy)]
+enum Target {
+    Baseline,
+    RunFile,
+    Steps,
+}
+
+/// `iterations` mutants, in turn of the baseline, the run file and the deck's table, from `seed`.
 pub fn fuzz(seed: u64, iterations: u64) {
     let work = Workspace::new();
+    std::fs::create_dir(work.path("deck")).unwrap();
     let shape = baseline::Shape::of(&work.case);
     let mut rng = Rng(seed);
     let mut failures = Vec::new();
     for k in 0..iterations {
-        let run_file = k % 2 == 1;
-        let (seed_text, file) = if run_file {
-            (&work.run_file, work.path("out/run.json"))
-        } else {
-            (&work.baseline, work.path("b/fuzzed.toml"))
+        let target = [Target::Baseline, Target::RunFile, Target::Steps][(k % 3) as usize];
+        let (input, file) = match target {
+            Target::Baseline => (mutant(&work.baseline, false, &mut rng), "b/fuzzed.toml"),
+            Target::RunFile => (mutant(&work.run_file, true, &mut rng), "out/run.json"),
+            Target::Steps => {
+                let text = mutate_text(STEPS, &[STEPS.to_owned()], &mut rng);
+                let planted = text.replacen(',', &format!(",{SECRET},"), 1 + rng.below(3));
+                (if rng.below(2) == 0 { planted } else { text }, "deck/steps.csv")
+            }
         };
-        let input = mutant(seed_text, run_file, &mut rng);
-        std::fs::write(&file, &input).unwrap();
-        let broken = if run_file {
-            judge_run_file(&work)
-        } else {
-            judge_baseline(&work, &shape)
+        std::fs::write(work.path(file), &input).unwrap();
+        let broken = match target {
+            Target::Baseline => judge_baseline(&work, &shape),
+            Target::RunFile => judge_run_file(&work),
+            Target::Steps => judge_steps(&work),
         };
+        let run_file = matches!(target, Target::RunFile);
+        let through_command_line = !matches!(target, Target::Steps) && rng.below(100) == 0;
         let broken = broken.or_else(|| {
-            (rng.below(100) == 0)
+            through_command_line
                 .then(|| judge_command_line(&work, run_file))
                 .flatten()
         });
         if let Some(why) = broken {
-            failures.push(keep(&input, run_file, &why));
+            failures.push(keep(&input, file, &why));
         }
     }
     assert!(
@@ -281,15 +326,15 @@ pub fn fuzz(seed: u64, iterations: u64) {
 }
 
 /// Writes a failing input to `target/fuzz-crashers/` and says where.
-fn keep(input: &str, run_file: bool, why: &str) -> String {
+fn keep(input: &str, file: &str, why: &str) -> String {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/fuzz-crashers");
     std::fs::create_dir_all(&dir).unwrap();
     let digest = spherecontact::runfile::digest(input.as_bytes());
-    let name = format!(
-        "foreign-{}.{}",
-        &digest[7..23],
-        if run_file { "json" } else { "toml" }
-    );
+    let extension = Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("txt");
+    let name = format!("foreign-{}.{extension}", &digest[7..23]);
     std::fs::write(dir.join(&name), input).unwrap();
     format!("{name}: {why}")
 }
