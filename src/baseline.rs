@@ -36,6 +36,7 @@ use crate::input::foreign::{self, ForeignError};
 use crate::plan::Member;
 use crate::verify::CaseRun;
 
+mod impact;
 mod shape;
 pub use shape::Shape;
 

@@ -512,7 +512,7 @@ fn doctor() -> ExitCode {
         "command solvers: {}",
         permission.as_ref().map_or_else(|e| e.to_string(), |p| p.state())
     );
-    for file in plan::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
+    for file in spherecontact::case::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
         if let Ok(mut case) = Case::load(&file) {
             case.permit_commands(permission.as_ref().unwrap_or(&CommandPermission::refused()));
             case.command_lines().iter().for_each(|line| println!("  {line}"));
@@ -538,7 +538,7 @@ fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
         println!("  {:<width$} {}", solver.name(), solver.description());
     }
     println!("cases:");
-    for file in plan::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
+    for file in spherecontact::case::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
         if impact::is_impact_file(&file) {
             match spherecontact::case::load_impact(&file) {
                 Ok(case) => println!(

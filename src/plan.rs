@@ -36,8 +36,8 @@ pub enum PlanError {
         error: Box<crate::resolution::ResolutionError>,
     },
     /// A case folder that cannot be listed.
-    #[error("{}: cannot list cases: {error}", dir.display())]
-    List { dir: PathBuf, error: std::io::Error },
+    #[error(transparent)]
+    List(#[from] crate::case::ListError),
 }
 
 impl From<crate::case::CaseError> for PlanError {
@@ -196,41 +196,6 @@ impl Selection {
         let has = |label: &String| labels.contains(label);
         (self.labels.is_empty() || self.labels.iter().any(has)) && !self.skip.iter().any(has)
     }
-}
-
-/// The case files named: a file as given, a folder as every `.toml` under it, recursively, in
-/// sorted order. Symbolic links to folders are not followed (a link to an ancestor would make
-/// the walk endless).
-pub fn case_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, PlanError> {
-    let mut files = Vec::new();
-    for path in paths {
-        if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
-            files.extend(toml_files(path)?);
-        } else {
-            files.push(path.clone());
-        }
-    }
-    Ok(files)
-}
-
-/// Every `.toml` file under `dir`, recursively, sorted.
-fn toml_files(dir: &Path) -> Result<Vec<PathBuf>, PlanError> {
-    let list = |error| PlanError::List {
-        dir: dir.to_path_buf(),
-        error,
-    };
-    let mut files = Vec::new();
-    for entry in std::fs::read_dir(dir).map_err(list)? {
-        let entry = entry.map_err(list)?;
-        let path = entry.path();
-        if entry.file_type().map_err(list)?.is_dir() {
-            files.extend(toml_files(&path)?);
-        } else if path.extension().is_some_and(|e| e == "toml") {
-            files.push(path);
-        }
-    }
-    files.sort();
-    Ok(files)
 }
 
 /// One run: a solver of a case, what it is expected to cost and the cores it takes.
@@ -446,7 +411,7 @@ mod tests {
     #[test]
     fn an_impact_run_is_costed_from_its_size() {
         let mut costs = Vec::new();
-        for file in case_files(&[PathBuf::from("cases/impact")]).unwrap() {
+        for file in crate::case::case_files(&[PathBuf::from("cases/impact")]).unwrap() {
             let member = Member::Impact(crate::case::load_impact(&file).unwrap());
             let plan = Plan::new(vec![member], |_, _| None);
             costs.extend(plan.runs.iter().map(|r| (r.solver.clone(), r.cost_s)));

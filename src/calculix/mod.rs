@@ -9,6 +9,7 @@
 //! Model and findings: docs/external-decks.md, "CalculiX".
 
 pub mod body;
+pub mod errors;
 pub mod hex20;
 pub mod hex_mesh;
 pub mod inp;
@@ -32,15 +33,16 @@ use crate::external::geo::{self, QuadraticMesh};
 use crate::external::process::Job;
 use crate::external::readback::read_output;
 use crate::external::record::FINITE_BODY;
-use crate::external::split::{self, LOG_STEM, RUN_ELSEWHERE};
+use crate::external::split::{self, RUN_ELSEWHERE};
 use crate::external::surface::{Node, Surface};
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, Metadata, StepResult};
-use crate::limits::{MAX_CCX_RESULTS_BYTES, MAX_DECK_LOG_BYTES, MERIDIAN_POLE};
+use crate::limits::{MAX_CCX_RESULTS_BYTES, MERIDIAN_POLE};
 use crate::resolution::{self, ResolutionError};
 use crate::scene::Scene;
 use crate::solver::split::{DeckCommand, SplitDeck};
 use crate::solver::{SolveError, Solver};
+use errors::{logged_error, reported_error};
 use inp::{DeckSpec, PositionStep};
 
 /// The solver name.
@@ -415,44 +417,6 @@ impl CcxAxisym {
         extra.insert("solving_s".into(), json!(solving));
         extra.insert("reading_back_s".into(), json!(reading));
         metadata
-    }
-}
-
-/// ccx exits with code 0 after some fatal errors (an input file it cannot open): a line holding
-/// `*ERROR` in its output makes the run a failure. The index of the first such line of `stdout`.
-fn first_error(stdout: &str) -> Option<usize> {
-    stdout.lines().position(|l| l.contains("*ERROR"))
-}
-
-/// The error ccx reported in the `deck.stdout` of a folder its deck ran in elsewhere (`run.sh`
-/// logs there), named by its line and not quoted: the folder is foreign input (docs/security.md,
-/// "Deck folders"); the solver's own run shows ccx's words ([`reported_error`]).
-pub(crate) fn logged_error(dir: &Path) -> Result<(), SolveError> {
-    let name = format!("{LOG_STEM}.stdout");
-    let stdout = read_output(dir, &name, MAX_DECK_LOG_BYTES).map_err(SolveError::Failed)?;
-    match first_error(&stdout) {
-        Some(line) => Err(SolveError::Failed(format!(
-            "{}:{}: ccx reported an error (a line with `*ERROR`) and exited with code 0 (allowed: a \
-             log without `*ERROR`; that line and the next say what went wrong)",
-            dir.join(&name).display(),
-            line + 1
-        ))),
-        None => Ok(()),
-    }
-}
-
-/// The error ccx reported in the output `stdout` of the harness's own run of it, with its first
-/// lines (a program's output, shown as every program's is).
-pub(crate) fn reported_error(stdout: &str) -> Result<(), SolveError> {
-    match first_error(stdout) {
-        Some(error) => {
-            let lines: Vec<&str> = stdout.lines().skip(error).take(6).collect();
-            Err(SolveError::Failed(format!(
-                "ccx reported an error and exited with code 0: {}",
-                lines.join("\n")
-            )))
-        }
-        None => Ok(()),
     }
 }
 

@@ -220,7 +220,7 @@ impl CcxSolid {
         applicable(scene)?;
         let (h, plan) = self.plan(scene);
         deck::check_path_file(dir, &plan.steps, &scene.name)?;
-        super::logged_error(dir)?;
+        super::errors::logged_error(dir)?;
         let mesh = self.read_mesh(dir)?;
         let run = self.read(scene, &plan, h, &mesh, dir, [0.0; 2])?;
         Ok(self.history(scene, "(run elsewhere)", &plan, h, &run))
@@ -232,7 +232,7 @@ impl CcxSolid {
         let timeout = self.options.timeout.unwrap_or(BUDGET.limit(plan.steps.len()));
         let toolchain = &self.options.toolchain;
         let run = deck::launch(&CcxSolidDeck, toolchain, dir.path(), &text, &plan.steps, timeout)?;
-        super::reported_error(&run.stdout)?;
+        super::errors::reported_error(&run.stdout)?;
         self.read(scene, plan, h, &mesh, dir.path(), [mesh_s, run.wall_s])
     }
 

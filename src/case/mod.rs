@@ -101,6 +101,7 @@ pub mod impact_closed_form;
 mod impact_raw;
 mod impact_rules;
 pub mod labels;
+mod listing;
 mod raw;
 pub mod reads;
 pub mod reference;
@@ -111,6 +112,7 @@ pub use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
 pub use impact_rules::{is_impact, is_impact_file, load_impact, parse_impact};
+pub use listing::{case_files, ListError};
 pub use reads::{CaseTree, ReadRoots};
 
 use std::collections::{BTreeMap, BTreeSet};

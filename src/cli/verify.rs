@@ -209,7 +209,7 @@ fn verify_plan(
     options: &plan::CaseOptions,
     baselines: &Path,
 ) -> Result<VerifyPlan, InputError> {
-    let files = plan::case_files(&if files.is_empty() {
+    let files = spherecontact::case::case_files(&if files.is_empty() {
         vec![PathBuf::from("cases")]
     } else {
         files

@@ -375,10 +375,11 @@ pub(super) fn run_gmsh(
 }
 
 /// The number of linear triangles (element type 2) in the MSH 2.2 file `msh22`, read as every
-/// mesh is ([`crate::fem::mesh::msh::file_bytes`]: a regular file of bounded size); 0 where it
+/// mesh is ([`crate::input::foreign::read_bytes`] at [`crate::limits::MAX_MESH_BYTES`]: a regular file of bounded size); 0 where it
 /// holds no `$Elements` section.
 fn triangle_count(msh22: &Path) -> Result<usize, SolveError> {
-    let bytes = crate::fem::mesh::msh::file_bytes(msh22).map_err(|e| SolveError::Failed(e.to_string()))?;
+    let bytes = crate::input::foreign::read_bytes(msh22, crate::limits::MAX_MESH_BYTES)
+        .map_err(|e| SolveError::Failed(e.to_string()))?;
     let text = String::from_utf8_lossy(&bytes);
     Ok(text
         .split("$Elements")

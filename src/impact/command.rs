@@ -92,7 +92,7 @@ pub fn verify(file: &Path) -> Result<ImpactRun, String> {
 /// the check rows; true when every case passed.
 pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String> {
     let files = if files.is_empty() {
-        crate::plan::case_files(&[PathBuf::from("cases/impact")]).map_err(|e| e.to_string())?
+        crate::case::case_files(&[PathBuf::from("cases/impact")]).map_err(|e| e.to_string())?
     } else {
         files.to_vec()
     };

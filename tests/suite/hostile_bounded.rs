@@ -214,6 +214,8 @@ fn a_long_impact_sweep_is_announced_with_its_estimate_before_it_runs() {
     let dir = tempfile::tempdir().unwrap();
     let file = case("impact-200-angles.toml");
     let none = dir.path().join("no-baselines");
+    // An empty baselines folder: a missing one is an error (a typo would hide the check).
+    std::fs::create_dir(&none).unwrap();
     let args = [
         "verify",
         file.to_str().unwrap(),

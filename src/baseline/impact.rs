@@ -1,24 +1,21 @@
-//! An impact case's checks under non-regression baselines ([`crate::baseline`]), as a path
-//! case's: each check's value at its worst sweep point (the baseline's `step` is the point's
+//! An impact case's checks under non-regression baselines, as a path case's: each check's value at its worst sweep point (the baseline's `step` is the point's
 //! index), each solver's version, resolution (steps and springs) and wall time over its variants.
 
 use std::collections::BTreeMap;
 
-use super::judge::value_at;
-use super::ImpactRun;
-use crate::baseline::{two_digits, Baselined, Judgement, SolverRecord};
+use super::{two_digits, Baselined, Judgement, SolverRecord};
 use crate::case::impact::REFERENCE;
 use crate::check::{Drift, Verdict};
+use crate::impact::judge::value_at;
+use crate::impact::ImpactRun;
 
-impl ImpactRun {
-    /// What sets `solver`'s numbers besides the case: the step (and MDR's springs).
-    fn resolution_of(&self, solver: &str) -> String {
-        let steps = format!("{} steps per Hertz contact duration", self.case.steps);
-        if solver == REFERENCE {
-            format!("{steps}, {} springs", self.case.springs)
-        } else {
-            steps
-        }
+/// What sets `solver`'s numbers in `run` besides the case: the step (and MDR's springs).
+fn resolution_of(run: &ImpactRun, solver: &str) -> String {
+    let steps = format!("{} steps per Hertz contact duration", run.case.steps);
+    if solver == REFERENCE {
+        format!("{steps}, {} springs", run.case.springs)
+    } else {
+        steps
     }
 }
 
@@ -32,7 +29,7 @@ impl Baselined for ImpactRun {
         for run in &self.runs {
             let record = records.entry(run.solver.clone()).or_insert_with(|| SolverRecord {
                 version: env!("CARGO_PKG_VERSION").to_owned(),
-                resolution: self.resolution_of(&run.solver),
+                resolution: resolution_of(self, &run.solver),
                 wall_s: 0.0,
             });
             record.wall_s += run.wall_time_s;
@@ -47,7 +44,7 @@ impl Baselined for ImpactRun {
         self.runs
             .iter()
             .any(|r| r.solver == solver)
-            .then(|| self.resolution_of(solver))
+            .then(|| resolution_of(self, solver))
     }
 
     fn judgements(&self) -> Vec<Judgement> {
