@@ -373,7 +373,7 @@ mod tests {
         };
         let scene = Scene {
             name: "sweep".into(),
-            pair: crate::pair::fixtures::paper_pair(),
+            pair: crate::fixtures::paper_pair(),
             friction: 0.2,
             path: LoadingPath::try_new(
                 vec![position(0.0, 0.0), position(17.0, 0.0), position(17.0, 3.0)],

@@ -116,7 +116,6 @@ pub fn never_closed_history(scene: &Scene, mut metadata: Metadata) -> Option<His
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::path::{LoadingPath, Position};
 
     /// Records what the walker asked of it.
     #[derive(Default)]
@@ -144,21 +143,9 @@ mod tests {
     }
 
     fn scene(positions: &[(f64, f64)]) -> Scene {
-        let mut scene = crate::case::Case::load(
-            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/hertz-normal.toml"),
-        )
-        .expect("case")
-        .scene;
-        let positions: Vec<Position> = positions
-            .iter()
-            .map(|&(n, t)| Position {
-                delta_n: n,
-                delta_t: t,
-            })
-            .collect();
-        let segments = positions.len() - 1;
-        scene.path = LoadingPath::try_new(positions, vec![1; segments]).expect("path");
-        scene
+        let (delta_n, delta_t): (Vec<f64>, Vec<f64>) =
+            positions.iter().map(|&(n, t)| (n * 1e6, t * 1e6)).unzip();
+        crate::fixtures::paper_scene(&delta_n, &delta_t, 1)
     }
 
     #[test]

@@ -261,7 +261,7 @@ impl Layout {
             Layout::Triangles(triangles) => {
                 let mut areas = vec![0.0; points.len()];
                 for t in triangles {
-                    let area = crate::fit::triangle_area(t.map(|i| points[i]));
+                    let area = triangle_area(t.map(|i| points[i]));
                     for &i in t {
                         areas[i] += area / 3.0;
                     }
@@ -314,6 +314,13 @@ impl History {
     pub fn at_position(&self, position: usize) -> Option<&StepResult> {
         self.steps.iter().find(|r| r.position == Some(position))
     }
+}
+
+
+/// The area of the triangle with vertices `a`, `b`, `c` (x, y) [m²]: half the magnitude of the
+/// cross product of two edges.
+pub fn triangle_area([a, b, c]: [[f64; 2]; 3]) -> f64 {
+    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs()
 }
 
 #[cfg(test)]

@@ -46,6 +46,7 @@ pub mod exchange;
 pub mod external;
 pub mod fem;
 pub mod fit;
+pub mod fixtures;
 pub mod hertz;
 pub mod history;
 pub mod impact;

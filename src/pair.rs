@@ -89,31 +89,10 @@ impl ContactPair {
     }
 }
 
-/// Pairs for unit tests.
-#[cfg(test)]
-pub(crate) mod fixtures {
-    use super::*;
-
-    /// The paper's two spheres: R = 0.1 m, E = 70 GPa, ν = 0.3.
-    pub fn paper_pair() -> ContactPair {
-        let body = Body {
-            radius: 0.1,
-            material: Material {
-                young: 70e9,
-                poisson: 0.3,
-            },
-        };
-        ContactPair {
-            body1: body,
-            body2: body,
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::fixtures::paper_pair;
     use super::*;
+    use crate::fixtures::paper_pair;
     use approx::assert_relative_eq;
 
     #[test]

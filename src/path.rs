@@ -113,6 +113,14 @@ impl LoadingPath {
     }
 }
 
+
+/// How close a row's δn and δt must be to the path's, relative to the path's largest |δn|, |δt|.
+///
+/// Reason: a file written with 7 significant digits or more is within 5e-7 of the path; a unit
+/// slip (×1e3, ×1e6) or a row of a neighbouring step (one substep away, ≥ 1e-6 of the largest
+/// value for paths of up to a million increments) is far outside.
+pub const PATH_MATCH: f64 = 5e-7;
+
 #[cfg(test)]
 mod tests {
     use super::*;

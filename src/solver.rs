@@ -8,12 +8,10 @@ pub mod split;
 
 use std::time::Instant;
 
-use crate::exchange::results_csv::PATH_MATCH;
 use crate::history::{History, Quantity};
-use crate::path::Step;
+use crate::path::{Step, PATH_MATCH};
 use crate::resolution::ResolutionError;
 use crate::scene::Scene;
-use crate::vtu;
 
 /// Why a solver gave no history.
 #[derive(Debug, thiserror::Error)]
@@ -276,45 +274,3 @@ impl Resolved {
     }
 }
 
-/// A solver whose surface fields on a grid are also written as VTU files, one per path position
-/// (`<dir>/<case>-<solver>-<position>.vtu`).
-pub struct SurfaceVtu {
-    /// The solver.
-    pub inner: Box<dyn Solver>,
-    /// Where the files go.
-    pub dir: std::path::PathBuf,
-}
-
-impl Solver for SurfaceVtu {
-    fn name(&self) -> &str {
-        self.inner.name()
-    }
-
-    fn cores(&self) -> usize {
-        self.inner.cores()
-    }
-
-    fn description(&self) -> &str {
-        self.inner.description()
-    }
-
-    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
-        let history = self.inner.solve(scene)?;
-        for field in &history.fields {
-            let Some(grid) = vtu::Grid::of_surface_field(field) else {
-                continue;
-            };
-            let path = self
-                .dir
-                .join(format!("{}-{}-{}.vtu", scene.name, self.name(), field.position));
-            crate::io::create_folder(&self.dir)
-                .and_then(|()| grid.write(&path).map_err(std::io::Error::other))
-                .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
-        }
-        Ok(history)
-    }
-
-    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
-        self.inner.estimated_seconds(scene)
-    }
-}

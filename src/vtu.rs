@@ -4,7 +4,9 @@
 //! Format: VTK File Formats, "XML File Formats: UnstructuredGrid" (Kitware, VTK User's Guide,
 //! 11th ed., ch. 19). Written atomically through [`crate::io::write_atomically`].
 
-use crate::history::{Layout, SurfaceField};
+use crate::history::{History, Layout, SurfaceField};
+use crate::scene::Scene;
+use crate::solver::{SolveError, Solver};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -262,6 +264,50 @@ impl Grid {
             cells,
             point_data,
         })
+    }
+}
+
+
+/// A solver whose surface fields on a grid are also written as VTU files, one per path position
+/// (`<dir>/<case>-<solver>-<position>.vtu`).
+pub struct SurfaceVtu {
+    /// The solver.
+    pub inner: Box<dyn Solver>,
+    /// Where the files go.
+    pub dir: std::path::PathBuf,
+}
+
+impl Solver for SurfaceVtu {
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+
+    fn cores(&self) -> usize {
+        self.inner.cores()
+    }
+
+    fn description(&self) -> &str {
+        self.inner.description()
+    }
+
+    fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
+        let history = self.inner.solve(scene)?;
+        for field in &history.fields {
+            let Some(grid) = Grid::of_surface_field(field) else {
+                continue;
+            };
+            let path = self
+                .dir
+                .join(format!("{}-{}-{}.vtu", scene.name, self.name(), field.position));
+            crate::io::create_folder(&self.dir)
+                .and_then(|()| grid.write(&path).map_err(std::io::Error::other))
+                .map_err(|e| SolveError::Failed(format!("writing {}: {e}", path.display())))?;
+        }
+        Ok(history)
+    }
+
+    fn estimated_seconds(&self, scene: &Scene) -> Option<f64> {
+        self.inner.estimated_seconds(scene)
     }
 }
 

@@ -329,8 +329,8 @@ impl Solver for CattaneoMindlin {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixtures::paper_pair;
     use crate::hertz::Hertz;
-    use crate::pair::fixtures::paper_pair;
     use crate::pair::ContactPair;
     use approx::assert_relative_eq;
 

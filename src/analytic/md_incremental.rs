@@ -208,7 +208,7 @@ impl TangentialLaw for MdIncremental {
 #[cfg(test)]
 pub(crate) mod fixtures {
     use super::super::incremental::{Increment, NormalState};
-    use crate::pair::fixtures::paper_pair;
+    use crate::fixtures::paper_pair;
     use crate::path::{LoadingPath, Position};
     use crate::scene::Scene;
 

@@ -293,7 +293,7 @@ mod tests {
         let segments = positions.len() - 1;
         Scene {
             name: "series".into(),
-            pair: crate::pair::fixtures::paper_pair(),
+            pair: crate::fixtures::paper_pair(),
             friction: 0.2,
             path: LoadingPath::try_new(positions, vec![substeps; segments]).unwrap(),
             domain: Default::default(),

@@ -27,6 +27,3 @@ pub mod solver;
 pub mod state;
 
 pub use solver::Bem;
-
-#[cfg(test)]
-mod verification;

@@ -269,7 +269,7 @@ impl Solver for Bem {
 
     /// Pressure, traction and stick/slip of every path position as a grid of quads.
     fn writing_fields_to(&self, dir: &std::path::Path) -> Option<Box<dyn Solver>> {
-        Some(Box::new(crate::solver::SurfaceVtu {
+        Some(Box::new(crate::vtu::SurfaceVtu {
             inner: Box::new(*self),
             dir: dir.to_path_buf(),
         }))

@@ -272,7 +272,7 @@ fn mass_factor(corners: &Corners, fixed: &[usize]) -> Result<Factor, String> {
         .map(|j| Triplet::new(j, j, 1.0))
         .collect();
     for t in &corners.triangles {
-        let area = crate::fit::triangle_area(t.map(|j| [corners.points[j][0], corners.points[j][1]]));
+        let area = crate::history::triangle_area(t.map(|j| [corners.points[j][0], corners.points[j][1]]));
         for &i in t {
             for &k in t {
                 if i >= k && !held[i] && !held[k] {

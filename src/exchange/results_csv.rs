@@ -17,17 +17,11 @@ use std::path::{Path, PathBuf};
 use crate::history::{Quantity, StepResult};
 use crate::input;
 use crate::limits::MAX_STORED_RESULTS_BYTES;
-use crate::path::Step;
+use crate::path::{Step, PATH_MATCH};
 
 /// The path columns, first in every History CSV.
 pub const PATH_COLUMNS: [&str; 4] = ["step", "position", "delta_n", "delta_t"];
 
-/// How close a row's δn and δt must be to the path's, relative to the path's largest |δn|, |δt|.
-///
-/// Reason: a file written with 7 significant digits or more is within 5e-7 of the path; a unit
-/// slip (×1e3, ×1e6) or a row of a neighbouring step (one substep away, ≥ 1e-6 of the largest
-/// value for paths of up to a million increments) is far outside.
-pub const PATH_MATCH: f64 = 5e-7;
 
 /// Every column of a History CSV, in the order `spherecontact run` writes them.
 pub fn columns() -> Vec<&'static str> {

@@ -15,12 +15,6 @@ pub mod recovery;
 pub mod stick;
 pub mod surface;
 
-/// The area of the triangle with vertices `a`, `b`, `c` (x, y) [m²]: half the magnitude of the
-/// cross product of two edges.
-pub fn triangle_area([a, b, c]: [[f64; 2]; 3]) -> f64 {
-    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs()
-}
-
 /// A straight line y = ȳ + slope (x − x̄) fitted by least squares.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Line {

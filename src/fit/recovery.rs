@@ -23,7 +23,7 @@
 pub fn hat_averages(points: &[[f64; 2]], triangles: &[[usize; 3]], values: &[f64]) -> Vec<f64> {
     let (mut sum, mut weight) = (vec![0.0; values.len()], vec![0.0; values.len()]);
     for t in triangles {
-        let area = super::triangle_area(t.map(|i| points[i]));
+        let area = crate::history::triangle_area(t.map(|i| points[i]));
         let total: f64 = t.iter().map(|&k| values[k]).sum();
         for &i in t {
             sum[i] += area / 12.0 * (values[i] + total);

@@ -2,6 +2,7 @@
 //! Each module was once its own test file: run one with `cargo test --test suite NAME::`,
 //! heavy ones with `-- --ignored`.
 
+mod bem_verification;
 mod calculix_3d_maps;
 mod calculix_formulations;
 mod calculix_hex20;

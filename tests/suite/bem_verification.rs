@@ -1,19 +1,19 @@
 //! Verification of the `bem` solver against Hertz, Cattaneo–Mindlin and MDR, and its hard cases.
 //!
 //! Default runs use grids up to 64² (a few seconds in the dev profile). The grid sweeps are
-//! `#[ignore]`d: `cargo test --release --lib bem::verification -- --ignored --nocapture`.
+//! `#[ignore]`d: `cargo test --release --test suite bem_verification:: -- --ignored --nocapture`.
 
 use std::path::Path;
 
-use crate::analytic::cattaneo_mindlin::CattaneoMindlin;
-use crate::analytic::mdr::Mdr;
-use crate::case::Case;
-use crate::history::History;
-use crate::scene::Scene;
-use crate::solver::{SolveError, Solver};
+use spherecontact::analytic::cattaneo_mindlin::CattaneoMindlin;
+use spherecontact::analytic::mdr::Mdr;
+use spherecontact::case::Case;
+use spherecontact::history::History;
+use spherecontact::scene::Scene;
+use spherecontact::solver::{SolveError, Solver};
 
-use super::solver::PositionFields;
-use super::Bem;
+use spherecontact::bem::solver::PositionFields;
+use spherecontact::bem::Bem;
 
 /// The paper's spheres (R 0.1 m, E 70 GPa, ν 0.3, μ 0.2) along a path in µm.
 fn scene(delta_n: &[f64], delta_t: &[f64], substeps: usize, extra: &str) -> Scene {
@@ -38,7 +38,7 @@ fn solve(n: usize, scene: &Scene) -> (History, Vec<PositionFields>) {
 /// The least-squares slope of log(error) against log(h): the observed convergence rate.
 fn rate(h: &[f64], error: &[f64]) -> f64 {
     let points: Vec<(f64, f64)> = h.iter().zip(error).map(|(h, e)| (h.ln(), e.abs().ln())).collect();
-    crate::fit::Line::fit(&points)
+    spherecontact::fit::Line::fit(&points)
         .expect("a ladder of distinct sizes")
         .slope
 }
@@ -172,8 +172,8 @@ fn slip_zone_carries_mu_p_and_stick_zone_is_the_central_disc() {
 fn paper_path_tangential_force_follows_mdr_at_every_position() {
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/paper-fig7.toml");
     let mut scene = Case::load(&file).expect("paper case").scene;
-    scene.path =
-        crate::path::LoadingPath::try_new(scene.path.positions().to_vec(), vec![10; 11]).expect("path");
+    scene.path = spherecontact::path::LoadingPath::try_new(scene.path.positions().to_vec(), vec![10; 11])
+        .expect("path");
     let mdr = Mdr::default().solve(&scene).expect("mdr");
     let (history, fields) = solve(64, &scene);
     let peak = mdr
@@ -293,14 +293,14 @@ fn dissimilar_materials_warn_about_the_neglected_coupling() {
 
 /// The stick zone's departure from axisymmetry at the paper's position 5 (δn = 17 µm, δt = 3 µm
 /// after 1 µm and 2 µm), on grids 64², 128², 256²: semi-axes along x (the loading direction) and
-/// y from the stick zone's second moments. Run: `cargo test --release --lib stick_zone_axisymmetry -- --ignored --nocapture`.
+/// y from the stick zone's second moments. Run: `cargo test --release --test suite bem_verification::stick_zone_axisymmetry -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn stick_zone_axisymmetry() {
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/paper-fig7.toml");
     let mut scene = Case::load(&file).expect("paper case").scene;
     let positions = scene.path.positions()[..6].to_vec();
-    scene.path = crate::path::LoadingPath::try_new(positions, vec![20; 5]).expect("path");
+    scene.path = spherecontact::path::LoadingPath::try_new(positions, vec![20; 5]).expect("path");
     let mut axes = Vec::new();
     for n in [64, 128, 256] {
         let (history, fields) = solve(n, &scene);
