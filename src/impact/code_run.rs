@@ -28,12 +28,13 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+use super::budget::{STEP_BUDGET, TRACE_SAMPLES};
 use super::case::{ImpactCase, Point, Variant};
 use super::closed_form::HertzImpact;
 use super::code_readback::{self, Rows};
 use super::integrator::Integration;
 use super::outcome::Outcome;
-use super::run::{SolverRun, Tally, STEP_BUDGET, TRACE_SAMPLES};
+use super::run::{SolverRun, Tally};
 use crate::dem::lammps::TangentialModel;
 use crate::dem::yade::YadeLaw;
 use crate::external::process::{Environment, Job};

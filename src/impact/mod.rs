@@ -23,6 +23,7 @@
 pub use crate::case::impact as case;
 pub use crate::case::impact_closed_form as closed_form;
 mod baselined;
+mod budget;
 pub mod code_readback;
 pub mod code_rule;
 pub mod code_run;

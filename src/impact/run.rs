@@ -5,6 +5,7 @@
 
 use std::time::Instant;
 
+use super::budget::{STEP_BUDGET, TRACE_SAMPLES};
 use super::case::{ImpactCase, Point, Variant};
 use super::closed_form::HertzImpact;
 use super::code_rule::{self, Rule};
@@ -18,16 +19,9 @@ use crate::progress::{self, Work};
 /// The name of the exact reference: MDR's spring bed as the contact law.
 pub use crate::case::impact::REFERENCE;
 
-/// The most steps a contact may take, as a multiple of the steps per Hertz contact duration:
-/// an elastic contact lasts one duration, a damped one less (its rebound is faster).
-pub(super) const STEP_BUDGET: usize = 4;
-
 /// The MDR window holds contact radii up to this factor of the elastic impact's largest one
 /// (the bed's own 5 % margin comes on top).
 const WINDOW_FACTOR: f64 = 1.05;
-
-/// At most this many samples in the trace of the first sweep point.
-pub(super) const TRACE_SAMPLES: usize = 2000;
 
 pub use crate::case::impact::solver_names;
 
