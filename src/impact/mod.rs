@@ -37,6 +37,7 @@ pub mod judge;
 pub mod lammps;
 pub mod law;
 pub mod outcome;
+pub mod placement;
 pub mod report;
 pub mod run;
 pub mod yade;
