@@ -40,6 +40,7 @@ pub mod outcome;
 pub mod placement;
 pub mod report;
 pub mod run;
+pub mod solver_run;
 pub mod yade;
 
 pub use case::ImpactCase;
@@ -50,7 +51,7 @@ pub struct ImpactRun {
     /// The case.
     pub case: ImpactCase,
     /// Every solver in every variant.
-    pub runs: Vec<run::SolverRun>,
+    pub runs: Vec<solver_run::SolverRun>,
     /// The checks' outcomes, in the case's order.
     pub outcomes: Vec<judge::CheckOutcome>,
 }
@@ -63,7 +64,7 @@ impl ImpactRun {
     }
 
     /// The case judged on `runs` (a shard's: the checks whose solvers all ran).
-    pub fn judged(case: ImpactCase, runs: Vec<run::SolverRun>) -> Self {
+    pub fn judged(case: ImpactCase, runs: Vec<solver_run::SolverRun>) -> Self {
         let outcomes = judge::judge(&case, &runs);
         Self { case, runs, outcomes }
     }

@@ -9,9 +9,10 @@ use super::budget::{STEP_BUDGET, TRACE_SAMPLES};
 use super::case::{ImpactCase, Point, Variant};
 use super::closed_form::HertzImpact;
 use super::code_rule::{self, Rule};
-use super::integrator::{self, Integration, IntegrationError, Sample, Stepping};
+use super::integrator::{self, Integration, IntegrationError, Stepping};
 use super::law::{ContactLaw, DemLaw, MdrLaw};
 use super::outcome::Outcome;
+use super::solver_run::SolverRun;
 use crate::analytic;
 use crate::hertz::Hertz;
 use crate::progress::{self, Work};
@@ -24,25 +25,6 @@ pub use crate::case::impact::REFERENCE;
 const WINDOW_FACTOR: f64 = 1.05;
 
 pub use crate::case::impact::solver_names;
-
-/// One solver in one variant over the sweep. A run file ([`crate::runfile`]) carries it without
-/// its trace (the sweep's outcomes are what the checks judge; the trace is `run`'s file).
-#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
-pub struct SolverRun {
-    /// The solver.
-    pub solver: String,
-    /// The variant.
-    pub variant: Variant,
-    /// Each sweep point's value and outcome, or why it has none.
-    pub points: Vec<(Option<f64>, Result<Outcome, String>)>,
-    /// The trace of the first sweep point.
-    #[serde(skip)]
-    pub trace: Vec<Sample>,
-    /// Wall time of the sweep [s].
-    pub wall_time_s: f64,
-    /// Why the solver could not run at all (a DEM code not installed): its checks are N/A.
-    pub unavailable: Option<String>,
-}
 
 /// The contact law `solver` for `point` (none for an unknown name).
 fn law_for(case: &ImpactCase, solver: &str, point: &Point) -> Option<Box<dyn ContactLaw>> {

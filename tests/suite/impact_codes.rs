@@ -17,7 +17,8 @@ use spherecontact::impact::closed_form::HertzImpact;
 use spherecontact::impact::code_readback::{ReadbackError, Rows};
 use spherecontact::impact::outcome::Outcome;
 use spherecontact::impact::placement::{Placement, FLAT_RADIUS_FACTOR};
-use spherecontact::impact::run::{run_solver, SolverRun};
+use spherecontact::impact::run::run_solver;
+use spherecontact::impact::solver_run::SolverRun;
 use spherecontact::impact::{lammps, yade, ImpactCase};
 
 fn load(path: &str) -> ImpactCase {
