@@ -41,6 +41,7 @@ pub mod placement;
 pub mod report;
 pub mod run;
 pub mod solver_run;
+mod tally;
 pub mod yade;
 
 pub use case::ImpactCase;

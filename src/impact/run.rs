@@ -13,6 +13,7 @@ use super::integrator::{self, Integration, IntegrationError, Stepping};
 use super::law::{ContactLaw, DemLaw, MdrLaw};
 use super::outcome::Outcome;
 use super::solver_run::SolverRun;
+use super::tally::Tally;
 use crate::analytic;
 use crate::hertz::Hertz;
 use crate::progress::{self, Work};
@@ -62,35 +63,6 @@ pub fn impact(
     };
     integrator::integrate(point, law.as_mut(), damping.as_ref(), stepping)
         .map_err(|e: IntegrationError| e.to_string())
-}
-
-/// Where one variant's sweep stands in its solver's metered run ([`run_case`]): the points of
-/// the variants run before it, and the points of the whole run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct Tally {
-    before: usize,
-    total: usize,
-}
-
-impl Tally {
-    /// A sweep of `points` metered alone.
-    pub(super) fn alone(points: usize) -> Self {
-        Self {
-            before: 0,
-            total: points,
-        }
-    }
-
-    /// The run's points done and in all, with `done` points of this sweep done.
-    pub(super) fn at(self, done: usize) -> (usize, usize) {
-        (self.before + done, self.total)
-    }
-
-    /// Reports `done` points of this sweep done to the run's meter.
-    pub(super) fn tick(self, done: usize) {
-        let (done, total) = self.at(done);
-        progress::tick(done, total);
-    }
 }
 
 /// Runs `solver` over every sweep point of `case` in `variant` (a DEM code: one process for the
@@ -157,10 +129,7 @@ fn run_metered(case: &ImpactCase, solver: &str) -> Vec<SolverRun> {
             .into_iter()
             .enumerate()
             .map(|(k, variant)| {
-                let tally = Tally {
-                    before: k * points,
-                    total,
-                };
+                let tally = Tally::after(k * points, total);
                 run_tallied(case, solver, variant, tally)
             })
             .collect()
