@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use crate::case::impact::ImpactCase;
 use crate::case::ReadRoots;
-use crate::impact::run::SolverRun;
+use crate::impact::solver_run::SolverRun;
 use crate::input::foreign::{self, ForeignError};
 use crate::plan::{CaseOptions, Member, Plan, PlanError};
 use crate::runfile::{self, CaseRecord, RunFile, RunResult, FILE, FORMAT, HARNESS, MAX_RUN_FILE_BYTES};

@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::history::History;
-use crate::impact::run::SolverRun;
+use crate::impact::solver_run::SolverRun;
 use crate::plan::{CaseOptions, Member, Plan, Shard};
 use crate::schedule::{Finished, Output};
 use crate::solver::SolveError;

@@ -7,7 +7,7 @@
 use crate::baseline::Baselined;
 use crate::cores::{within_cores, Task};
 use crate::history::History;
-use crate::impact::run::SolverRun;
+use crate::impact::solver_run::SolverRun;
 use crate::impact::ImpactRun;
 use crate::judged::Suite;
 use crate::plan::{Member, Plan, Run};

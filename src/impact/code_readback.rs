@@ -19,8 +19,8 @@
 
 use std::path::Path;
 
-use super::code_run::Placement;
 use super::integrator::{Integration, Motion, Sample};
+use super::placement::Placement;
 
 /// The file of sweep point `index`.
 pub fn file_name(index: usize) -> String {

@@ -4,7 +4,7 @@
 //! process a sweep, [`super::code_run::Code::estimated_seconds`]).
 //!
 //! An impact takes about `steps` integration steps (h = t_c / `steps`, the contact lasting one
-//! Hertz duration t_c when elastic, a little less when damped: [`super::run::STEP_BUDGET`] bounds
+//! Hertz duration t_c when elastic, a little less when damped: [`super::budget::STEP_BUDGET`] bounds
 //! it at four). Each step costs the integrator and the law; MDR's bed walks the springs in
 //! contact, a prefix of the bed that grows and shrinks with the contact (about 70 % of the bed
 //! on average over an impact, folded into [`MDR_SPRING_STEP`]).

@@ -14,7 +14,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use super::case::{ImpactCase, Quantity, Variant};
-use super::run::SolverRun;
+use super::solver_run::SolverRun;
 use crate::io::write_atomically;
 use crate::number::Short;
 

@@ -7,7 +7,7 @@ use std::fmt::Write;
 use super::case::{ImpactCase, ImpactCheck, ImpactReference, Point, Quantity, Variant};
 use super::closed_form::HertzImpact;
 use super::outcome::Outcome;
-use super::run::SolverRun;
+use super::solver_run::SolverRun;
 use crate::check::{relative_error, Drift, Verdict, ABS_ZERO};
 use crate::hertz::Hertz;
 use crate::report::format_value;

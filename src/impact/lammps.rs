@@ -1,11 +1,11 @@
 //! The LAMMPS input of an impact sweep: one block per sweep point (template
 //! `templates/lammps_impact.in`, each starting with `clear`), all in one file run by one process.
-//! The placement and the material are [`super::code_run::Placement`]'s; the tangential model is
+//! The placement and the material are [`super::placement::Placement`]'s; the tangential model is
 //! the kinematic adapter's ([`crate::dem::lammps::TangentialModel`]); the damping is LAMMPS's own
 //! (`damping tsuji` with the prescribed restitution, `limit_damping`; [`super::code_rule`]).
 
 use super::code_readback::file_name;
-use super::code_run::Placement;
+use super::placement::Placement;
 use crate::dem::lammps::TangentialModel;
 
 /// The input's file name in the run folder.

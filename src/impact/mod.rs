@@ -22,6 +22,7 @@
 
 pub use crate::case::impact as case;
 pub use crate::case::impact_closed_form as closed_form;
+mod budget;
 pub mod code_readback;
 pub mod code_rule;
 pub mod code_run;
@@ -35,8 +36,11 @@ pub mod judge;
 pub mod lammps;
 pub mod law;
 pub mod outcome;
+pub mod placement;
 pub mod report;
 pub mod run;
+pub mod solver_run;
+mod tally;
 pub mod yade;
 
 pub use case::ImpactCase;
@@ -47,7 +51,7 @@ pub struct ImpactRun {
     /// The case.
     pub case: ImpactCase,
     /// Every solver in every variant.
-    pub runs: Vec<run::SolverRun>,
+    pub runs: Vec<solver_run::SolverRun>,
     /// The checks' outcomes, in the case's order.
     pub outcomes: Vec<judge::CheckOutcome>,
 }
@@ -60,7 +64,7 @@ impl ImpactRun {
     }
 
     /// The case judged on `runs` (a shard's: the checks whose solvers all ran).
-    pub fn judged(case: ImpactCase, runs: Vec<run::SolverRun>) -> Self {
+    pub fn judged(case: ImpactCase, runs: Vec<solver_run::SolverRun>) -> Self {
         let outcomes = judge::judge(&case, &runs);
         Self { case, runs, outcomes }
     }

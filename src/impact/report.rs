@@ -8,7 +8,7 @@ use anyhow::Result;
 use crate::impact::case::{Quantity, SweepVariable, Variant};
 use crate::impact::code_rule::{is_reference, Rule};
 use crate::impact::judge::values;
-use crate::impact::run::SolverRun;
+use crate::impact::solver_run::SolverRun;
 use crate::impact::ImpactRun;
 use crate::report::document::{Cell, Document, Section, Table};
 use crate::report::figures::figure;

@@ -5,12 +5,15 @@
 
 use std::time::Instant;
 
+use super::budget::{STEP_BUDGET, TRACE_SAMPLES};
 use super::case::{ImpactCase, Point, Variant};
 use super::closed_form::HertzImpact;
 use super::code_rule::{self, Rule};
-use super::integrator::{self, Integration, IntegrationError, Sample, Stepping};
+use super::integrator::{self, Integration, IntegrationError, Stepping};
 use super::law::{ContactLaw, DemLaw, MdrLaw};
 use super::outcome::Outcome;
+use super::solver_run::SolverRun;
+use super::tally::Tally;
 use crate::analytic;
 use crate::hertz::Hertz;
 use crate::progress::{self, Work};
@@ -18,37 +21,11 @@ use crate::progress::{self, Work};
 /// The name of the exact reference: MDR's spring bed as the contact law.
 pub use crate::case::impact::REFERENCE;
 
-/// The most steps a contact may take, as a multiple of the steps per Hertz contact duration:
-/// an elastic contact lasts one duration, a damped one less (its rebound is faster).
-pub(super) const STEP_BUDGET: usize = 4;
-
 /// The MDR window holds contact radii up to this factor of the elastic impact's largest one
 /// (the bed's own 5 % margin comes on top).
 const WINDOW_FACTOR: f64 = 1.05;
 
-/// At most this many samples in the trace of the first sweep point.
-pub(super) const TRACE_SAMPLES: usize = 2000;
-
 pub use crate::case::impact::solver_names;
-
-/// One solver in one variant over the sweep. A run file ([`crate::runfile`]) carries it without
-/// its trace (the sweep's outcomes are what the checks judge; the trace is `run`'s file).
-#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
-pub struct SolverRun {
-    /// The solver.
-    pub solver: String,
-    /// The variant.
-    pub variant: Variant,
-    /// Each sweep point's value and outcome, or why it has none.
-    pub points: Vec<(Option<f64>, Result<Outcome, String>)>,
-    /// The trace of the first sweep point.
-    #[serde(skip)]
-    pub trace: Vec<Sample>,
-    /// Wall time of the sweep [s].
-    pub wall_time_s: f64,
-    /// Why the solver could not run at all (a DEM code not installed): its checks are N/A.
-    pub unavailable: Option<String>,
-}
 
 /// The contact law `solver` for `point` (none for an unknown name).
 fn law_for(case: &ImpactCase, solver: &str, point: &Point) -> Option<Box<dyn ContactLaw>> {
@@ -86,35 +63,6 @@ pub fn impact(
     };
     integrator::integrate(point, law.as_mut(), damping.as_ref(), stepping)
         .map_err(|e: IntegrationError| e.to_string())
-}
-
-/// Where one variant's sweep stands in its solver's metered run ([`run_case`]): the points of
-/// the variants run before it, and the points of the whole run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct Tally {
-    before: usize,
-    total: usize,
-}
-
-impl Tally {
-    /// A sweep of `points` metered alone.
-    pub(super) fn alone(points: usize) -> Self {
-        Self {
-            before: 0,
-            total: points,
-        }
-    }
-
-    /// The run's points done and in all, with `done` points of this sweep done.
-    pub(super) fn at(self, done: usize) -> (usize, usize) {
-        (self.before + done, self.total)
-    }
-
-    /// Reports `done` points of this sweep done to the run's meter.
-    pub(super) fn tick(self, done: usize) {
-        let (done, total) = self.at(done);
-        progress::tick(done, total);
-    }
 }
 
 /// Runs `solver` over every sweep point of `case` in `variant` (a DEM code: one process for the
@@ -181,10 +129,7 @@ fn run_metered(case: &ImpactCase, solver: &str) -> Vec<SolverRun> {
             .into_iter()
             .enumerate()
             .map(|(k, variant)| {
-                let tally = Tally {
-                    before: k * points,
-                    total,
-                };
+                let tally = Tally::after(k * points, total);
                 run_tallied(case, solver, variant, tally)
             })
             .collect()

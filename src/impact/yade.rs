@@ -5,7 +5,7 @@
 
 use serde_json::json;
 
-use super::code_run::Placement;
+use super::placement::Placement;
 
 /// The script's file name in the run folder.
 pub const SCRIPT: &str = "yade_impact.py";

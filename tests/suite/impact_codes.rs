@@ -15,9 +15,10 @@ use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::impact::case::{Quantity, Variant};
 use spherecontact::impact::closed_form::HertzImpact;
 use spherecontact::impact::code_readback::{ReadbackError, Rows};
-use spherecontact::impact::code_run::{Placement, FLAT_RADIUS_FACTOR};
 use spherecontact::impact::outcome::Outcome;
-use spherecontact::impact::run::{run_solver, SolverRun};
+use spherecontact::impact::placement::{Placement, FLAT_RADIUS_FACTOR};
+use spherecontact::impact::run::run_solver;
+use spherecontact::impact::solver_run::SolverRun;
 use spherecontact::impact::{lammps, yade, ImpactCase};
 
 fn load(path: &str) -> ImpactCase {
