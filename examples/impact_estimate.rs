@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use spherecontact::bench::process_cpu_seconds;
-use spherecontact::external::process::child_cpu_seconds;
+use spherecontact::external::reap::child_cpu_seconds;
 use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::impact::case::ImpactCase;
 use spherecontact::impact::{cost, run};

@@ -4,7 +4,8 @@
 //!
 //! - [`toolchain`]: finding the tools, their versions, how to install them (`doctor`);
 //! - [`process`]: one run in its own directory and process group, with a timeout;
-//!   [`descendants`]: every process it started, found and killed; [`bounded_log`]: its output;
+//!   [`descendants`]: every process it started, found and killed; [`reap`]: waiting for one, and
+//!   the CPU time of those reaped; [`bounded_log`]: its output;
 //!   [`mask`]: the secrets masked in it; [`excerpt`]: what of it a message shows;
 //! - [`command`]: a program a case names as a solver, run only with [`permission`], its
 //!   command filled under the rule of [`placeholder`];
@@ -39,6 +40,7 @@ pub mod placeholder;
 pub mod process;
 pub mod program;
 pub mod readback;
+pub mod reap;
 pub mod record;
 pub mod solid_geo;
 pub mod split;
