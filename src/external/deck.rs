@@ -225,22 +225,6 @@ pub fn write_deck(
     write(PATH_FILE, &path_file(steps))
 }
 
-/// Checks that the run directory `dir` was written for `steps` (of scene `scene`): its
-/// [`PATH_FILE`] lists them, as a deck run elsewhere is read back. The file may be no longer
-/// than the list expected.
-pub fn check_path_file(dir: &Path, steps: &[ComputedStep], scene: &str) -> Result<(), SolveError> {
-    let expected = path_file(steps);
-    let listed =
-        super::readback::read_output(dir, PATH_FILE, expected.len() as u64).map_err(SolveError::Failed)?;
-    if listed != expected {
-        return Err(SolveError::Failed(format!(
-            "{}: the steps it lists are not those of scene `{scene}`",
-            dir.join(PATH_FILE).display()
-        )));
-    }
-    Ok(())
-}
-
 /// Writes the filled deck `text` and the list of `steps` into `dir`, runs the deck there within
 /// `timeout`, and returns the finished run; a run that failed (exit code, signal, timeout) is an
 /// error with the reason and the last lines of its log.

@@ -207,7 +207,7 @@ impl Solid3dDeck {
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         applicable(scene)?;
         let (resolution, plan) = self.plan(scene);
-        deck::check_path_file(dir, &plan.steps, &scene.name)?;
+        readback::check_path_file(dir, &plan.steps, &scene.name)?;
         let run = read_outputs(dir, &plan, resolution)?;
         let ranks = run
             .timing
