@@ -27,12 +27,12 @@ use serde_json::json;
 
 pub use crate::calculix_settings::Settings;
 use crate::external::axisym::{self, Options, Plan};
-use crate::external::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
+use crate::external::deck::{self, Deck, DeckKind, RunDir, TimeBudget, LOG_STEM};
 use crate::external::geo::{self, QuadraticMesh};
 use crate::external::process::Job;
 use crate::external::readback::read_output;
 use crate::external::record::FINITE_BODY;
-use crate::external::split::{self, LOG_STEM, RUN_ELSEWHERE};
+use crate::external::split::{self, RUN_ELSEWHERE};
 use crate::external::surface::{Node, Surface};
 use crate::external::toolchain::{Tool, Toolchain};
 use crate::history::{History, Metadata, StepResult};

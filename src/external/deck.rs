@@ -49,6 +49,10 @@ pub const FENICSX_COMMON: &str = include_str!("templates/fenicsx_common.py");
 /// index, d = δn/2 [mm], t = δt/2 [mm], and the path position it reaches or −1.
 pub const PATH_FILE: &str = "path.txt";
 
+/// The stem of a deck's logs (`deck.stdout`, `deck.stderr`), in its own run ([`run_written`])
+/// and in a deck folder's run script ([`super::split::RUN_SCRIPT`]).
+pub const LOG_STEM: &str = "deck";
+
 /// One step a deck computes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ComputedStep {
@@ -250,7 +254,7 @@ pub fn run_written(
     timeout: Duration,
 ) -> Result<Run, SolveError> {
     let job = deck.job(toolchain, &dir.join(deck.file_name()), timeout);
-    let run = super::process::run(&job, dir, super::split::LOG_STEM)
+    let run = super::process::run(&job, dir, LOG_STEM)
         .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
     match failure(deck, &run.ending, timeout) {
         Some(why) => Err(SolveError::Failed(format!(
