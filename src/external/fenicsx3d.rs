@@ -11,8 +11,9 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use super::axisym::{deck_input, Options, Plan, KFAC};
+use super::axisym::{deck_input, Options};
 use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
+use super::plan::{Plan, KFAC};
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};

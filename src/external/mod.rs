@@ -12,6 +12,7 @@
 //! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
 //! - [`solid_geo`]: the 3D geometry (half of a hemisphere or cap) and its quadratic tetrahedra;
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
+//! - [`plan`]: what a scene asks of a deck (steps, modes, grip, candidate zone, penalty);
 //! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
 //! - [`readback`]: the decks' per-step CSV, each result file read as foreign input;
 //!   [`field_files`]: the field files, checked, then read through meshio;
@@ -37,6 +38,7 @@ pub mod geo;
 pub mod mask;
 pub mod permission;
 pub mod placeholder;
+pub mod plan;
 pub mod process;
 pub mod program;
 pub mod readback;
