@@ -28,7 +28,7 @@ use std::time::Instant;
 use spherecontact::bench::process_cpu_seconds;
 use spherecontact::calculix_settings::{Formulation, Settings};
 use spherecontact::case::Case;
-use spherecontact::external::process::child_cpu_seconds;
+use spherecontact::external::reap::child_cpu_seconds;
 use spherecontact::history::{History, Quantity};
 use spherecontact::map_measure;
 use spherecontact::solver::{self, Solver};

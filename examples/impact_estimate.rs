@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use spherecontact::bench::process_cpu_seconds;
-use spherecontact::external::process::child_cpu_seconds;
+use spherecontact::external::reap::child_cpu_seconds;
 use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::impact::case::ImpactCase;
 use spherecontact::impact::{cost, run};
@@ -46,7 +46,7 @@ fn args() -> Args {
         }
     }
     if args.files.is_empty() {
-        args.files = spherecontact::plan::case_files(&[PathBuf::from("cases/impact")]).expect("cases/impact");
+        args.files = spherecontact::case::case_files(&[PathBuf::from("cases/impact")]).expect("cases/impact");
     }
     args
 }

@@ -79,7 +79,7 @@ pub fn process_cpu_seconds() -> f64 {
 /// has run (gmsh, FreeFem++, python3: external solvers do their work in child processes) [s].
 /// Solvers are timed one at a time, so the process's time is the timed solver's.
 fn cpu_time() -> f64 {
-    process_cpu_seconds() + crate::external::process::child_cpu_seconds()
+    process_cpu_seconds() + crate::external::reap::child_cpu_seconds()
 }
 
 /// Runs every solver `repeat` times (≥ 1) on `scene`, round-robin, after one warm-up run each.

@@ -316,7 +316,6 @@ impl History {
     }
 }
 
-
 /// The area of the triangle with vertices `a`, `b`, `c` (x, y) [m²]: half the magnitude of the
 /// cross product of two edges.
 pub fn triangle_area([a, b, c]: [[f64; 2]; 3]) -> f64 {

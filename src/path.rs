@@ -113,7 +113,6 @@ impl LoadingPath {
     }
 }
 
-
 /// How close a row's δn and δt must be to the path's, relative to the path's largest |δn|, |δt|.
 ///
 /// Reason: a file written with 7 significant digits or more is within 5e-7 of the path; a unit

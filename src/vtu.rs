@@ -267,7 +267,6 @@ impl Grid {
     }
 }
 
-
 /// A solver whose surface fields on a grid are also written as VTU files, one per path position
 /// (`<dir>/<case>-<solver>-<position>.vtu`).
 pub struct SurfaceVtu {

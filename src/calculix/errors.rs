@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
+use crate::external::deck::LOG_STEM;
 use crate::external::readback::read_output;
-use crate::external::split::LOG_STEM;
 use crate::limits::MAX_DECK_LOG_BYTES;
 use crate::solver::SolveError;
 

@@ -27,9 +27,10 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 pub use crate::calculix_settings::Settings;
-use crate::external::axisym::{self, Options, Plan};
+use crate::external::axisym::{self, Options};
 use crate::external::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
 use crate::external::geo::{self, QuadraticMesh};
+use crate::external::plan::Plan;
 use crate::external::process::Job;
 use crate::external::readback::read_output;
 use crate::external::record::FINITE_BODY;

@@ -33,9 +33,11 @@ use super::solid_read::{self, SolidRun, STICK_MARGIN};
 use super::{CcxAxisymDeck, Settings};
 use crate::calculix_settings::MeshKind;
 use crate::domain::Grip;
-use crate::external::axisym::{Options, Plan};
+use crate::external::axisym::Options;
 use crate::external::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
+use crate::external::plan::Plan;
 use crate::external::process::Job;
+use crate::external::readback;
 use crate::external::record::FINITE_BODY;
 use crate::external::solid_geo::{self, SolidMeshFiles, Zones};
 use crate::external::split;
@@ -219,7 +221,7 @@ impl CcxSolid {
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         applicable(scene)?;
         let (h, plan) = self.plan(scene);
-        deck::check_path_file(dir, &plan.steps, &scene.name)?;
+        readback::check_path_file(dir, &plan.steps, &scene.name)?;
         super::errors::logged_error(dir)?;
         let mesh = self.read_mesh(dir)?;
         let run = self.read(scene, &plan, h, &mesh, dir, [0.0; 2])?;

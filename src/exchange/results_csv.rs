@@ -22,7 +22,6 @@ use crate::path::{Step, PATH_MATCH};
 /// The path columns, first in every History CSV.
 pub const PATH_COLUMNS: [&str; 4] = ["step", "position", "delta_n", "delta_t"];
 
-
 /// Every column of a History CSV, in the order `spherecontact run` writes them.
 pub fn columns() -> Vec<&'static str> {
     let mut columns = PATH_COLUMNS.to_vec();

@@ -15,11 +15,12 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use super::deck::{self, ComputedStep, Deck, DeckInput, RunDir, TimeBudget};
+use super::deck::{self, Deck, DeckInput, RunDir, TimeBudget};
 use super::field_files;
 use super::geo::{self, MeshFiles};
+use super::plan::{Plan, CANDIDATE_ZONE, KFAC};
 use super::readback::{self, DeckRow};
-use super::record::{self, Run};
+use super::record::{self, Run, Timing};
 use super::split;
 use super::surface::{self, Surface};
 use super::toolchain::{Tool, Toolchain};
@@ -31,17 +32,8 @@ use crate::scene::Scene;
 use crate::solver::split::{DeckCommand, SplitDeck};
 use crate::solver::{SolveError, Solver};
 
-/// Penalty factor: k = KFAC · E / h, normal and tangential. Reason: at 1e3 the penetration at the
-/// pole is below 1e-3 h and P moves by less than 0.01 % when kfac doubles (docs/toolchain.md);
-/// a sticking node's displacement error q/k is below 1e-5 of the shift.
-pub const KFAC: f64 = 1e3;
-
 /// Cap on contact iterations per step and mode; a step that hits it is flagged.
 pub const MAX_ITERATIONS: u32 = 30;
-
-/// Candidate contact zone, in units of the path's largest Hertz contact radius (as fem-axisym):
-/// the finite body's contact is 0.15–0.2 % wider than Hertz's, far inside it.
-pub const CANDIDATE_ZONE: f64 = 1.25;
 
 /// Time allowed for start-up (imports, dolfinx's form compilation on a first run), for the set-up
 /// (assembly, factorisation and one solve per candidate DOF: 10–40 s at c/40, minutes at c/80),
@@ -67,17 +59,6 @@ pub struct Options {
     pub max_iterations: Option<u32>,
 }
 
-/// Wall time of the three parts of an external run [s].
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Timing {
-    /// gmsh.
-    pub meshing_s: f64,
-    /// The deck.
-    pub solving_s: f64,
-    /// steps.csv, surface.csv and the field files through meshio.
-    pub reading_s: f64,
-}
-
 /// An external deck as a [`Solver`].
 pub struct AxisymSolver<D: Deck<Mesh = MeshFiles>> {
     /// The deck.
@@ -88,46 +69,6 @@ pub struct AxisymSolver<D: Deck<Mesh = MeshFiles>> {
 
 /// Pole element sizes of the external ladder, as fractions of the path's largest contact radius.
 pub const LADDER: [f64; 4] = [1.0 / 10.0, 1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0];
-
-/// What a scene asks of a deck: its steps, modes, grip and candidate zone.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Plan {
-    /// Every step of the path, as the deck computes it.
-    pub steps: Vec<ComputedStep>,
-    /// Whether the tangential mode is solved (the path moves tangentially).
-    pub tangential: bool,
-    /// How the far face is held: the scene's `[domain]` grip, the one its mesh is tagged with.
-    pub grip: Grip,
-    /// Candidate contact zone [m].
-    pub candidate_radius: f64,
-}
-
-impl Plan {
-    /// The plan of `scene` at pole size `resolution`.
-    ///
-    /// Grip: the scene's (`scene.domain.grip`), as for the mesh's far-face tag and every other
-    /// FEM solver: one case means one domain and one grip ([`applicable`] refuses a tangential
-    /// path under the axial grip).
-    pub fn of(scene: &Scene, resolution: f64) -> Self {
-        let tangential = !scene.path.is_normal_only();
-        let steps = scene
-            .steps()
-            .iter()
-            .map(|s| ComputedStep {
-                step: s.index,
-                d: s.delta_n / 2.0,
-                t: s.delta_t / 2.0,
-                position: s.position,
-            })
-            .collect();
-        Self {
-            steps,
-            tangential,
-            grip: scene.domain.grip,
-            candidate_radius: (CANDIDATE_ZONE * scene.max_contact_radius()).max(3.0 * resolution),
-        }
-    }
-}
 
 impl<D: Deck<Mesh = MeshFiles> + 'static> Solver for AxisymSolver<D> {
     fn name(&self) -> &'static str {
@@ -387,23 +328,6 @@ pub fn applicable(scene: &Scene) -> Result<(), SolveError> {
 mod tests {
     use super::*;
     use crate::external::freefem::FreeFem;
-
-    #[test]
-    fn the_plan_walks_every_step_with_half_displacements() {
-        let mut scene = crate::external::test_scene(&[0.0, 10.0, 17.0]);
-        let plan = Plan::of(&scene, 2e-5);
-        assert_eq!(plan.steps.len(), scene.steps().len());
-        let last = plan.steps.last().unwrap();
-        assert_eq!((last.step, last.position), (8, Some(2)));
-        assert!((last.d - 8.5e-6).abs() < 1e-18 && last.t == 0.0);
-        assert!(plan.steps[3].position.is_none());
-        // The scene's grip (the default: rigid), the one its mesh is tagged with.
-        assert!(!plan.tangential && plan.grip == Grip::Rigid);
-        scene.domain.grip = Grip::Axial;
-        assert_eq!(Plan::of(&scene, 2e-5).grip, Grip::Axial);
-        let c = scene.max_contact_radius();
-        assert!((plan.candidate_radius - 1.25 * c).abs() < 1e-15);
-    }
 
     #[test]
     fn different_spheres_are_not_applicable() {

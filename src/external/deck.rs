@@ -49,6 +49,10 @@ pub const FENICSX_COMMON: &str = include_str!("templates/fenicsx_common.py");
 /// index, d = δn/2 [mm], t = δt/2 [mm], and the path position it reaches or −1.
 pub const PATH_FILE: &str = "path.txt";
 
+/// The stem of a deck's logs (`deck.stdout`, `deck.stderr`), in its own run ([`run_written`])
+/// and in a deck folder's run script ([`super::split::RUN_SCRIPT`]).
+pub const LOG_STEM: &str = "deck";
+
 /// One step a deck computes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ComputedStep {
@@ -225,22 +229,6 @@ pub fn write_deck(
     write(PATH_FILE, &path_file(steps))
 }
 
-/// Checks that the run directory `dir` was written for `steps` (of scene `scene`): its
-/// [`PATH_FILE`] lists them, as a deck run elsewhere is read back. The file may be no longer
-/// than the list expected.
-pub fn check_path_file(dir: &Path, steps: &[ComputedStep], scene: &str) -> Result<(), SolveError> {
-    let expected = path_file(steps);
-    let listed =
-        super::readback::read_output(dir, PATH_FILE, expected.len() as u64).map_err(SolveError::Failed)?;
-    if listed != expected {
-        return Err(SolveError::Failed(format!(
-            "{}: the steps it lists are not those of scene `{scene}`",
-            dir.join(PATH_FILE).display()
-        )));
-    }
-    Ok(())
-}
-
 /// Writes the filled deck `text` and the list of `steps` into `dir`, runs the deck there within
 /// `timeout`, and returns the finished run; a run that failed (exit code, signal, timeout) is an
 /// error with the reason and the last lines of its log.
@@ -266,7 +254,7 @@ pub fn run_written(
     timeout: Duration,
 ) -> Result<Run, SolveError> {
     let job = deck.job(toolchain, &dir.join(deck.file_name()), timeout);
-    let run = super::process::run(&job, dir, super::split::LOG_STEM)
+    let run = super::process::run(&job, dir, LOG_STEM)
         .map_err(|e| SolveError::Failed(format!("{} could not start: {e}", job.program.display())))?;
     match failure(deck, &run.ending, timeout) {
         Some(why) => Err(SolveError::Failed(format!(

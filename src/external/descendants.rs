@@ -133,7 +133,7 @@ impl Tracker {
             let ours = self.known.get(&process.pid) == Some(&process.start);
             if ours && dead(&process) && process.ppid == harness && process.pid != self.leader {
                 // A zombie: WNOHANG reaps it at once (and never waits on a live process).
-                let _ = super::process::reap(process.pid as u32, libc::WNOHANG);
+                let _ = super::reap::reap(process.pid as u32, libc::WNOHANG);
             }
         }
     }

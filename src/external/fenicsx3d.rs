@@ -11,8 +11,9 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use super::axisym::{deck_input, Options, Plan, KFAC};
+use super::axisym::{deck_input, Options};
 use super::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
+use super::plan::{Plan, KFAC};
 use super::process::Job;
 use super::readback::{self, DeckRow, Outcome};
 use super::record::{record_run, RunFacts, FINITE_BODY};
@@ -207,7 +208,7 @@ impl Solid3dDeck {
     pub fn read_run(&self, scene: &Scene, dir: &Path) -> Result<History, SolveError> {
         applicable(scene)?;
         let (resolution, plan) = self.plan(scene);
-        deck::check_path_file(dir, &plan.steps, &scene.name)?;
+        readback::check_path_file(dir, &plan.steps, &scene.name)?;
         let run = read_outputs(dir, &plan, resolution)?;
         let ranks = run
             .timing

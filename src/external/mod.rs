@@ -4,13 +4,15 @@
 //!
 //! - [`toolchain`]: finding the tools, their versions, how to install them (`doctor`);
 //! - [`process`]: one run in its own directory and process group, with a timeout;
-//!   [`descendants`]: every process it started, found and killed; [`bounded_log`]: its output;
+//!   [`descendants`]: every process it started, found and killed; [`reap`]: waiting for one, and
+//!   the CPU time of those reaped; [`bounded_log`]: its output;
 //!   [`mask`]: the secrets masked in it; [`excerpt`]: what of it a message shows;
 //! - [`command`]: a program a case names as a solver, run only with [`permission`], its
 //!   command filled under the rule of [`placeholder`];
 //! - [`geo`]: the gmsh geometry of a scene and its meshes (also for the in-crate FEM);
 //! - [`solid_geo`]: the 3D geometry (half of a hemisphere or cap) and its quadratic tetrahedra;
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
+//! - [`plan`]: what a scene asks of a deck (steps, modes, grip, candidate zone, penalty);
 //! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
 //! - [`readback`]: the decks' per-step CSV, each result file read as foreign input;
 //!   [`field_files`]: the field files, checked, then read through meshio;
@@ -36,9 +38,11 @@ pub mod geo;
 pub mod mask;
 pub mod permission;
 pub mod placeholder;
+pub mod plan;
 pub mod process;
 pub mod program;
 pub mod readback;
+pub mod reap;
 pub mod record;
 pub mod solid_geo;
 pub mod split;

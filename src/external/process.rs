@@ -10,13 +10,13 @@ use std::os::fd::AsRawFd;
 use std::os::unix::process::{CommandExt, ExitStatusExt};
 use std::path::{Path, PathBuf};
 use std::process::{ChildStderr, ChildStdout, Command, ExitStatus, Stdio};
-use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 use std::time::{Duration, Instant};
 
 use super::bounded_log::BoundedLog;
 use super::descendants::Tracker;
 use super::excerpt;
 use super::mask::Mask;
+use super::reap::reap;
 
 /// How often a running program is polled for its exit (the longest wait for its output).
 const POLL: Duration = Duration::from_millis(10);
@@ -343,34 +343,6 @@ fn has_exited(pid: u32) -> std::io::Result<bool> {
     }
     // SAFETY: waitid filled `info` (or left it zero: no child has changed state).
     Ok(unsafe { info.si_pid() } != 0)
-}
-
-/// CPU time [ns] of every child that [`run`] has reaped, with the children they waited for.
-static CHILD_CPU_NS: AtomicU64 = AtomicU64::new(0);
-
-/// The CPU time (user + system) of all external programs this process has run so far [s]: a
-/// clock that benchmarks read before and after a solve, as the thread's own CPU clock.
-pub fn child_cpu_seconds() -> f64 {
-    CHILD_CPU_NS.load(AtomicOrdering::Relaxed) as f64 * 1e-9
-}
-
-/// Waits for `pid` with `wait4` (blocking, or not with `WNOHANG`), adding its CPU time to
-/// [`child_cpu_seconds`]; `None` while it still runs.
-pub(super) fn reap(pid: u32, options: libc::c_int) -> std::io::Result<Option<ExitStatus>> {
-    let mut status: libc::c_int = 0;
-    // SAFETY: an all-zero rusage is a valid value; wait4 only writes into it.
-    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-    // SAFETY: valid pointers to a c_int and an rusage that outlive the call.
-    let reaped = unsafe { libc::wait4(pid as libc::pid_t, &mut status, options, &mut usage) };
-    match reaped {
-        0 => Ok(None),
-        r if r < 0 => Err(std::io::Error::last_os_error()),
-        _ => {
-            let ns = |t: libc::timeval| t.tv_sec as u64 * 1_000_000_000 + t.tv_usec as u64 * 1_000;
-            CHILD_CPU_NS.fetch_add(ns(usage.ru_utime) + ns(usage.ru_stime), AtomicOrdering::Relaxed);
-            Ok(Some(ExitStatus::from_raw(status)))
-        }
-    }
 }
 
 fn ending_of(status: ExitStatus) -> Ending {

@@ -1,8 +1,9 @@
 //! Reading back what a deck wrote: its per-step CSV (`steps.csv`, one row per computed step) and
-//! its clock (`timing.csv`); the CSV reading the other tables share ([`records`], [`Row`]); and
+//! its clock (`timing.csv`); the CSV reading the other tables share ([`records`], [`Row`]);
 //! [`read_output`], the one way every deck's result file is opened (the contact line's nodal
 //! state, `surface.csv`, is read by [`super::surface`]; the field files by
-//! [`super::field_files`]).
+//! [`super::field_files`]); and [`check_path_file`], that a folder read back was written for the
+//! steps asked.
 //!
 //! A deck's folder is foreign input (docs/security.md, "Deck folders"): it comes back from a
 //! cluster or a colleague, so each file is read by the rule of files from elsewhere
@@ -16,8 +17,9 @@
 use std::fmt::Display;
 use std::path::Path;
 
-use super::deck::{ComputedStep, PATH_FILE};
+use super::deck::{path_file, ComputedStep, PATH_FILE};
 use crate::input::foreign;
+use crate::solver::SolveError;
 
 /// The columns a deck's `steps.csv` has, in order.
 pub const STEP_COLUMNS: [&str; 10] = [
@@ -321,6 +323,21 @@ pub fn read_optional_output(dir: &Path, name: &str, limit: u64) -> Result<Option
     } else {
         read_output(dir, name, limit).map(Some)
     }
+}
+
+/// Checks that the run directory `dir` was written for `steps` (of scene `scene`): its
+/// [`PATH_FILE`] lists them, as a deck run elsewhere is read back. The file may be no longer
+/// than the list expected.
+pub fn check_path_file(dir: &Path, steps: &[ComputedStep], scene: &str) -> Result<(), SolveError> {
+    let expected = path_file(steps);
+    let listed = read_output(dir, PATH_FILE, expected.len() as u64).map_err(SolveError::Failed)?;
+    if listed != expected {
+        return Err(SolveError::Failed(format!(
+            "{}: the steps it lists are not those of scene `{scene}`",
+            dir.join(PATH_FILE).display()
+        )));
+    }
+    Ok(())
 }
 
 /// `Ok` when something (a file, a link, a FIFO) is at the result file `file`, else its "output

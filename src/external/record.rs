@@ -4,14 +4,25 @@
 
 use serde_json::json;
 
-use super::axisym::{Plan, Timing, KFAC};
 use super::deck::Deck;
 use super::field_files::Profile;
 use super::geo::MeshFiles;
+use super::plan::{Plan, KFAC};
 use super::readback::{DeckRow, Outcome};
 use super::surface::Surface;
 use crate::history::{History, Metadata, StepResult};
 use crate::scene::Scene;
+
+/// Wall time of the three parts of an external run [s].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timing {
+    /// gmsh.
+    pub meshing_s: f64,
+    /// The deck.
+    pub solving_s: f64,
+    /// steps.csv, surface.csv and the field files through meshio.
+    pub reading_s: f64,
+}
 
 /// What a finished deck run left, read back.
 pub struct Run {

@@ -19,7 +19,7 @@ use std::time::Duration;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use super::deck::Deck;
+use super::deck::{Deck, LOG_STEM};
 use super::toolchain::Toolchain;
 use crate::history::History;
 use crate::input::foreign;
@@ -40,9 +40,6 @@ pub const README: &str = "README.txt";
 
 /// The run script's file name.
 pub const RUN_SCRIPT: &str = "run.sh";
-
-/// The stem of a deck's logs (`deck.stdout`, `deck.stderr`), in its own run and in [`RUN_SCRIPT`].
-pub const LOG_STEM: &str = "deck";
 
 /// The manifest's `format`: what kind of file it is, and its layout's version.
 const FORMAT: &str = "spherecontact deck folder 1";

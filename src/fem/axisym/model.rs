@@ -59,6 +59,12 @@ impl Reduction {
             Self::TwoBodies => delta_n,
         }
     }
+
+    /// The shift increment of the condensed problem for a relative shift increment `delta_t`:
+    /// half of it for one sphere against the symmetry plane (as the approach, [`Self::approach`]).
+    pub fn shift(self, delta_t: f64) -> f64 {
+        self.approach(delta_t)
+    }
 }
 
 /// Mesh and solver settings derived from the scene and the user's pole size.
@@ -147,7 +153,7 @@ impl BodyPlan {
             .ok_or("a candidate contact node lies on the far boundary: the domain is too small")?;
         let shear = settings
             .shear
-            .then(|| ShearPlan::new(&mesh, lame, &candidates, settings))
+            .then(|| ShearPlan::new(&mesh, lame, &candidates, settings.integration))
             .transpose()?;
         let times = [t1 - t0, t2 - t1, t2.elapsed()].map(|d| d.as_secs_f64());
         Ok(Self {

@@ -18,7 +18,7 @@ use super::model::{AxisymContact, Model, Settings};
 use super::output;
 use super::output_n1::{self, TangentialState};
 use super::pressure::{self, Profile};
-use super::tangential::{self, Mode};
+use super::tangential::Mode;
 use crate::driver;
 use crate::external::toolchain::Toolchain;
 use crate::fem::element::tri6::Integration;
@@ -230,7 +230,7 @@ impl Run {
         vtu_dir: Option<&std::path::Path>,
     ) -> Result<(), SolveError> {
         let approach = model.reduction.approach(step.delta_n);
-        let shift = [tangential::shift(model.reduction, step.delta_t - self.previous_t)];
+        let shift = [model.reduction.shift(step.delta_t - self.previous_t)];
         self.previous_t = step.delta_t;
         let shift: &[f64] = if self.mode == Mode::Solved { &shift } else { &[] };
         if step.delta_n <= 0.0 {
@@ -281,7 +281,7 @@ impl Run {
                         normal: &forces,
                         tangential: self.contact.traction(),
                         approach,
-                        shift: tangential::shift(model.reduction, step.delta_t),
+                        shift: model.reduction.shift(step.delta_t),
                         field: &field,
                     };
                     output_n1::write(model, &state, dir, &stem).map_err(|e| {

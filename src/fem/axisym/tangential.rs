@@ -25,9 +25,8 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::{Accum, Mat, Par};
 
-use super::model::{Reduction, Settings};
 use crate::fem::assembly::{self, System};
-use crate::fem::element::tri6::Lame;
+use crate::fem::element::tri6::{Integration, Lame};
 use crate::fem::factor::{Factor, Plan};
 use crate::fem::mesh::meridian::Mesh;
 use crate::fem::ordering::{self, ContactLast, NodeOrder};
@@ -87,12 +86,16 @@ pub struct ShearPlan {
 }
 
 impl ShearPlan {
-    /// Assembles the mode n = 1 of `mesh` and plans its factorisation with the `candidates`'
-    /// DOFs ordered last ([`crate::fem::ordering`]), so that the factor's trailing block L₂₂
-    /// factors their Schur complement.
-    pub fn new(mesh: &Mesh, lame: Lame, candidates: &[usize], settings: &Settings) -> Result<Self, String> {
-        let system =
-            assembly::assemble_fourier_one(mesh, lame, settings.integration).map_err(|e| e.to_string())?;
+    /// Assembles the mode n = 1 of `mesh` with the element `integration` and plans its
+    /// factorisation with the `candidates`' DOFs ordered last ([`crate::fem::ordering`]), so that
+    /// the factor's trailing block L₂₂ factors their Schur complement.
+    pub fn new(
+        mesh: &Mesh,
+        lame: Lame,
+        candidates: &[usize],
+        integration: Integration,
+    ) -> Result<Self, String> {
+        let system = assembly::assemble_fourier_one(mesh, lame, integration).map_err(|e| e.to_string())?;
         let points: Vec<[f64; 3]> = mesh.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let order = ordering::contact_last(
             &ordering::node_graph(mesh.nodes.len(), &mesh.triangles),
@@ -176,10 +179,4 @@ impl Shear {
         }
         Ok(Self { bodies, compliance })
     }
-}
-
-/// The shift increment of the condensed problem for a relative shift increment `delta_t`: half
-/// of it for one sphere against the symmetry plane (as the approach, [`Reduction::approach`]).
-pub fn shift(reduction: Reduction, delta_t: f64) -> f64 {
-    reduction.approach(delta_t)
 }
