@@ -267,7 +267,7 @@ pub(crate) fn report(
     // bad input.
     let paper_references = match &kind {
         Report::Paper { .. } => Some(
-            spherecontact::report::paper::Quoted::for_case(&case)
+            spherecontact::report::paper_numbers::Quoted::for_case(&case)
                 .map_err(|e| InputError(format!("{}: {e}", case.file.display())))?
                 .0,
         ),

@@ -4,22 +4,10 @@
 
 use super::claims::{self, Claim};
 use super::document::{Cell, Section, Table};
+use super::figures::missing_cell;
 use crate::check::{ErrorMeasure, Outcome, Verdict};
 use crate::registry;
-use crate::solver::SolveError;
 use crate::verify::CaseRun;
-
-/// The CSS class of a check verdict.
-pub fn verdict_class(verdict: Verdict) -> &'static str {
-    match verdict {
-        Verdict::Ok => "ok",
-        Verdict::Nook => "nook",
-        Verdict::Info => "info",
-        Verdict::Unavailable => "na",
-        Verdict::Known => "known",
-        Verdict::Fixed | Verdict::Drift => "nook",
-    }
-}
 
 /// "2 NOOK, 0 N/A, 5 INFO, 40 OK": how many of `verdicts` are each of `order`, in that order.
 fn counts<V: Copy + PartialEq>(order: &[V], verdicts: &[V], label: fn(V) -> &'static str) -> String {
@@ -189,15 +177,6 @@ fn solver_lines(run: &CaseRun) -> Table {
     Table {
         header: header.iter().map(|s| s.to_string()).collect(),
         rows,
-    }
-}
-
-/// The status of a solver that did not run.
-pub fn missing_cell(error: &SolveError) -> Cell {
-    match error {
-        SolveError::Unavailable(_) => Cell::with_class("missing: not available", "na"),
-        SolveError::NotApplicable(_) => Cell::with_class("missing: not applicable", "na"),
-        SolveError::Failed(_) => Cell::with_class("missing: failed", "nook"),
     }
 }
 

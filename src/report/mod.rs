@@ -12,6 +12,7 @@ pub mod glance;
 pub mod history_files;
 pub mod junit;
 pub mod paper;
+pub mod paper_numbers;
 pub mod plot;
 pub mod summary;
 pub mod table;

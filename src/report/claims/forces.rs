@@ -8,7 +8,7 @@ use crate::history::{History, Quantity};
 use crate::registry;
 use crate::report::figures::surface::{FieldView, HalfAxis};
 use crate::report::figures::{fields_at, histories, position_errors, NORMAL_REFERENCE, TANGENTIAL_REFERENCE};
-use crate::report::paper::{reading_verdict, Quoted, QUOTED_APPROACH, THREE_FIGURES};
+use crate::report::paper_numbers::{reading_verdict, Quoted, QUOTED_APPROACH, THREE_FIGURES};
 use crate::verify::CaseRun;
 
 /// A finite element P "agrees" with Hertz within 1 %: the paper's Figure 8 is read to about 1 %

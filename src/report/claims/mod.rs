@@ -15,7 +15,7 @@ pub mod study;
 pub use study::Study;
 
 use super::document::{Cell, Section, Table};
-use super::paper::Quoted;
+use super::paper_numbers::Quoted;
 use crate::verify::CaseRun;
 
 /// What a measurement says about a claim.

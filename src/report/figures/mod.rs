@@ -18,7 +18,7 @@ pub use forces::{normal_force, tangential_force};
 pub use maps::maps;
 pub use path::{loading_path, path_coordinate};
 pub use profiles::profiles;
-pub use tables::{check_table, solver_table, warnings, Warning};
+pub use tables::{check_table, missing_cell, solver_table, verdict_class, warnings, Warning};
 
 use anyhow::Result;
 

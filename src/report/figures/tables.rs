@@ -1,12 +1,34 @@
 //! The tables of a report: the check table, the solver table, and the warnings grouped once with
-//! the solvers they concern.
+//! the solvers they concern; with the cells other tables borrow from them (a check verdict's
+//! class, the status of a solver that did not run).
 
 use super::histories;
-use crate::check::Outcome;
+use crate::check::{Outcome, Verdict};
 use crate::report::document::{Cell, Table};
 use crate::report::format_value;
-use crate::report::glance::{missing_cell, verdict_class};
+use crate::solver::SolveError;
 use crate::verify::CaseRun;
+
+/// The CSS class of a check verdict.
+pub fn verdict_class(verdict: Verdict) -> &'static str {
+    match verdict {
+        Verdict::Ok => "ok",
+        Verdict::Nook => "nook",
+        Verdict::Info => "info",
+        Verdict::Unavailable => "na",
+        Verdict::Known => "known",
+        Verdict::Fixed | Verdict::Drift => "nook",
+    }
+}
+
+/// The status of a solver that did not run.
+pub fn missing_cell(error: &SolveError) -> Cell {
+    match error {
+        SolveError::Unavailable(_) => Cell::with_class("missing: not available", "na"),
+        SolveError::NotApplicable(_) => Cell::with_class("missing: not applicable", "na"),
+        SolveError::Failed(_) => Cell::with_class("missing: failed", "nook"),
+    }
+}
 
 /// A warning stated once, with the solvers that gave it (none for the scene's own).
 #[derive(Clone, Debug, PartialEq, Eq)]
