@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .retain(|c| wanted(&c.solver) && matches!(&c.reference, Reference::Solver(r) if wanted(r)));
         let run = verify::run_case(case);
         println!("{}", dem_scoreboard::text(&run));
-        print!("{}", spherecontact::report::table::case_block(&run));
+        print!("{}", spherecontact::verify::table::case_block(&run));
         println!();
     }
     Ok(())

@@ -10,11 +10,13 @@
 //! Modelled on MOOSE's test specs and Code_Aster's TEST_RESU: a check states its requirement,
 //! reference and tolerance with a reason, and its result prints with value, reference and error.
 
+mod drift;
 mod measure;
 
 use serde::Serialize;
 use std::collections::BTreeMap;
 
+pub use drift::Drift;
 use measure::zeroed;
 pub use measure::{relative_error, ErrorMeasure, ABS_ZERO};
 
@@ -213,28 +215,6 @@ pub struct Outcome {
     /// The value against its non-regression baseline, when the case has one for this check
     /// ([`crate::baseline`]).
     pub drift: Option<Drift>,
-}
-
-/// A check's value against the value stored in its baseline.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub enum Drift {
-    /// Compared at the baseline's step.
-    Measured {
-        /// The value stored.
-        baseline: f64,
-        /// |value − baseline| / max(|baseline|, |value|, |reference|) at the baseline's step (the
-        /// reference's magnitude: a profile's value is a small RMS difference): 0 when equal.
-        change: f64,
-        /// The largest change accepted for this check's solvers.
-        tolerance: f64,
-    },
-    /// Not comparable: the baseline records another resolution of this solver than the one it
-    /// ran at now (the case's resolution changed, or the baseline was edited). A failure until
-    /// `baseline update` records the run's.
-    OtherResolution {
-        /// The solver.
-        solver: String,
-    },
 }
 
 /// The histories of a case's solvers, by name.

@@ -11,6 +11,7 @@ mod cli;
 
 use clap::{Parser, Subcommand};
 use cli::deck::{deck, DeckAction};
+use cli::impact;
 use cli::report::{bench, report, DiscretisationChoice, Report, ReportOptions};
 use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
@@ -18,7 +19,6 @@ use cli::verify::{
 use spherecontact::case::{limits, Case, ReadRoots};
 use spherecontact::external::permission::CommandPermission;
 use spherecontact::external::{geo, toolchain::Toolchain};
-use spherecontact::impact::command as impact;
 use spherecontact::report::history_files;
 use spherecontact::{baseline, io, plan, registry, resolution, solver, text};
 

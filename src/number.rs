@@ -1,4 +1,5 @@
-//! Numbers in messages: short and exact, never a 300-digit decimal.
+//! Numbers for people: in messages short and exact, never a 300-digit decimal; in tables four
+//! significant digits, never "NaN".
 //!
 //! Rust's `{}` prints an `f64` as a plain decimal, so `5e-324` becomes a 324-digit string. [`Short`]
 //! prints the shortest text that reads back as the same number: plainly for magnitudes from 1e-3
@@ -21,9 +22,28 @@ impl fmt::Display for Short {
     }
 }
 
+/// Formats a value for people: four significant digits in scientific notation, "—" when absent,
+/// and never "NaN" (a non-finite value prints as what it is).
+pub fn format_value(value: Option<f64>) -> String {
+    match value {
+        None => "—".to_owned(),
+        Some(v) if v.is_nan() => "non-finite".to_owned(),
+        Some(v) if v.is_infinite() => if v > 0.0 { "inf" } else { "-inf" }.to_owned(),
+        Some(v) => format!("{v:.4e}"),
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::Short;
+    use super::{format_value, Short};
+
+    #[test]
+    fn never_prints_nan() {
+        assert_eq!(format_value(Some(f64::NAN)), "non-finite");
+        assert_eq!(format_value(Some(f64::INFINITY)), "inf");
+        assert_eq!(format_value(None), "—");
+        assert_eq!(format_value(Some(803.76)), "8.0376e2");
+    }
 
     #[test]
     fn extremes_print_in_scientific_notation_and_read_back_exactly() {

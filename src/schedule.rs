@@ -144,7 +144,7 @@ impl Judged {
     /// Its checks as the verification job lists them ([`crate::judged`]).
     pub fn suite(&self) -> Suite {
         match self {
-            Judged::Path(run) => crate::report::table::suite(run),
+            Judged::Path(run) => crate::verify::table::suite(run),
             Judged::Impact(run) => run.suite(),
         }
     }

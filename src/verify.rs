@@ -1,5 +1,7 @@
 //! Running cases: every solver a case needs, once each, then every check on their histories.
 
+pub mod table;
+
 use crate::case::Case;
 use crate::check::{Histories, Outcome};
 use crate::history::History;

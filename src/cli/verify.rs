@@ -189,7 +189,7 @@ fn write_impact_report(judged: &[Judged], dir: &Path) -> Result<(), InputError> 
     if impacts.is_empty() {
         return Ok(());
     }
-    spherecontact::impact::report::document(impacts, false)
+    spherecontact::report::impact::document(impacts, false)
         .and_then(|document| document.write(dir))
         .map_err(|e| InputError(format!("--out {}: {e}", dir.display())))
 }

@@ -10,7 +10,7 @@ use super::outcome::Outcome;
 use super::solver_run::SolverRun;
 use crate::check::{relative_error, Drift, Verdict, ABS_ZERO};
 use crate::hertz::Hertz;
-use crate::report::format_value;
+use crate::number::format_value;
 
 /// The outcome of one check.
 #[derive(Clone, Debug)]
@@ -207,7 +207,7 @@ pub fn outcome_row(case: &str, outcome: &CheckOutcome) -> String {
         None => row.push_str(" | informational"),
     }
     if let Some(drift) = &outcome.drift {
-        row.push_str(&crate::report::table::drift_cell(drift));
+        row.push_str(&drift.cell());
     }
     if let Some(message) = &outcome.message {
         let _ = write!(row, " | {message}");

@@ -26,7 +26,6 @@ mod budget;
 pub mod code_readback;
 pub mod code_rule;
 pub mod code_run;
-pub mod command;
 pub mod cost;
 #[cfg(test)]
 mod cross_check;
@@ -37,7 +36,6 @@ pub mod lammps;
 pub mod law;
 pub mod outcome;
 pub mod placement;
-pub mod report;
 pub mod run;
 pub mod solver_run;
 mod tally;
@@ -106,7 +104,7 @@ impl ImpactRun {
                         "SOLVER {} ({}) at {}: {}\n",
                         run.solver,
                         run.variant.name(),
-                        crate::report::format_value(*at),
+                        crate::number::format_value(*at),
                         crate::text::one_line(e)
                     ));
                 }

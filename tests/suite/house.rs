@@ -9,7 +9,7 @@
 
 mod graph;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use graph::{circles, code_of, edges, references, rust_files};
 

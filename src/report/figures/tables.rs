@@ -4,8 +4,8 @@
 
 use super::histories;
 use crate::check::{Outcome, Verdict};
+use crate::number::format_value;
 use crate::report::document::{Cell, Table};
-use crate::report::format_value;
 use crate::solver::SolveError;
 use crate::verify::CaseRun;
 

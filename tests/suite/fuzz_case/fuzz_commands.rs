@@ -18,8 +18,8 @@ use super::common::SMALL_CASE;
 use super::Rng;
 use spherecontact::case::Case;
 use spherecontact::external::permission::CommandPermission;
-use spherecontact::report::table;
 use spherecontact::verify;
+use spherecontact::verify::table;
 
 /// Names a hostile case gives its program.
 const NAMES: &[&str] = &[

@@ -20,8 +20,9 @@ use super::common::reads::{raw_controls, spherecontact_guarded, symlink, text, P
 use super::Rng;
 use spherecontact::case::{Case, CaseSolver, ReadRoots};
 use spherecontact::check::Reference;
-use spherecontact::report::{compare, junit, summary, table};
+use spherecontact::report::{compare, junit, summary};
 use spherecontact::verify;
+use spherecontact::verify::table;
 
 /// Names a hostile case gives its files (relative to `project/cases/`); `@ABS@` stands for the
 /// temporary folder that holds the project and the secrets.

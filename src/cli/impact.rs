@@ -1,14 +1,14 @@
-//! `spherecontact run` on an impact case: plan (the case and the solvers named, validated; the
-//! output folder claimed, [`crate::io::OutputFolder`]), then execute (run, write the files, print
+//! `spherecontact run` on an impact case, and `spherecontact impact`: plan (the case and the solvers named, validated; the
+//! output folder claimed, `OutputFolder`), then execute (run, write the files, print
 //! a line per run).
 
 use std::path::{Path, PathBuf};
 
-use super::case::ImpactCase;
-use super::run::{self, solver_names};
-use super::{files, ImpactRun};
-use crate::case;
-use crate::io::{self, OutputFolder};
+use spherecontact::case;
+use spherecontact::impact::case::ImpactCase;
+use spherecontact::impact::run::{self, solver_names};
+use spherecontact::impact::{files, ImpactRun};
+use spherecontact::io::{self, OutputFolder};
 
 /// A validated `run` of an impact case: nothing is written before it exists.
 #[derive(Debug)]
@@ -21,7 +21,7 @@ pub struct RunPlan {
     pub out: OutputFolder,
 }
 
-pub use crate::case::is_impact_file;
+pub use spherecontact::case::is_impact_file;
 
 /// Plans a run: the case validated, each solver named once and known, `out` claimed (`force`:
 /// also a folder holding files the harness did not write).
@@ -65,7 +65,7 @@ impl RunPlan {
                         "error: {} ({}) at {}: {e}",
                         run.solver,
                         run.variant.name(),
-                        crate::report::format_value(*at)
+                        spherecontact::number::format_value(*at)
                     );
                 }
             }
@@ -81,18 +81,12 @@ impl RunPlan {
     }
 }
 
-/// Loads and runs an impact case with its checks, for `verify`.
-pub fn verify(file: &Path) -> Result<ImpactRun, String> {
-    let case = case::load_impact(file).map_err(|e| e.to_string())?;
-    Ok(ImpactRun::of(case))
-}
-
 /// `spherecontact impact`: plans (every case valid, `out` claimed), runs every case with its
 /// checks, writes each case's solver files into `out/<case>/` and the report into `out`, prints
 /// the check rows; true when every case passed.
 pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String> {
     let files = if files.is_empty() {
-        crate::case::case_files(&[PathBuf::from("cases/impact")]).map_err(|e| e.to_string())?
+        spherecontact::case::case_files(&[PathBuf::from("cases/impact")]).map_err(|e| e.to_string())?
     } else {
         files.to_vec()
     };
@@ -112,8 +106,8 @@ pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String
         files::write(&dir, &run.case, &run.runs).map_err(|e| format!("--out {}: {e}", dir.display()))?;
         print!("{}", run.block());
     }
-    let document =
-        crate::impact::report::document(&runs, true).map_err(|e| format!("building the report: {e}"))?;
+    let document = spherecontact::report::impact::document(&runs, true)
+        .map_err(|e| format!("building the report: {e}"))?;
     document
         .write(out)
         .map_err(|e| format!("--out {}: {e}", out.display()))?;

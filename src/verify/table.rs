@@ -1,12 +1,11 @@
 //! The check table printed by `verify`: one row per check, OK / NOOK / INFO / N/A / KNOWN /
-//! FIXED? with value,
-//! reference, error, tolerance and the tolerance's reason.
+//! FIXED? with value, reference, error, tolerance and the tolerance's reason.
 
 use std::fmt::Write;
 
-use super::format_value;
 use crate::check::Outcome;
 use crate::judged::{Row, Suite};
+use crate::number::format_value;
 use crate::text::one_line;
 use crate::verify::CaseRun;
 
@@ -40,7 +39,7 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
         None => row.push_str(" | informational"),
     }
     if let Some(drift) = &outcome.drift {
-        row.push_str(&drift_cell(drift));
+        row.push_str(&drift.cell());
     }
     if let Some(message) = &outcome.message {
         let _ = write!(row, " | {message}");
@@ -56,26 +55,6 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
     }
     // One line, whatever the case's texts hold: a reason cannot start or redraw another row.
     one_line(&row).into_owned()
-}
-
-/// A check's drift from its baseline as its row shows it (path and impact checks alike).
-pub fn drift_cell(drift: &crate::check::Drift) -> String {
-    match drift {
-        crate::check::Drift::Measured {
-            baseline,
-            change,
-            tolerance,
-        } => format!(
-            " | drift {} (baseline {}, tol {})",
-            format_value(Some(*change)),
-            format_value(Some(*baseline)),
-            format_value(Some(*tolerance))
-        ),
-        crate::check::Drift::OtherResolution { solver } => format!(
-            " | drift: the baseline records another resolution of {solver} than this run's (run `spherecontact \
-             baseline update` if the case's resolution changed)"
-        ),
-    }
 }
 
 /// The whole block printed for one case: warnings, then a row per check.

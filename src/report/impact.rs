@@ -10,9 +10,9 @@ use crate::impact::code_rule::{is_reference, Rule};
 use crate::impact::judge::values;
 use crate::impact::solver_run::SolverRun;
 use crate::impact::ImpactRun;
+use crate::number::format_value;
 use crate::report::document::{Cell, Document, Section, Table};
 use crate::report::figures::figure;
-use crate::report::format_value;
 use crate::report::plot::{Axes, LinePlot, Series, Style};
 
 /// The title of the report (and its first section).
