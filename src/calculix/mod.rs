@@ -556,7 +556,7 @@ mod tests {
 
     #[test]
     fn a_missing_ccx_is_unavailable_not_a_failure() {
-        let scene = crate::external::test_scene(&[0.0, 17.0]);
+        let scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         let mut solver = CcxAxisym::default();
         solver.options.toolchain.ccx = "/nonexistent/ccx".into();
         let e = solver.solve(&scene).unwrap_err();

@@ -483,7 +483,7 @@ mod tests {
 
     #[test]
     fn a_missing_ccx_is_unavailable_and_different_spheres_not_applicable() {
-        let scene = crate::external::test_scene(&[0.0, 17.0]);
+        let scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         let mut solver = CcxSolid::default();
         solver.options.toolchain.ccx = "/nonexistent/ccx".into();
         let e = solver.solve(&scene).unwrap_err();

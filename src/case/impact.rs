@@ -415,14 +415,3 @@ pub const LAMMPS_REFERENCE: &str = "mdr-lammps";
 
 /// The exact reference under YADE's damping law and friction bound.
 pub const YADE_REFERENCE: &str = "mdr-yade";
-
-/// The names of the solvers an impact case may run: the exact references, the DEM laws, then
-/// the DEM codes (LAMMPS per tangential model, YADE), named as their kinematic adapters.
-pub fn solver_names() -> Vec<&'static str> {
-    [REFERENCE, LAMMPS_REFERENCE, YADE_REFERENCE]
-        .into_iter()
-        .chain(crate::analytic::dem_laws().into_iter().map(|law| law.name))
-        .chain(crate::dem::lammps::TangentialModel::ALL.map(|m| m.solver_name()))
-        .chain(std::iter::once(crate::dem::yade::YadeLaw::Mindlin.solver_name()))
-        .collect()
-}

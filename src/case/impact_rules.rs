@@ -52,11 +52,11 @@
 
 use toml::Spanned;
 
-use super::impact::solver_names;
 use super::impact::{
     Body2Spin, ImpactBody, ImpactCase, ImpactCheck, ImpactReference, Quantity, Sweep, SweepVariable, Variant,
 };
 use super::impact_closed_form::HertzImpact;
+use super::impact_solvers::solver_names;
 use super::raw::RawBody;
 use super::{input, CaseError, Validator};
 use crate::hertz::Hertz;

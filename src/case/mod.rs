@@ -100,6 +100,7 @@ pub mod impact;
 pub mod impact_closed_form;
 mod impact_raw;
 mod impact_rules;
+mod impact_solvers;
 pub mod labels;
 mod listing;
 mod raw;
@@ -112,6 +113,7 @@ pub use crate::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
 pub use impact_rules::{is_impact, is_impact_file, load_impact, parse_impact};
+pub use impact_solvers::solver_names;
 pub use listing::{case_files, ListError};
 pub use reads::{CaseTree, ReadRoots};
 

@@ -315,7 +315,7 @@ mod tests {
 
     #[test]
     fn the_equivalent_material_keeps_e_star_and_g_star() {
-        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         let (young, poisson) = equivalent_material(&scene.pair);
         assert!((young / 70e9 - 1.0).abs() < 1e-14 && (poisson - 0.3).abs() < 1e-14);
         scene.pair.body2.material = Material {
@@ -332,7 +332,7 @@ mod tests {
 
     #[test]
     fn every_key_of_the_template_is_filled() {
-        let scene = crate::external::test_scene(&[0.0, 10.0, 17.0]);
+        let scene = crate::fixtures::test_scene(&[0.0, 10.0, 17.0]);
         let input = Lammps::new(TangentialModel::MindlinRescaleForce).input(&scene);
         assert!(!input.contains('@'), "{input}");
         assert_eq!(input.matches("\nrun ").count(), 2);

@@ -307,7 +307,7 @@ mod tests {
     use super::*;
 
     fn steps() -> Vec<Step> {
-        crate::external::test_scene(&[0.0, 10.0, 17.0]).steps()
+        crate::fixtures::test_scene(&[0.0, 10.0, 17.0]).steps()
     }
 
     /// The CSV of `steps` with a normal force P = 1 N per µm of δn.

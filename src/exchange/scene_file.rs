@@ -158,7 +158,7 @@ mod tests {
 
     #[test]
     fn numbers_round_trip_and_a_flat_has_a_null_radius() {
-        let mut scene = crate::external::test_scene(&[0.0, 17.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0, 17.0]);
         scene.pair.body2.radius = f64::INFINITY;
         let text = SceneFile::of(&scene).to_json();
         let value: serde_json::Value = serde_json::from_str(&text).unwrap();

@@ -331,7 +331,7 @@ mod tests {
 
     #[test]
     fn different_spheres_are_not_applicable() {
-        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         scene.pair.body2.radius = 0.05;
         let e = AxisymSolver::new(FreeFem).solve(&scene).unwrap_err();
         assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
@@ -339,7 +339,7 @@ mod tests {
 
     #[test]
     fn a_shift_under_the_axial_grip_is_not_applicable() {
-        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         scene.domain.grip = Grip::Axial;
         assert!(applicable(&scene).is_ok());
         let positions = scene.path.positions().to_vec();
@@ -357,7 +357,7 @@ mod tests {
 
     #[test]
     fn a_missing_tool_is_unavailable_not_a_failure() {
-        let scene = crate::external::test_scene(&[0.0, 17.0]);
+        let scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         let mut solver = AxisymSolver::new(FreeFem);
         solver.options.toolchain.freefem = "/nonexistent/FreeFem++".into();
         let e = solver.solve(&scene).unwrap_err();

@@ -496,7 +496,7 @@ mod tests {
 
     #[test]
     fn different_spheres_are_not_applicable() {
-        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         scene.pair.body2.radius = 0.05;
         let e = Solid3dDeck::new(1).solve(&scene).unwrap_err();
         assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");
@@ -504,7 +504,7 @@ mod tests {
 
     #[test]
     fn the_axial_grip_is_not_applicable() {
-        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         scene.domain.grip = Grip::Axial;
         let e = Solid3dDeck::new(1).solve(&scene).unwrap_err();
         assert!(matches!(e, SolveError::NotApplicable(_)), "{e}");

@@ -400,7 +400,7 @@ mod tests {
 
     #[test]
     fn grading_follows_the_largest_contact_radius() {
-        let scene = crate::external::test_scene(&[0.0, 17.0]);
+        let scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         let c = scene.max_contact_radius(); // sqrt(R* δn) = sqrt(0.05 · 17e-6) ≈ 0.922 mm
         assert!((c - (0.05f64 * 17e-6).sqrt()).abs() < 1e-12);
         let h = default_resolution(&scene);
@@ -414,7 +414,7 @@ mod tests {
     #[test]
     fn the_domain_and_its_grip_are_in_the_geometry() {
         use crate::domain::{Domain, DomainKind};
-        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         let h = default_resolution(&scene);
         let geo = geo_for_scene(&scene, h).unwrap();
         // The default: the hemisphere (cut at R, through the centre), gripped rigidly (tag 4).
@@ -441,7 +441,7 @@ mod tests {
 
     #[test]
     fn a_flat_or_a_bad_resolution_is_not_applicable() {
-        let mut scene = crate::external::test_scene(&[0.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 17.0]);
         assert!(matches!(
             geo_for_scene(&scene, 0.0),
             Err(SolveError::NotApplicable(_))

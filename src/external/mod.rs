@@ -62,36 +62,3 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
         Box::new(fenicsx3d::Solid3dDeck::new(1)),
     ]
 }
-
-/// The paper's spheres (R 0.1 m, E 70 GPa, ν 0.3) along a normal path through `delta_n_um`.
-#[cfg(test)]
-pub(crate) fn test_scene(delta_n_um: &[f64]) -> crate::scene::Scene {
-    use crate::pair::{Body, ContactPair, Material};
-    use crate::path::{LoadingPath, Position};
-    let body = Body {
-        radius: 0.1,
-        material: Material {
-            young: 70e9,
-            poisson: 0.3,
-        },
-    };
-    let positions: Vec<Position> = delta_n_um
-        .iter()
-        .map(|&d| Position {
-            delta_n: d * 1e-6,
-            delta_t: 0.0,
-        })
-        .collect();
-    let substeps = vec![4; positions.len() - 1];
-    crate::scene::Scene {
-        name: "test".into(),
-        pair: ContactPair {
-            body1: body,
-            body2: body,
-        },
-        friction: 0.2,
-        path: LoadingPath::try_new(positions, substeps).expect("valid test path"),
-        domain: Default::default(),
-        fields: Default::default(),
-    }
-}

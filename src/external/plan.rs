@@ -61,7 +61,7 @@ mod tests {
 
     #[test]
     fn the_plan_walks_every_step_with_half_displacements() {
-        let mut scene = crate::external::test_scene(&[0.0, 10.0, 17.0]);
+        let mut scene = crate::fixtures::test_scene(&[0.0, 10.0, 17.0]);
         let plan = Plan::of(&scene, 2e-5);
         assert_eq!(plan.steps.len(), scene.steps().len());
         let last = plan.steps.last().unwrap();

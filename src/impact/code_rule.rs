@@ -110,7 +110,7 @@ mod tests {
 
     /// The paper's aluminium spheres (R 0.1 m, E 70 GPa, ν 0.3).
     fn hertz() -> Hertz {
-        Hertz::of(&crate::external::test_scene(&[0.0, 17.0]).pair)
+        Hertz::of(&crate::fixtures::test_scene(&[0.0, 17.0]).pair)
     }
 
     #[test]

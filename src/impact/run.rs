@@ -25,7 +25,7 @@ pub use crate::case::impact::REFERENCE;
 /// (the bed's own 5 % margin comes on top).
 const WINDOW_FACTOR: f64 = 1.05;
 
-pub use crate::case::impact::solver_names;
+pub use crate::case::solver_names;
 
 /// The contact law `solver` for `point` (none for an unknown name).
 fn law_for(case: &ImpactCase, solver: &str, point: &Point) -> Option<Box<dyn ContactLaw>> {
