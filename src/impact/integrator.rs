@@ -20,8 +20,8 @@
 //! The contact starts at first touch (δn = 0) and ends when δn returns to zero; the end time is
 //! interpolated linearly within the last step.
 
-use super::case::Point;
 use super::law::{ContactLaw, Damping, FrictionBound, LawError};
+use crate::case::impact::Point;
 
 /// The velocities of both bodies: centre (x, z) and spin.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,7 +121,7 @@ impl Inertia {
 impl Motion {
     /// The initial velocities of `point`.
     pub fn of(point: &Point) -> Self {
-        let b = |body: &super::case::ImpactBody| [body.velocity[0], body.velocity[1], body.spin];
+        let b = |body: &crate::case::impact::ImpactBody| [body.velocity[0], body.velocity[1], body.spin];
         Self {
             body1: b(&point.body1),
             body2: b(&point.body2),

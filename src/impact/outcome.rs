@@ -12,8 +12,8 @@
 //!   rebound velocity (relative to body 2's contact point) from the outward normal;
 //!   undefined when that velocity is zero.
 
-use super::case::{Point, Quantity};
 use super::integrator::Integration;
+use crate::case::impact::{Point, Quantity};
 
 /// A slip speed below this fraction of the approach speed counts as none (e_t undefined):
 /// rounding in the velocities is ~1e-16 of them; 1e-12 leaves four orders of margin.
