@@ -12,7 +12,7 @@ use crate::impact::ImpactRun;
 use crate::judged::Suite;
 use crate::plan::{Member, Plan, Run};
 use crate::solver::SolveError;
-use crate::verify::{self, CaseRun};
+use crate::verify::{self as case_run, CaseRun};
 
 /// What a run gives: a path case's solver history (or why it has none), or an impact case's
 /// solver over the sweep in each variant (a failed sweep point says why within).
@@ -28,7 +28,7 @@ impl Output {
     /// Runs `solver` of `case`.
     pub fn of(case: &Member, solver: &str) -> Self {
         match case {
-            Member::Path(case) => Output::Path(verify::run_solver(case, solver)),
+            Member::Path(case) => Output::Path(case_run::run_solver(case, solver)),
             Member::Impact(case) => Output::Impact(crate::impact::run::run_case(
                 case,
                 std::slice::from_ref(&solver.to_owned()),
@@ -81,7 +81,7 @@ pub fn execute_around(
 /// Path cases run as `verify` runs them: every (case, solver) run of them in one plan,
 /// concurrently within `cores` ([`execute_around`], costed by `recorded(case, solver)` where
 /// known), each case judged: one [`CaseRun`] a case, in the given order, the same as
-/// [`verify::run_case`]'s whatever the cores (a case without solvers is judged on none).
+/// [`case_run::run_case`]'s whatever the cores (a case without solvers is judged on none).
 pub fn run_cases(
     cases: Vec<crate::case::Case>,
     cores: usize,
@@ -93,7 +93,7 @@ pub fn run_cases(
     let slots: Vec<Option<CaseRun>> = cases
         .into_iter()
         .map(|case| match case.required_solvers().is_empty() {
-            true => Some(verify::judge(case, Vec::new())),
+            true => Some(case_run::judge(case, Vec::new())),
             false => {
                 planned.push(Member::Path(case));
                 None
@@ -170,7 +170,7 @@ pub fn judge(plan: Plan, finished: Vec<Finished>) -> Vec<Judged> {
                         Output::Impact(_) => None,
                     })
                     .collect();
-                Judged::Path(verify::judge(case, histories))
+                Judged::Path(case_run::judge(case, histories))
             }
             Member::Impact(case) => {
                 let runs = results
@@ -215,7 +215,7 @@ mod tests {
         let names: Vec<&str> = together.iter().map(|r| r.case.name()).collect();
         assert_eq!(names, ["a", "b", "c"]);
         for (run, case) in together.iter().zip(cases()) {
-            let serial = verify::run_case(case);
+            let serial = case_run::run_case(case);
             let solvers: Vec<&String> = run.histories.keys().collect();
             assert_eq!(solvers, serial.histories.keys().collect::<Vec<_>>());
             for (name, history) in &run.histories {
