@@ -17,8 +17,9 @@ use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
 };
 use spherecontact::case::{limits, Case, ReadRoots};
+use spherecontact::external::geo;
 use spherecontact::external::permission::CommandPermission;
-use spherecontact::external::{geo, toolchain::Toolchain};
+use spherecontact::external::toolchain::Toolchain;
 use spherecontact::report::history_files;
 use spherecontact::{baseline, io, plan, registry, resolution, solver, text};
 
