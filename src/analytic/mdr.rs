@@ -69,7 +69,7 @@ impl Default for Mdr {
 }
 
 /// The state of the spring bed along a path (or an impact, `crate::impact`).
-pub(crate) struct SpringBed {
+pub struct SpringBed {
     /// Profile g(x_i) = x_i²/R* [m].
     profile: Vec<f64>,
     /// Tangential displacement u_i of each spring [m].
@@ -89,13 +89,13 @@ pub(crate) struct SpringBed {
 }
 
 /// The bed's forces after one increment.
-pub(crate) struct BedState {
+pub struct BedState {
     /// P [N].
-    pub(crate) normal_force: f64,
+    pub normal_force: f64,
     /// Q [N].
-    pub(crate) tangential_force: f64,
+    pub tangential_force: f64,
     /// The stick radius [m].
-    pub(crate) stick_radius: f64,
+    pub stick_radius: f64,
 }
 
 impl SpringBed {
@@ -106,7 +106,7 @@ impl SpringBed {
 
     /// A bed of `springs` springs for `pair` and friction `friction`, whose window holds every
     /// contact radius up to `max_contact_radius` [m] (with the margin `WINDOW_MARGIN`).
-    pub(crate) fn with_window(
+    pub fn with_window(
         pair: &ContactPair,
         friction: f64,
         max_contact_radius: f64,
@@ -139,24 +139,24 @@ impl SpringBed {
 
     /// The largest approach at which every spring in contact lies inside the window [m]: the
     /// profile height of the outermost spring.
-    pub(crate) fn reach(&self) -> f64 {
+    pub fn reach(&self) -> f64 {
         self.profile.last().copied().unwrap_or(0.0)
     }
 
     /// Friction μ from the next increment on (the impact's total-force bound changes it per step).
-    pub(crate) fn set_friction(&mut self, friction: f64) {
+    pub fn set_friction(&mut self, friction: f64) {
         self.friction = friction;
     }
 
     /// Every spring leaves contact and forgets its history.
-    pub(crate) fn release(&mut self) {
+    pub fn release(&mut self) {
         self.u[..self.touched].fill(0.0);
         self.touched = 0;
     }
 
     /// P at approach `delta_n` (no state changes: the normal bed has no memory) and its slope
     /// dP/dδn = 2E* Δx k, k the springs in contact.
-    pub(crate) fn normal_force(&self, delta_n: f64) -> (f64, f64) {
+    pub fn normal_force(&self, delta_n: f64) -> (f64, f64) {
         let in_contact = self.profile.partition_point(|&g| g < delta_n);
         let normal = in_contact as f64 * delta_n - self.profile_sums[in_contact];
         let scale = 2.0 * self.normal_modulus * self.dx;
@@ -166,7 +166,7 @@ impl SpringBed {
     /// Q after a trial step to approach `delta_n` with shift increment `increment_t`, without
     /// committing it, and its slope dQ/d(increment) = 2G̃ Δx (springs that stick). Springs beyond
     /// those that touched before carry u = 0, as [`Self::advance`] leaves them.
-    pub(crate) fn trial(&self, delta_n: f64, increment_t: f64) -> (f64, f64) {
+    pub fn trial(&self, delta_n: f64, increment_t: f64) -> (f64, f64) {
         let in_contact = self.profile.partition_point(|&g| g < delta_n);
         let slip_ratio = self.friction * self.normal_modulus / self.tangential_modulus;
         let (mut sum, mut sticking) = (0.0, 0usize);
@@ -186,7 +186,7 @@ impl SpringBed {
     }
 
     /// Moves the rigid profile to approach `delta_n` and shifts it by `increment_t`.
-    pub(crate) fn advance(&mut self, delta_n: f64, increment_t: f64) -> BedState {
+    pub fn advance(&mut self, delta_n: f64, increment_t: f64) -> BedState {
         // The springs in contact, w = δn − g(x) > 0, are a prefix of the bed (g grows with x);
         // those beyond it that touched before have left contact and forget their history.
         let in_contact = self.profile.partition_point(|&g| g < delta_n);
