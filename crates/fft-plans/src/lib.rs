@@ -72,7 +72,7 @@ mod tests {
             let plans = T::plans(len);
             let input: Vec<T> = (0..len).map(|i| T::from((i as f32 * 0.37).sin())).collect();
             let mut real = input.clone();
-            let mut spectrum = vec![Complex::default(); len / 2 + 1];
+            let mut spectrum = vec![Complex::new(T::zero(), T::zero()); len / 2 + 1];
             plans.real_forward.process(&mut real, &mut spectrum).unwrap();
             let mut back = vec![T::zero(); len];
             plans.real_inverse.process(&mut spectrum, &mut back).unwrap();
