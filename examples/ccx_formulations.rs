@@ -28,9 +28,9 @@ use std::time::Instant;
 use spherecontact::bench::process_cpu_seconds;
 use spherecontact::calculix_settings::{Formulation, Settings};
 use spherecontact::case::Case;
-use spherecontact::external::reap::child_cpu_seconds;
 use spherecontact::history::{History, Quantity};
 use spherecontact::map_measure;
+use spherecontact::reap::child_cpu_seconds;
 use spherecontact::solver::{self, Solver};
 
 /// A quantity of a history at a path position.

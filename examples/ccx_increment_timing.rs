@@ -26,8 +26,8 @@ use std::time::Instant;
 
 use spherecontact::bench::{median, process_cpu_seconds, significant};
 use spherecontact::case::Case;
-use spherecontact::external::reap::child_cpu_seconds;
 use spherecontact::history::History;
+use spherecontact::reap::child_cpu_seconds;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, Solver};
 

@@ -12,7 +12,7 @@ use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
-use spherecontact::external::geo::MeshFiles;
+use spherecontact::fem::mesh::geo::MeshFiles;
 use spherecontact::history::History;
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::registry;

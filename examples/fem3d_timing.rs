@@ -25,7 +25,6 @@ use spherecontact::bench::process_cpu_seconds;
 use spherecontact::case::Case;
 use spherecontact::contact::operator::work;
 use spherecontact::contact::{Compliance, Method, Settings as ContactSettings};
-use spherecontact::external::toolchain::Toolchain;
 use spherecontact::fem::element::tri6::Lame;
 use spherecontact::fem::mesh::solid::SolidMesh;
 use spherecontact::fem::ordering::NodeOrder;
@@ -39,6 +38,7 @@ use spherecontact::fem::FemSolid3d;
 use spherecontact::history::{History, Quantity};
 use spherecontact::pair::{Body, ContactPair, Material};
 use spherecontact::path::LoadingPath;
+use spherecontact::toolchain::Toolchain;
 use spherecontact::{registry, solver};
 
 /// Peak resident memory of this process so far [GB] (Linux VmHWM).

@@ -15,10 +15,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use spherecontact::bench::process_cpu_seconds;
-use spherecontact::external::reap::child_cpu_seconds;
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::impact::case::ImpactCase;
 use spherecontact::impact::{cost, run};
+use spherecontact::reap::child_cpu_seconds;
+use spherecontact::toolchain::{Tool, Toolchain};
 
 /// The command line: overrides, the solvers kept (all when empty) and the case files.
 struct Args {

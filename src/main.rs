@@ -17,10 +17,10 @@ use cli::verify::{
     merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
 };
 use spherecontact::case::{limits, Case, ReadRoots};
-use spherecontact::external::geo;
 use spherecontact::external::permission::CommandPermission;
-use spherecontact::external::toolchain::Toolchain;
+use spherecontact::fem::mesh::geo;
 use spherecontact::report::history_files;
+use spherecontact::toolchain::Toolchain;
 use spherecontact::{baseline, io, plan, registry, resolution, solver, text};
 
 #[derive(Parser)]

@@ -6,10 +6,10 @@ use std::process::ExitCode;
 use spherecontact::case::Case;
 use spherecontact::case::ReadRoots;
 use spherecontact::external::permission::CommandPermission;
-use spherecontact::external::toolchain::Toolchain;
 use spherecontact::report::discretisation;
 use spherecontact::report::{history_files, summary};
 use spherecontact::schedule::Judged;
+use spherecontact::toolchain::Toolchain;
 use spherecontact::verify::CaseRun;
 use spherecontact::{baseline, merge, progress, schedule, solver};
 

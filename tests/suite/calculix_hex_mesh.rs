@@ -5,10 +5,10 @@
 //! absent). Run: `cargo test --test suite calculix_hex_mesh:: -- --nocapture` (prints the figures).
 
 use spherecontact::calculix::hex_mesh::{self, HexMesh};
-use spherecontact::external::solid_geo::{self, SolidGeometry};
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::fem::mesh::solid;
+use spherecontact::fem::mesh::solid_geo::{self, SolidGeometry};
 use spherecontact::fem::solid3d::meshing::{self, Zones};
+use spherecontact::toolchain::{Tool, Toolchain};
 use std::f64::consts::PI;
 
 fn gmsh_present(test: &str) -> bool {

@@ -11,10 +11,10 @@ use std::path::Path;
 use spherecontact::analytic::mdr::Mdr;
 use spherecontact::bem::Bem;
 use spherecontact::case::Case;
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::fem::{FemAxisym, FemSolid3d};
 use spherecontact::path::LoadingPath;
 use spherecontact::solver::{self, Solver};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 /// The paper's case with `substeps` a segment (fewer than the case's, for a fast test).
 fn paper(substeps: usize) -> spherecontact::scene::Scene {

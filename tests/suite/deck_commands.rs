@@ -11,7 +11,7 @@
 
 use std::path::Path;
 
-use spherecontact::external::toolchain::Tool;
+use spherecontact::toolchain::Tool;
 
 use crate::common::decks::these_tools_present as present;
 use crate::common::{assert_success, spherecontact, SMALL_CASE};

@@ -10,11 +10,11 @@ use crate::common;
 
 use spherecontact::dem::lammps::{Lammps, TangentialModel};
 use spherecontact::dem::yade::{Yade, YadeLaw};
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::history::History;
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 /// True when `tool` works; otherwise prints why the calling test skips.
 fn present(tool: Tool, test: &str) -> bool {

@@ -10,7 +10,6 @@
 use crate::common;
 
 use common::{identical_spheres, paper_scene_with_path};
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::fem::FemSolid3d;
 use spherecontact::history::History;
 use spherecontact::map_measure;
@@ -18,6 +17,7 @@ use spherecontact::report::claims::measure::MapMeasures;
 use spherecontact::report::claims::study;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, SolveError, Solver};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 fn gmsh_missing(test: &str) -> bool {
     let missing = Toolchain::default().require(Tool::Gmsh).is_err();

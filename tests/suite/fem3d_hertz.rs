@@ -11,11 +11,11 @@ use crate::common;
 
 use common::{identical_spheres, normal_scene};
 use spherecontact::domain::Grip;
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::fem::{FemAxisym, FemSolid3d};
 use spherecontact::history::History;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, Solver};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 /// The paper's spheres through δn = 17 and 25 µm (positions 1 and 2).
 fn paper_normal() -> Scene {

@@ -2,11 +2,11 @@
 //! needs them, on the hemisphere and on a cap; a first-order mesh is refused naming the file.
 //! Needs gmsh (skips with the reason where it is absent). Run: `cargo test --test suite fem3d_mesh::`.
 
-use spherecontact::external::solid_geo::{self, SolidGeometry};
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::fem::element::tet10::EDGES;
 use spherecontact::fem::mesh::solid::{self, SolidMesh};
+use spherecontact::fem::mesh::solid_geo::{self, SolidGeometry};
 use spherecontact::fem::solid3d::meshing::{self, Zones};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 fn gmsh_present(test: &str) -> bool {
     let probe = Toolchain::default().probe(Tool::Gmsh);

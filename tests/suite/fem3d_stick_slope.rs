@@ -3,10 +3,10 @@
 //! slope), so that fem-3d can be the same model as `ccx-3d` on the same mesh.
 
 use crate::common::paper_scene_with_path;
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::fem::FemSolid3d;
 use spherecontact::solver::{self, Solver};
 use spherecontact::stick_slope::StickSlope;
+use spherecontact::toolchain::{Tool, Toolchain};
 
 /// P and Q at the last position of fem-3d at c_max/2, its stick regularised by `factor` E/h
 /// (`None`: exact Coulomb friction).

@@ -10,12 +10,12 @@ use crate::common;
 
 use common::friction::{self, worst_q};
 use spherecontact::domain::Mesher;
-use spherecontact::external::geo;
-use spherecontact::external::toolchain::{Tool, Toolchain};
+use spherecontact::fem::mesh::geo;
 use spherecontact::fem::{FemAxisym, MdrDomain};
 use spherecontact::history::History;
 use spherecontact::scene::Scene;
 use spherecontact::solver::{run, SolveError};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 /// True when gmsh works; otherwise prints why the calling test skips.
 fn gmsh_present(test: &str) -> bool {

@@ -283,8 +283,7 @@ fn an_impact_run_shows_its_progress_in_points_and_the_same_results() {
 /// while it runs, point by point within a variant, not only when each variant's process ends.
 #[test]
 fn a_dem_codes_sweep_shows_its_progress_while_the_code_runs() {
-    let probe = spherecontact::external::toolchain::Toolchain::default()
-        .probe(spherecontact::external::toolchain::Tool::Lammps);
+    let probe = spherecontact::toolchain::Toolchain::default().probe(spherecontact::toolchain::Tool::Lammps);
     if !probe.available() {
         eprintln!("skipped: {} (run scripts/setup.sh)", probe.line());
         return;

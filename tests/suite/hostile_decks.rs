@@ -16,7 +16,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use spherecontact::external::toolchain::Tool;
+use spherecontact::toolchain::Tool;
 
 use crate::common::decks::these_tools_present as present;
 use crate::common::peak::output_and_peak;

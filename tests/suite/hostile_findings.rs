@@ -176,11 +176,8 @@ fn asking_for_too_many_positions_with_fields_is_rejected() {
 
 #[test]
 fn mesh_works_with_its_default_relative_output_folder() {
-    let gmsh = spherecontact::external::toolchain::Toolchain::default();
-    if gmsh
-        .require(spherecontact::external::toolchain::Tool::Gmsh)
-        .is_err()
-    {
+    let gmsh = spherecontact::toolchain::Toolchain::default();
+    if gmsh.require(spherecontact::toolchain::Tool::Gmsh).is_err() {
         eprintln!(
             "mesh_works_with_its_default_relative_output_folder: skipped, gmsh missing (scripts/setup.sh)"
         );

@@ -10,8 +10,8 @@ use std::os::unix::fs::symlink;
 use std::path::Path;
 use std::process::{Command, Output};
 
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::io::{OutputFolder, MARKER};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 use crate::common;
 

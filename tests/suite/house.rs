@@ -71,7 +71,7 @@ fn the_graph_reader_sees_edges_and_circles() {
     let found = circles(&edges(dir.path()));
     assert_eq!(found.len(), 2, "{found:?}");
     assert!(found[0].starts_with("a: x → y"), "{found:?}");
-    let workspace_edges = edges(&workspace().join("src"));
+    let workspace_edges = edges(&workspace().join("crates/solvers/src"));
     assert!(
         workspace_edges[&Vec::new()]["bem"].contains_key("fit"),
         "bem uses the fits: {workspace_edges:?}"
@@ -138,4 +138,40 @@ fn every_heavy_test_said_to_run_in_ci_is_in_its_list() {
         .filter(|t| !filters.iter().any(|f| t.contains(f)))
         .collect();
     assert!(missing.is_empty(), "not in .ci/run's heavy list: {missing:?}");
+}
+
+/// Requirement (issue 38): no arrow back up. The workspace lists its layer crates in the order
+/// data flows (the root `Cargo.toml`'s `members`); each crate may depend only on those before
+/// it. Cargo refuses a circle between crates; this refuses an arrow up that makes none yet.
+/// Reference: the order in the manifest. No tolerance: any dependency up is a failure.
+#[test]
+fn every_crate_depends_only_on_the_layers_before_it() {
+    let root = std::fs::read_to_string(workspace().join("Cargo.toml")).unwrap();
+    let members_line = root
+        .lines()
+        .find(|l| l.starts_with("members = ["))
+        .expect("a members line");
+    let order: Vec<&str> = members_line
+        .split('"')
+        .filter_map(|m| m.strip_prefix("crates/"))
+        .collect();
+    assert!(order.len() >= 10, "the layers: {order:?}");
+    let mut upward = Vec::new();
+    for (i, name) in order.iter().enumerate() {
+        let manifest =
+            std::fs::read_to_string(workspace().join("crates").join(name).join("Cargo.toml")).unwrap();
+        for line in manifest.lines() {
+            let Some(dep) = line
+                .split_once(" = { path = \"../")
+                .map(|(_, rest)| rest.trim_end_matches("\" }"))
+            else {
+                continue;
+            };
+            match order.iter().position(|m| *m == dep) {
+                Some(j) if j < i => {}
+                _ => upward.push(format!("{name} -> {dep}")),
+            }
+        }
+    }
+    assert!(upward.is_empty(), "dependencies up the layers: {upward:?}");
 }

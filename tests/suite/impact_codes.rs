@@ -11,7 +11,6 @@
 use crate::common::root;
 
 use spherecontact::dem::lammps::TangentialModel;
-use spherecontact::external::toolchain::{Tool, Toolchain};
 use spherecontact::impact::case::{Quantity, Variant};
 use spherecontact::impact::closed_form::HertzImpact;
 use spherecontact::impact::code_readback::{ReadbackError, Rows};
@@ -20,6 +19,7 @@ use spherecontact::impact::placement::{Placement, FLAT_RADIUS_FACTOR};
 use spherecontact::impact::run::run_solver;
 use spherecontact::impact::solver_run::SolverRun;
 use spherecontact::impact::{lammps, yade, ImpactCase};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 fn load(path: &str) -> ImpactCase {
     spherecontact::case::load_impact(&root().join(path)).unwrap_or_else(|e| panic!("{e}"))

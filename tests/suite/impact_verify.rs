@@ -13,7 +13,7 @@ use crate::common;
 
 use std::path::Path;
 
-use spherecontact::external::toolchain::Tool;
+use spherecontact::toolchain::Tool;
 
 use common::{arg as path, header, root, run_in_root as run, spherecontact, text};
 

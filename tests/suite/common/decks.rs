@@ -11,12 +11,12 @@ use spherecontact::external::axisym::AxisymSolver;
 use spherecontact::external::deck::Deck;
 use spherecontact::external::fenicsx::Fenicsx;
 use spherecontact::external::freefem::FreeFem;
-use spherecontact::external::geo::MeshFiles;
-use spherecontact::external::toolchain::{Tool, Toolchain};
+use spherecontact::fem::mesh::geo::MeshFiles;
 use spherecontact::history::History;
 use spherecontact::path::{LoadingPath, Position};
 use spherecontact::scene::Scene;
 use spherecontact::solver::{self, Solver};
+use spherecontact::toolchain::{Tool, Toolchain};
 
 /// A check that any P at every position passes (tolerance 1: 100 %): what is left to judge is
 /// whether the solver gave a history at all (NOOK for a failure, N/A when not installed).

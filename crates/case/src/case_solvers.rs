@@ -1,0 +1,233 @@
+//! Solvers a case defines itself: a program run as a solver (`[[command_solvers]]`) and results
+//! computed elsewhere (`[[stored_results]]`).
+//!
+//! ```toml
+//! [[command_solvers]]
+//! name = "hertz-python"                 # a plain name (letters, digits, . _ -), not a built-in's
+//! command = ["python3", "{case_dir}/../examples/hertz_command_solver.py", "{scene}"]
+//! timeout = 60                          # s, optional (default 600), 0 < t ≤ 86400
+//! description = "…"                     # optional
+//!
+//! [[stored_results]]
+//! name = "lab-rig"
+//! file = "data/lab-rig.csv"             # a History CSV, relative to the case file, inside
+//!                                       # its tree (`super::reads`), at most 256 MiB
+//! description = "…"                     # optional
+//! ```
+//! Both formats (the scene file a command reads, the History CSV it writes and a stored file
+//! holds) are in `spherecontact_external::exchange` and the README ("Check your own solver"). A stored file is
+//! validated against the path here, when the case is read.
+
+use std::path::Path;
+use std::time::Duration;
+
+use toml::Spanned;
+
+use super::raw::{RawCommandSolver, RawStoredResults};
+use crate::registry;
+use crate::{Case, CaseError, Validator};
+use spherecontact_external::command::CommandSolver;
+use spherecontact_external::exchange::results_csv;
+use spherecontact_external::permission::CommandPermission;
+use spherecontact_external::stored::StoredResults;
+use spherecontact_model::path::LoadingPath;
+use spherecontact_model::solver::Solver;
+
+/// A command's time limit when the case gives none [s].
+pub const DEFAULT_TIMEOUT_S: f64 = 600.0;
+
+/// The longest time limit a case may give a command [s]: one day.
+pub const MAX_TIMEOUT_S: f64 = 86_400.0;
+
+/// The longest solver name (it names output files).
+const MAX_NAME: usize = 64;
+
+/// A solver defined by the case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CaseSolver {
+    /// A program run as a solver.
+    Command(CommandSolver),
+    /// Results stored in a file.
+    Stored(StoredResults),
+}
+
+impl CaseSolver {
+    /// The solver.
+    pub fn solver(&self) -> Box<dyn Solver> {
+        match self {
+            CaseSolver::Command(s) => Box::new(s.clone()),
+            CaseSolver::Stored(s) => Box::new(s.clone()),
+        }
+    }
+
+    /// Its name.
+    pub fn name(&self) -> &str {
+        match self {
+            CaseSolver::Command(s) => &s.name,
+            CaseSolver::Stored(s) => &s.name,
+        }
+    }
+}
+
+impl Case {
+    /// Lets the case's command solvers run under `permission` (they are refused until then).
+    pub fn permit_commands(&mut self, permission: &CommandPermission) {
+        for solver in &mut self.own_solvers {
+            if let CaseSolver::Command(command) = solver {
+                command.permission = permission.clone();
+            }
+        }
+    }
+
+    /// The case's command solvers that a run of the case needs (its list and its checks'), each
+    /// with the command it would run ([`CommandSolver::shown`]).
+    pub fn commands(&self) -> Vec<&CommandSolver> {
+        let needed = self.required_solvers();
+        self.own_solvers
+            .iter()
+            .filter_map(|s| match s {
+                CaseSolver::Command(c) if needed.contains(&c.name) => Some(c),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Lines that say which commands a run of the case would run and whether they may: for
+    /// `verify`, `list` and `doctor`; none for a case without command solvers.
+    pub fn command_lines(&self) -> Vec<String> {
+        let commands = self.commands();
+        let Some(first) = commands.first() else {
+            return Vec::new();
+        };
+        let mut lines = vec![format!(
+            "{}: command solvers {}",
+            self.name(),
+            first.permission.state()
+        )];
+        let runs = if first.permission.is_allowed() {
+            "runs"
+        } else {
+            "would run"
+        };
+        lines.extend(commands.iter().map(|c| {
+            format!(
+                "  {} {runs} (timeout {} s): {}",
+                c.name,
+                c.timeout.as_secs_f64(),
+                c.shown()
+            )
+        }));
+        lines
+    }
+}
+
+impl Validator<'_> {
+    /// The case's own solvers, their names checked against each other and the registry.
+    pub(super) fn case_solvers(
+        &self,
+        commands: &[RawCommandSolver],
+        stored: &[RawStoredResults],
+        path: &LoadingPath,
+    ) -> Result<Vec<CaseSolver>, CaseError> {
+        let mut solvers: Vec<CaseSolver> = Vec::new();
+        for (i, raw) in commands.iter().enumerate() {
+            let field = format!("command_solvers[{i}]");
+            self.new_name(&raw.name, &field, &solvers)?;
+            solvers.push(CaseSolver::Command(self.command_solver(raw, &field)?));
+        }
+        for (i, raw) in stored.iter().enumerate() {
+            let field = format!("stored_results[{i}]");
+            self.new_name(&raw.name, &field, &solvers)?;
+            solvers.push(CaseSolver::Stored(self.stored_results(raw, &field, path)?));
+        }
+        Ok(solvers)
+    }
+
+    /// Checks that `name` is a plain name that no built-in or earlier case solver has.
+    fn new_name(&self, name: &Spanned<String>, field: &str, earlier: &[CaseSolver]) -> Result<(), CaseError> {
+        let text = name.get_ref();
+        let plain = !text.is_empty()
+            && text.len() <= MAX_NAME
+            && text
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-'))
+            && text.starts_with(|c: char| c.is_ascii_alphanumeric());
+        let field = format!("{field}.name");
+        if !plain {
+            return Err(self.error(
+                name,
+                field,
+                format!("`{text}` is not a plain name (allowed: 1 to {MAX_NAME} ASCII letters, digits, . _ -, starting with a letter or digit)"),
+            ));
+        }
+        if registry::by_name(text).is_some() || earlier.iter().any(|s| s.name() == text) {
+            return Err(self.error(
+                name,
+                field,
+                format!("`{text}` is already a solver's name (allowed: a new name)"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn command_solver(&self, raw: &RawCommandSolver, field: &str) -> Result<CommandSolver, CaseError> {
+        let command = raw.command.get_ref();
+        if command.first().is_none_or(|p| p.trim().is_empty()) {
+            return Err(self.error(
+                &raw.command,
+                format!("{field}.command"),
+                "no program (allowed: [\"PROGRAM\", \"ARGUMENT\", …])",
+            ));
+        }
+        let timeout = match &raw.timeout {
+            Some(t) => self.number(
+                t,
+                &format!("{field}.timeout"),
+                |t| t > 0.0 && t <= MAX_TIMEOUT_S,
+                "0 < timeout ≤ 86400 s",
+            )?,
+            None => DEFAULT_TIMEOUT_S,
+        };
+        Ok(CommandSolver {
+            name: raw.name.get_ref().clone(),
+            command: command.clone(),
+            timeout: Duration::from_secs_f64(timeout),
+            case_dir: self.case_dir().to_path_buf(),
+            description: raw
+                .description
+                .clone()
+                .unwrap_or_else(|| format!("command: {}", command.join(" "))),
+            permission: CommandPermission::refused(),
+        })
+    }
+
+    fn stored_results(
+        &self,
+        raw: &RawStoredResults,
+        field: &str,
+        path: &LoadingPath,
+    ) -> Result<StoredResults, CaseError> {
+        let field = format!("{field}.file");
+        let file = self
+            .tree
+            .resolve(raw.file.get_ref())
+            .map_err(|e| self.error(&raw.file, &field, format!("stored results {e}")))?;
+        results_csv::read(&file, &path.steps()).map_err(|e| self.error(&raw.file, field, e.to_string()))?;
+        Ok(StoredResults {
+            name: raw.name.get_ref().clone(),
+            file,
+            description: raw
+                .description
+                .clone()
+                .unwrap_or_else(|| format!("stored results {}", raw.file.get_ref())),
+        })
+    }
+
+    /// The case file's folder, against which its relative paths resolve.
+    fn case_dir(&self) -> &Path {
+        match self.file.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        }
+    }
+}
