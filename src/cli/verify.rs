@@ -303,7 +303,7 @@ pub(crate) fn merge_runs(
     let merged = merge::merge(dirs, roots)?;
     let baselines = baseline::load_all(baselines, &merged.plan.cases)?;
     for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
-        // The folder's name and the run file's shard field as text (src/text.rs): one line each.
+        // The folder's name and the run file's shard field as text (crates/system/src/text.rs): one line each.
         let shard = one_line(shard.as_deref().unwrap_or("whole"));
         let dir = dir.display().to_string();
         eprintln!(

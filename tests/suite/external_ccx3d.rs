@@ -397,7 +397,7 @@ fn ccx_3d_on_the_ci_case_agrees_with_fem_3d_on_the_same_mesh() {
     assert!((p / p_fem - 1.0).abs() < 3e-3, "P {p} against {p_fem}");
     assert!((q / q_fem - 1.0).abs() < 2.5e-2, "Q {q} against {q_fem}");
     // Requirement: the map carries the reaction. Its pressure field is the contact's nodal
-    // forces recovered from the displacements (src/calculix/nodal_forces.rs), so its integral
+    // forces recovered from the displacements (crates/external/src/calculix/nodal_forces.rs), so its integral
     // ∫ p_h dA = Σ ω_j p_j over the whole surface is P from the far face, and ∫ q_x dA is Q, to
     // the `.frd`'s 6 digits of displacement. Reference: P and Q from job.dat (7 digits);
     // tolerance 1e-4, the displacements' last digit carried into the strains (measured −7.5e-7

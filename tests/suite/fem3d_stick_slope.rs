@@ -1,4 +1,4 @@
-//! `fem-3d` with a regularised stick (`[fem-3d] stick_slope`, src/stick_slope.rs):
+//! `fem-3d` with a regularised stick (`[fem-3d] stick_slope`, crates/model/src/stick_slope.rs):
 //! the elastic slip q/λ before sliding that penalty codes' friction has (CalculiX's stick
 //! slope), so that fem-3d can be the same model as `ccx-3d` on the same mesh.
 

@@ -35,7 +35,7 @@ fn rejects_text_that_is_not_msh() {
 }
 
 /// A gmsh 4.8.4 mesh of the paper's hemisphere, written from
-/// the `.geo` of `src/external/geo.rs` (the external decks' geometry) by
+/// the `.geo` of `crates/solvers/src/fem/mesh/geo.rs` (the external decks' geometry) by
 /// `gmsh axisym_quarter.geo -2 -setnumber hmin 1.5e-4 -setnumber hmax 2e-2 -setnumber dfine 1.3e-3
 /// -setnumber dcoarse 0.05 -format msh41`: pole size 150 µm, 6-node triangles.
 const GMSH_SPHERE: &str = "tests/data/sphere_gmsh_h150um.msh";

@@ -364,7 +364,7 @@ fn assert_masked_bounded_and_escaped(texts: &[(String, String)], masked: &[&str]
         for (name, value) in [PASSED, TOKEN] {
             assert!(!text.contains(value), "{what} publishes {name}:\n{text}");
             let marker = format!("[masked: {name}]");
-            // Markdown shows the mask as text: its brackets escaped (src/text/markdown.rs).
+            // Markdown shows the mask as text: its brackets escaped (crates/system/src/text/markdown.rs).
             let shown = spherecontact::text::markdown(&marker);
             let expected = masked.contains(&what.as_str());
             assert!(

@@ -1,7 +1,7 @@
 //! Deck folders are foreign input (issue 42): what `deck read` reads from a folder that came back
 //! from a cluster or a colleague goes through the one reader of files from elsewhere
 //! (`input::foreign`): a regular file, a symbolic link followed only inside its own folder, a size
-//! limit per file (`src/limits.rs`), and messages that name the file, the line and the column and
+//! limit per file (`crates/model/src/limits.rs`), and messages that name the file, the line and the column and
 //! never quote the file. One test per finding, each failing before its fix; the rules:
 //! docs/security.md, "Files from elsewhere", "Deck folders".
 //!

@@ -294,7 +294,7 @@ fn control_characters_never_reach_the_terminal_or_the_reports() {
 }
 
 /// Requirement: `merge` shows a run folder's name and the run file's fields (`shard`, a run's
-/// `solver` in an error) with their control characters escaped (src/text.rs), on one line: none
+/// `solver` in an error) with their control characters escaped (crates/system/src/text.rs), on one line: none
 /// can redraw the terminal nor forge a line.
 #[test]
 fn merge_escapes_the_control_characters_of_folder_names_and_shard_fields() {

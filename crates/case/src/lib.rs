@@ -59,17 +59,17 @@
 //!                                       # peak_pressure, stick_radius; or a profile at one
 //!                                       # position against another solver's: pressure_profile,
 //!                                       # traction_profile (RMS over 0.1c < r < 0.9c,
-//!                                       # error = "relative-to-peak", src/profile.rs);
+//!                                       # error = "relative-to-peak", crates/solvers/src/profile.rs);
 //!                                       # or a map's measure at positions (not every-step):
 //!                                       # transverse_ratio, stick_semi_axis_x,
-//!                                       # stick_semi_axis_y (src/map_measure.rs)
+//!                                       # stick_semi_axis_y (crates/solvers/src/map_measure.rs)
 //! at = "every-step"                     # "every-position", { position = 2 }, { positions = [1, 2] }
 //! reference = { solver = "hertz" }      # or { file = "../reference/x.toml", key = "…" }
 //! error = "relative"                    # "relative-to-peak", "absolute"
 //! tolerance = 1e-6
 //! reason = "why this tolerance"         # required unless informational = true
 //! known_failure = "evidence …"          # optional: a code's shown defect (KNOWN, FIXED?)
-//! abs_zero = 1e-10                      # optional, SI: below it a value is zero (src/check.rs)
+//! abs_zero = 1e-10                      # optional, SI: below it a value is zero (crates/check/src/lib.rs)
 //! ```
 //!
 //! A case may also define solvers of its own: a program run as a solver (`[[command_solvers]]`)

@@ -87,9 +87,9 @@ pub const AXISYMMETRIC_ELEMENT: &str = "CAX6";
 /// The mesh a 3D element needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MeshKind {
-    /// gmsh's quadratic tetrahedra (`src/external/solid_geo.rs`, as fem-3d).
+    /// gmsh's quadratic tetrahedra (`crates/solvers/src/fem/mesh/solid_geo.rs`, as fem-3d).
     Tet10,
-    /// 20-node hexahedra of the same body (`src/calculix/hex_mesh.rs`).
+    /// 20-node hexahedra of the same body (`crates/external/src/calculix/hex_mesh.rs`).
     Hex20,
 }
 

@@ -25,7 +25,7 @@
 //!   slide cannot be shifted.
 //!
 //! - `mesher`: who meshes the meridian of the axisymmetric FEM solvers. The external decks always
-//!   mesh with gmsh from the `.geo` that `spherecontact mesh` writes (`src/external/geo.rs`);
+//!   mesh with gmsh from the `.geo` that `spherecontact mesh` writes (`crates/solvers/src/fem/mesh/geo.rs`);
 //!   `fem-axisym` by default generates its own graded mesh in-crate (no external tool, fast,
 //!   the same numbers on every machine). With `mesher = "gmsh"` it meshes the same `.geo` at its
 //!   pole size with the same gmsh, so that every axisymmetric FEM solver of the case — fem-axisym,

@@ -420,7 +420,7 @@ impl Baseline {
             "{HEADER}{}`: each check's computed value when last accepted,\n\
              # with each solver's version, resolution and wall time. Written by\n\
              # `spherecontact baseline update`; `verify` reports a change beyond the solvers'\n\
-             # tolerance as DRIFT (src/baseline.rs).\ncase = {}\n",
+             # tolerance as DRIFT (crates/verify/src/baseline.rs).\ncase = {}\n",
             self.case,
             string(&self.case)
         );

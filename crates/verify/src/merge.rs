@@ -69,7 +69,7 @@ pub enum MergeError {
     Plan(#[from] PlanError),
 }
 
-/// A case file's name as a run file records it, on one line (src/text.rs).
+/// A case file's name as a run file records it, on one line (crates/system/src/text.rs).
 fn shown(case: &Path) -> String {
     one_line(&case.display().to_string()).into_owned()
 }

@@ -13,7 +13,7 @@ the sphere, y >= 0, is modelled with u_y = 0 on the plane y = 0. Units mm, N, MP
   tangential:  Coulomb's law with history on the contact surface (the disc |q| <= mu p), with p
                from the normal problem: stick is a penalty k on the displacement (u_x, u_y) since
                the last slip s; slip carries |T| = mu p along the trial traction.
-Contact rule (fem-3d's default, Rule::Corners in src/fem/solid3d/surface.rs): the multipliers
+Contact rule (fem-3d's default, Rule::Corners in crates/solvers/src/fem/solid3d/surface.rs): the multipliers
 live at the corners of the 6-node contact triangles and are linear on each face (hats L_j). Corner
 j's multiplier lambda_j = om_j p_j, om_j = int L_j dA > 0 (A/3 of each face's area A around it),
 acts on the body as the DOF forces A^T lambda and sees the averaged displacement A u,

@@ -1,4 +1,4 @@
-# ---- the block both dolfinx decks share (src/external/templates/fenicsx_common.py) ----------------
+# ---- the block both dolfinx decks share (crates/external/src/templates/fenicsx_common.py) ----------------
 import csv
 import time
 

@@ -1,7 +1,7 @@
 //! A validated impact case: two bodies (or a sphere and a rigid flat) with masses, initial
 //! velocities and spins, friction, an optional prescribed restitution, a sweep of one initial
 //! condition, the solvers to run and the checks to judge. Read and validated by
-//! `load_impact` (spherecontact-case) (`src/case/impact_rules.rs`), like every case field.
+//! `load_impact` (spherecontact-case) (`crates/case/src/impact_rules.rs`), like every case field.
 //!
 //! Axes (docs/impact.md): the motion lies in the x–z plane; z is the contact normal, pointing
 //! from body 2 into body 1 (body 1 is "above"); x is the tangential direction. A spin ω is about

@@ -1,4 +1,4 @@
-# Written before every YADE script by spherecontact (src/dem/yade.rs, `job`): a run leaves nothing
+# Written before every YADE script by spherecontact (crates/external/src/dem/yade.rs, `job`): a run leaves nothing
 # outside its own run folder. YADE makes its temporary folder /tmp/yade-XXXXXX as it starts (the
 # name is fixed in its Omega: TMPDIR is not read) and, run with -x, never removes it; the scripts
 # never use it (no O.tmpFilename() file), so it goes first. Only an empty folder yade-… is removed.

@@ -1,7 +1,7 @@
 //! Reading a body's meridian mesh from a gmsh MSH 4.1 file (ASCII or binary, via `mshio`), so
 //! that the same mesh feeds this solver and the external decks.
 //!
-//! Conventions (those of the `.geo` that `spherecontact mesh` writes, `src/external/geo.rs`): x = r, y = z, the body
+//! Conventions (those of the `.geo` that `spherecontact mesh` writes, `crates/solvers/src/fem/mesh/geo.rs`): x = r, y = z, the body
 //! touching the plane z = 0 at its pole; 6-node triangles (gmsh type 9, `Mesh.ElementOrder = 2`);
 //! 3-node lines (type 8) in physical curves [`CONTACT`], [`AXIS`] (r = 0) and the far face:
 //! [`FAR`] under the axial grip (displaced along z, free radially) or [`FAR_RIGID`] under the

@@ -1,7 +1,7 @@
 //! The 3D mesh of one body: 10-node tetrahedra and the 6-node faces of its boundary groups, read
 //! from a gmsh MSH 4.1 file (ASCII or binary) through `mshio`.
 //!
-//! Frame and conventions (those of the `.geo` that `src/external/solid_geo.rs` writes): the body
+//! Frame and conventions (those of the `.geo` that `crates/solvers/src/fem/mesh/solid_geo.rs` writes): the body
 //! touches the contact plane z = 0 at its pole (the origin) and lies in z ≥ 0; the shift is along
 //! x and the half body y ≥ 0 is meshed. Physical groups: surface [`CONTACT`] (the contact
 //! candidate surface), surface [`FAR`] (the gripped far face), surface [`SYMMETRY`] (the plane

@@ -4,7 +4,7 @@
 //! Model: body 1, radius R, centre (0, 0, R), touching the plane z = 0 at the pole (the origin);
 //! the part 0 ≤ z ≤ H (H = R: the hemisphere; H < R: a cap cut at that distance from the pole)
 //! and y ≥ 0 (the plane y = 0 contains the shift along x and is a plane of symmetry). Physical
-//! groups, as `src/fem/mesh/solid.rs` reads them: surface 1 the spherical surface (contact
+//! groups, as `crates/solvers/src/fem/mesh/solid.rs` reads them: surface 1 the spherical surface (contact
 //! candidate), surface 2 the flat far face z = H (gripped), surface 3 the symmetry plane y = 0,
 //! volume 10 the body.
 //!
