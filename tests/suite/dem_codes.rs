@@ -178,6 +178,7 @@ fn yade_mindlin_deresiewitz_gives_no_tangential_force() {
 /// `/tmp/yade-XXXXXX` (one was left by every run), nothing in HOME (its IPython's `~/.ipython/`)
 /// or in TMPDIR.
 #[test]
+#[ignore = "heavy: a YADE run, 10 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn a_yade_path_run_leaves_nothing_behind() {
     if present(Tool::Yade, "a_yade_path_run_leaves_nothing_behind") {
         common::leftovers::assert_run_leaves_nothing(common::SMALL_CASE, "yade-mindlin");
@@ -203,6 +204,7 @@ fn missing_codes_are_not_available_and_a_flat_is_not_applicable() {
 }
 
 #[test]
+#[ignore = "heavy: LAMMPS and YADE along the paper path, 7 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn the_scoreboard_measures_what_the_informational_checks_measure() {
     use spherecontact::check::Reference;
     use spherecontact::report::dem_scoreboard;

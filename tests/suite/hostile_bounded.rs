@@ -282,6 +282,7 @@ fn an_impact_run_shows_its_progress_in_points_and_the_same_results() {
 /// Requirement: a DEM code that runs a whole sweep in one process (LAMMPS) shows its progress
 /// while it runs, point by point within a variant, not only when each variant's process ends.
 #[test]
+#[ignore = "heavy: a LAMMPS impact sweep, 5 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn a_dem_codes_sweep_shows_its_progress_while_the_code_runs() {
     let probe = spherecontact::toolchain::Toolchain::default().probe(spherecontact::toolchain::Tool::Lammps);
     if !probe.available() {

@@ -265,6 +265,7 @@ fn result_files_linked_out_of_the_folder_are_refused_without_echo() {
 /// Finding: a FIFO as `steps.csv`, `timing.csv` or ccx's `deck.stdout` blocked `deck read` for
 /// ever. Each (and every other result file) fails at once, saying it is a FIFO.
 #[test]
+#[ignore = "heavy: a 3D FEniCSx and a ccx-axisym deck folder written (gmsh), 5 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn a_fifo_as_a_result_file_fails_at_once_naming_it() {
     let Some(folder) = Folder::fenicsx_3d() else {
         return;
@@ -364,6 +365,7 @@ fn a_bad_cell_is_named_by_file_line_and_column_never_by_its_value() {
 /// through a link), is refused before meshio opens it: the targets are FIFOs, which meshio would
 /// block on.
 #[test]
+#[ignore = "heavy: a freefem-axisym deck folder written (gmsh), its field files read by meshio under python3, 11 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn a_field_file_leading_out_of_the_folder_is_refused_before_meshio_opens_it() {
     let Some(folder) = Folder::freefem_axisym() else {
         return;
@@ -399,6 +401,7 @@ fn a_field_file_leading_out_of_the_folder_is_refused_before_meshio_opens_it() {
 /// ("Unknown XDMF version …", "Expected type UnstructuredGrid, found …"). A field file meshio
 /// refuses is named, with what was expected, and nothing meshio said about its content.
 #[test]
+#[ignore = "heavy: a freefem-axisym deck folder written (gmsh), a field file read by meshio under python3, 8 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn meshio_s_words_about_a_field_file_are_not_shown() {
     let Some(folder) = Folder::freefem_axisym() else {
         return;
@@ -425,6 +428,7 @@ fn meshio_s_words_about_a_field_file_are_not_shown() {
 /// printed a hex dump of the file from the fault on. A mesh file that is a FIFO fails at once; a
 /// garbage one is named with the line of the fault, no byte of it shown.
 #[test]
+#[ignore = "heavy: a ccx-axisym deck folder written (gmsh), 7 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn a_mesh_file_is_read_as_foreign_input() {
     let Some(folder) = Folder::ccx_axisym() else {
         return;

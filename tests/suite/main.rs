@@ -34,6 +34,7 @@ mod fem_gmsh_mesh;
 mod fem_hard_cases;
 mod fem_hertz;
 mod fem_msh;
+mod fft_plans;
 mod fuzz_case;
 mod hostile_baselines;
 mod hostile_bounded;
