@@ -22,6 +22,7 @@ pub mod judged;
 
 mod drift;
 mod measure;
+pub mod row;
 
 use serde::Serialize;
 use std::collections::BTreeMap;

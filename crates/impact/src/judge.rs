@@ -200,18 +200,12 @@ pub fn outcome_row(case: &str, outcome: &CheckOutcome) -> String {
             if check.relative { "relative" } else { "absolute" }
         );
     }
-    match check.tolerance {
-        Some(t) => {
-            let _ = write!(row, " | tol {}", format_value(Some(t)));
-        }
-        None => row.push_str(" | informational"),
-    }
-    if let Some(drift) = &outcome.drift {
-        row.push_str(&drift.cell());
-    }
-    if let Some(message) = &outcome.message {
-        let _ = write!(row, " | {message}");
-    }
+    spherecontact_check::row::push_judgement(
+        &mut row,
+        check.tolerance,
+        outcome.drift.as_ref(),
+        outcome.message.as_deref(),
+    );
     let _ = write!(row, " | {}", check.reason);
     spherecontact_system::text::one_line(&row).into_owned()
 }

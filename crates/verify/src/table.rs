@@ -32,18 +32,12 @@ pub fn outcome_row(case: &str, outcome: &Outcome) -> String {
         format_value(outcome.error),
         spec.measure.name(),
     );
-    match spec.tolerance {
-        Some(t) => {
-            let _ = write!(row, " | tol {}", format_value(Some(t)));
-        }
-        None => row.push_str(" | informational"),
-    }
-    if let Some(drift) = &outcome.drift {
-        row.push_str(&drift.cell());
-    }
-    if let Some(message) = &outcome.message {
-        let _ = write!(row, " | {message}");
-    }
+    spherecontact_check::row::push_judgement(
+        &mut row,
+        spec.tolerance,
+        outcome.drift.as_ref(),
+        outcome.message.as_deref(),
+    );
     if !spec.reason.is_empty() {
         let _ = write!(row, " | {}", spec.reason);
     }
