@@ -27,7 +27,7 @@
 //!
 //! ```
 //! use faer::Mat;
-//! use spherecontact::contact::{Contact, DenseCompliance, FrictionSet, Settings};
+//! use spherecontact_contact::{Contact, DenseCompliance, FrictionSet, Settings};
 //!
 //! // Two independent springs of compliance 1 m/N (normal) and 2 m/N (tangential), the second
 //! // point 1 m further away.
