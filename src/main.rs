@@ -536,7 +536,8 @@ fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
         .max()
         .unwrap_or(0);
     for solver in solvers {
-        println!("  {:<width$} {}", solver.name(), solver.description());
+        let kind = solver.kind().to_string();
+        println!("  {:<width$} {kind:<17} {}", solver.name(), solver.description());
     }
     println!("cases:");
     for file in spherecontact::case::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {

@@ -29,6 +29,7 @@ delta_t = [0, 0, 2]
 substeps = 5
 [[command_solvers]]
 name = "mine"
+kind = "analytic"
 command = {command}
 timeout = {timeout}
 [[checks]]
@@ -179,8 +180,8 @@ fn stored_case(dir: &Path, csv: &str) -> Result<Case, String> {
     let text = case_text(r#"["true"]"#, 1.0)
         .replace("\"mine\"", "\"stored\"")
         .replace(
-            "[[command_solvers]]\nname = \"stored\"\ncommand = [\"true\"]\ntimeout = 1\n",
-            "[[stored_results]]\nname = \"stored\"\nfile = \"stored.csv\"\n",
+            "[[command_solvers]]\nname = \"stored\"\nkind = \"analytic\"\ncommand = [\"true\"]\ntimeout = 1\n",
+            "[[stored_results]]\nname = \"stored\"\nkind = \"analytic\"\nfile = \"stored.csv\"\n",
         )
         .replace("tolerance = 1e-14", "tolerance = 1e-10");
     let file = dir.join("case.toml");

@@ -137,7 +137,7 @@ fn stored_results_are_read(work: &Path, case_text: &str, solver: &str) {
     let start = case_text.find("solvers = ").unwrap();
     let end = start + case_text[start..].find('\n').unwrap();
     let stored = format!(
-        "{}solvers = [\"deck-read\"]{}\n[[stored_results]]\nname = \"deck-read\"\nfile = \"read/{solver}.csv\"\n",
+        "{}solvers = [\"deck-read\"]{}\n[[stored_results]]\nname = \"deck-read\"\nkind = \"fe\"\nfile = \"read/{solver}.csv\"\n",
         &case_text[..start],
         &case_text[end..]
     );

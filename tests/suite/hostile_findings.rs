@@ -13,7 +13,7 @@ use spherecontact::case::{Case, MAX_FIELD_POSITIONS};
 use spherecontact::history::History;
 use spherecontact::registry;
 use spherecontact::scene::Scene;
-use spherecontact::solver::{self, SolveError, Solver};
+use spherecontact::solver::{self, Kind, SolveError, Solver};
 
 /// A valid case; each test changes one thing.
 const VALID: &str = common::SMALL_CASE;
@@ -65,6 +65,10 @@ struct Panicking;
 impl Solver for Panicking {
     fn name(&self) -> &'static str {
         "panicking"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::Analytic
     }
     fn description(&self) -> &'static str {
         "panics"
@@ -235,6 +239,10 @@ struct InfinitePath;
 impl Solver for InfinitePath {
     fn name(&self) -> &'static str {
         "infinite-path"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::Analytic
     }
     fn description(&self) -> &'static str {
         "writes δt = inf"

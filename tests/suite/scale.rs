@@ -200,6 +200,7 @@ fn perturbable_case(dir: &Path) {
         r#"
 [[command_solvers]]
 name = "py"
+kind = "analytic"
 command = ["python3", "{case_dir}/solver.py", "{scene}", "{case_dir}/factor"]
 
 [[checks]]

@@ -31,7 +31,7 @@ use spherecontact_external::exchange::results_csv;
 use spherecontact_external::permission::CommandPermission;
 use spherecontact_external::stored::StoredResults;
 use spherecontact_model::path::LoadingPath;
-use spherecontact_model::solver::Solver;
+use spherecontact_model::solver::{Kind, Solver};
 
 /// A command's time limit when the case gives none [s].
 pub const DEFAULT_TIMEOUT_S: f64 = 600.0;
@@ -67,9 +67,49 @@ impl CaseSolver {
             CaseSolver::Stored(s) => &s.name,
         }
     }
+
+    /// The kind of model it is, as the case says.
+    pub fn kind(&self) -> Kind {
+        match self {
+            CaseSolver::Command(s) => s.kind,
+            CaseSolver::Stored(s) => s.kind,
+        }
+    }
+
+    /// How it gives its results, in words: "a program" or "stored results".
+    pub fn origin(&self) -> &'static str {
+        match self {
+            CaseSolver::Command(_) => "a program",
+            CaseSolver::Stored(_) => "stored results",
+        }
+    }
 }
 
 impl Case {
+    /// The kind of model the solver `name` is: a case's own solver's as the case says, a built-in
+    /// solver's its own; `None` for a name this build and the case do not know.
+    pub fn solver_kind(&self, name: &str) -> Option<Kind> {
+        match self.own_solver(name) {
+            Some(own) => Some(own.kind()),
+            None => registry::by_name(name).map(|s| s.kind()),
+        }
+    }
+
+    /// The kind of the solver `name` in words, for tables: "DEM law", "finite elements", or for
+    /// the case's own solvers "DEM law, yours (a program)"; "unknown" for a name nobody knows.
+    pub fn kind_in_words(&self, name: &str) -> String {
+        match (self.solver_kind(name), self.own_solver(name)) {
+            (Some(kind), Some(own)) => format!("{kind}, yours ({})", own.origin()),
+            (Some(kind), None) => kind.to_string(),
+            (None, _) => "unknown".to_owned(),
+        }
+    }
+
+    /// The case's own solver called `name`, if it defines one.
+    pub fn own_solver(&self, name: &str) -> Option<&CaseSolver> {
+        self.own_solvers.iter().find(|s| s.name() == name)
+    }
+
     /// Lets the case's command solvers run under `permission` (they are refused until then).
     pub fn permit_commands(&mut self, permission: &CommandPermission) {
         for solver in &mut self.own_solvers {
@@ -197,7 +237,23 @@ impl Validator<'_> {
                 .description
                 .clone()
                 .unwrap_or_else(|| format!("command: {}", command.join(" "))),
+            kind: self.solver_kind(&raw.kind, field)?,
             permission: CommandPermission::refused(),
+        })
+    }
+
+    /// The kind of model a case's own solver is (`kind = "dem-law"`, …).
+    pub(super) fn solver_kind(&self, raw: &Spanned<String>, field: &str) -> Result<Kind, CaseError> {
+        Kind::from_name(raw.get_ref()).ok_or_else(|| {
+            self.error(
+                raw,
+                format!("{field}.kind"),
+                format!(
+                    "`{}` is not a kind of model (allowed: {}: an analytic model, a DEM law, a DEM code, finite or boundary elements)",
+                    raw.get_ref(),
+                    Kind::allowed()
+                ),
+            )
         })
     }
 
@@ -207,12 +263,13 @@ impl Validator<'_> {
         field: &str,
         path: &LoadingPath,
     ) -> Result<StoredResults, CaseError> {
-        let field = format!("{field}.file");
+        let file_field = format!("{field}.file");
         let file = self
             .tree
             .resolve(raw.file.get_ref())
-            .map_err(|e| self.error(&raw.file, &field, format!("stored results {e}")))?;
-        results_csv::read(&file, &path.steps()).map_err(|e| self.error(&raw.file, field, e.to_string()))?;
+            .map_err(|e| self.error(&raw.file, &file_field, format!("stored results {e}")))?;
+        results_csv::read(&file, &path.steps())
+            .map_err(|e| self.error(&raw.file, file_field, e.to_string()))?;
         Ok(StoredResults {
             name: raw.name.get_ref().clone(),
             file,
@@ -220,6 +277,7 @@ impl Validator<'_> {
                 .description
                 .clone()
                 .unwrap_or_else(|| format!("stored results {}", raw.file.get_ref())),
+            kind: self.solver_kind(&raw.kind, field)?,
         })
     }
 

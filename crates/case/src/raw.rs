@@ -42,6 +42,7 @@ pub struct RawCommandSolver {
     pub name: Spanned<String>,
     pub command: Spanned<Vec<String>>,
     pub timeout: Option<Spanned<f64>>,
+    pub kind: Spanned<String>,
     pub description: Option<String>,
 }
 
@@ -51,6 +52,7 @@ pub struct RawCommandSolver {
 pub struct RawStoredResults {
     pub name: Spanned<String>,
     pub file: Spanned<String>,
+    pub kind: Spanned<String>,
     pub description: Option<String>,
 }
 

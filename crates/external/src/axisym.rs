@@ -28,6 +28,7 @@ use spherecontact_model::limits::{MAX_DECK_CLOCK_BYTES, MAX_DECK_TABLE_BYTES, ME
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::split::{DeckCommand, SplitDeck};
+use spherecontact_model::solver::Kind;
 use spherecontact_model::solver::{SolveError, Solver};
 use spherecontact_solvers::fem::mesh::geo::{self, MeshFiles};
 use spherecontact_system::toolchain::{Tool, Toolchain};
@@ -73,6 +74,10 @@ pub const LADDER: [f64; 4] = [1.0 / 10.0, 1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0];
 impl<D: Deck<Mesh = MeshFiles> + 'static> Solver for AxisymSolver<D> {
     fn name(&self) -> &'static str {
         self.deck.name()
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::FiniteElement
     }
 
     /// A pole element size: `c/N` or a length, within [`MERIDIAN_POLE`].

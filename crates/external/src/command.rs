@@ -33,7 +33,7 @@ use crate::exchange::{results_csv, scene_file};
 use spherecontact_model::history::{History, Metadata, StepResult};
 use spherecontact_model::limits::{MAX_HISTORY_BYTES, MAX_METADATA_BYTES, MAX_SHOWN_LINES};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 use spherecontact_system::excerpt;
 use spherecontact_system::input::{self, Links};
 use spherecontact_system::mask::Mask;
@@ -85,6 +85,8 @@ pub struct CommandSolver {
     pub case_dir: PathBuf,
     /// The description shown by `list` and in reports.
     pub description: String,
+    /// The kind of model the program is, as the case says.
+    pub kind: Kind,
     /// Whether it may run ([`CommandPermission::refused`] until the command line says so).
     pub permission: CommandPermission,
 }
@@ -92,6 +94,10 @@ pub struct CommandSolver {
 impl Solver for CommandSolver {
     fn name(&self) -> &str {
         &self.name
+    }
+
+    fn kind(&self) -> Kind {
+        self.kind
     }
 
     fn description(&self) -> &str {

@@ -24,6 +24,7 @@ use spherecontact_model::limits::{MAX_DECK_CLOCK_BYTES, MAX_DECK_TABLE_BYTES, SO
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::split::{DeckCommand, SplitDeck};
+use spherecontact_model::solver::Kind;
 use spherecontact_model::solver::{SolveError, Solver};
 use spherecontact_solvers::fem::mesh::solid_geo::{self, SolidMeshFiles, Zones};
 use spherecontact_system::process::Job;
@@ -292,6 +293,10 @@ fn parse_phases(text: &str) -> Vec<(String, f64)> {
 impl Solver for Solid3dDeck {
     fn name(&self) -> &'static str {
         NAME
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::FiniteElement
     }
 
     fn description(&self) -> &'static str {

@@ -24,6 +24,7 @@ use spherecontact_model::history::History;
 use spherecontact_model::limits::MAX_INPUT_BYTES;
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::split::{DeckCommand, SplitDeck};
+use spherecontact_model::solver::Kind;
 use spherecontact_model::solver::{self, SolveError, Solver};
 use spherecontact_system::input::foreign;
 use spherecontact_system::toolchain::Toolchain;
@@ -310,6 +311,10 @@ struct ReadBack<'a> {
 impl Solver for ReadBack<'_> {
     fn name(&self) -> &str {
         self.name
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::FiniteElement
     }
 
     fn description(&self) -> &str {

@@ -10,7 +10,7 @@ use serde_json::json;
 use crate::exchange::results_csv;
 use spherecontact_model::history::{History, Metadata};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 
 /// Results stored in a file, as a solver.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,11 +21,17 @@ pub struct StoredResults {
     pub file: PathBuf,
     /// The description shown in reports.
     pub description: String,
+    /// The kind of model that computed them, as the case says.
+    pub kind: Kind,
 }
 
 impl Solver for StoredResults {
     fn name(&self) -> &str {
         &self.name
+    }
+
+    fn kind(&self) -> Kind {
+        self.kind
     }
 
     fn description(&self) -> &str {

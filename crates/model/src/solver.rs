@@ -4,7 +4,10 @@
 //! Every solver — closed form, incremental law, boundary elements, finite elements, or an
 //! external program — takes a [`Scene`] and returns a [`History`] with one row per path step.
 
+pub mod kind;
 pub mod split;
+
+pub use kind::Kind;
 
 use std::time::Instant;
 
@@ -34,6 +37,9 @@ pub trait Solver: Send + Sync {
 
     /// One line: the model and the method.
     fn description(&self) -> &str;
+
+    /// The kind of model it is: where tables, figures and scoreboards place it.
+    fn kind(&self) -> Kind;
 
     /// Solves the scene along its whole path. Implementations fill the per-step rows and the
     /// metadata's model, resolution and warnings; [`run`] adds name, version and wall time.
@@ -226,6 +232,10 @@ impl Solver for Resolved {
 
     fn description(&self) -> &str {
         self.inner.description()
+    }
+
+    fn kind(&self) -> Kind {
+        self.inner.kind()
     }
 
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {

@@ -31,7 +31,7 @@ use spherecontact_model::history::{
     History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents,
 };
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 
 /// The virgin tangential curve of one Hertz contact.
 #[derive(Clone, Copy, Debug)]
@@ -260,6 +260,10 @@ impl CattaneoMindlin {
 impl Solver for CattaneoMindlin {
     fn name(&self) -> &'static str {
         "cattaneo-mindlin"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::Analytic
     }
 
     fn description(&self) -> &'static str {

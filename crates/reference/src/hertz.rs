@@ -2,7 +2,7 @@
 
 use spherecontact_model::history::{History, Metadata, StepResult};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 
 /// The Hertz closed form as a solver: P, c and p0 at every step; no tangential force.
 pub struct HertzSolver;
@@ -10,6 +10,10 @@ pub struct HertzSolver;
 impl Solver for HertzSolver {
     fn name(&self) -> &'static str {
         "hertz"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::Analytic
     }
 
     fn description(&self) -> &'static str {

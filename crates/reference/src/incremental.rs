@@ -15,7 +15,7 @@ use spherecontact_model::hertz::Hertz;
 use spherecontact_model::history::{History, Metadata, StepResult};
 use spherecontact_model::path::Step;
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 
 /// The Hertz normal state at one end of an increment.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,6 +59,10 @@ pub struct IncrementalSolver {
 impl Solver for IncrementalSolver {
     fn name(&self) -> &'static str {
         self.name
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::DemLaw
     }
 
     fn description(&self) -> &'static str {

@@ -43,7 +43,7 @@ use spherecontact_model::pair::ContactPair;
 use spherecontact_model::path::Step;
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 
 /// Most nodes of the bed used by the inverse transform (a block average of the springs).
 const TRANSFORM_NODES: usize = 500;
@@ -343,6 +343,10 @@ impl SpringBed {
 impl Solver for Mdr {
     fn name(&self) -> &'static str {
         "mdr"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::Analytic
     }
 
     fn description(&self) -> &'static str {

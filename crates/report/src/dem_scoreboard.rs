@@ -5,7 +5,7 @@
 
 use super::document::{Cell, Section, Table};
 use spherecontact_model::history::History;
-use spherecontact_model::solver::SolveError;
+use spherecontact_model::solver::{Kind, SolveError};
 use spherecontact_verify::CaseRun;
 
 /// The section's title.
@@ -14,53 +14,63 @@ pub const TITLE: &str = "How far is your DEM code from Mindlin–Deresiewicz?";
 /// The exact reference.
 const REFERENCE: &str = "mdr";
 
-/// The DEM laws built into the crate (`analytic`), in listing order.
-const BUILT_IN_LAWS: [&str; 4] = [
-    "hertz-mindlin-spring",
-    "thornton",
-    "md-incremental",
-    "walton-braun",
-];
-
 /// One law's distance from MDR, or why it has none.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Score {
     /// The solver.
     pub solver: String,
-    /// "built-in" or "real code".
-    pub kind: &'static str,
+    /// Where it comes from: "built-in law", "real code", or the case's own ("your law (a
+    /// program)", "your code (stored results)", …).
+    pub kind: String,
     /// Worst distance over every step and the distance at each path position; or why missing.
     pub distances: Result<(f64, Vec<f64>), String>,
 }
 
-/// The scores of every DEM law the run has, built-in first; empty without an MDR history.
+/// Where a DEM solver of the run stands in the scoreboard: built-in laws, then real codes, then
+/// the case's own laws and codes; `None` for a solver that is not a DEM law or code.
+fn placement(run: &CaseRun, solver: &str) -> Option<(u8, String)> {
+    let kind = run.case.solver_kind(solver).filter(|k| k.is_dem())?;
+    let law = kind == Kind::DemLaw;
+    Some(match run.case.own_solver(solver) {
+        None if law => (0, "built-in law".to_owned()),
+        None => (1, "real code".to_owned()),
+        Some(own) => {
+            let what = if law { "law" } else { "code" };
+            (2 + u8::from(!law), format!("your {what} ({})", own.origin()))
+        }
+    })
+}
+
+/// The scores of every DEM law and code the run has — built into the crate, a real DEM code, or
+/// the case's own (`kind = "dem-law"` or `"dem-code"`) — in that order, each group in the case's
+/// order; empty without an MDR history.
 pub fn scores(run: &CaseRun) -> Vec<Score> {
     let Some(Ok(reference)) = run.histories.get(REFERENCE) else {
         return Vec::new();
     };
-    let real: Vec<String> = spherecontact_external::dem::solvers()
-        .iter()
-        .map(|s| s.name().to_owned())
+    let mut placed: Vec<(u8, String, String)> = run
+        .case
+        .required_solvers()
+        .into_iter()
+        .filter_map(|solver| placement(run, &solver).map(|(group, kind)| (group, kind, solver)))
         .collect();
-    let laws = BUILT_IN_LAWS
-        .iter()
-        .map(|n| (n.to_string(), "built-in"))
-        .chain(real.into_iter().map(|n| (n, "real code")));
-    laws.filter_map(|(solver, kind)| {
-        let result = run.histories.get(&solver)?;
-        let distances = match result {
-            Ok(history) => distances(history, reference),
-            Err(SolveError::Unavailable(_)) => Err("not available".into()),
-            Err(SolveError::NotApplicable(why)) => Err(format!("not applicable: {why}")),
-            Err(SolveError::Failed(_)) => Err("failed".into()),
-        };
-        Some(Score {
-            solver,
-            kind,
-            distances,
+    placed.sort_by_key(|(group, ..)| *group);
+    placed
+        .into_iter()
+        .filter_map(|(_, kind, solver)| {
+            let distances = match run.histories.get(&solver)? {
+                Ok(history) => distances(history, reference),
+                Err(SolveError::Unavailable(_)) => Err("not available".into()),
+                Err(SolveError::NotApplicable(why)) => Err(format!("not applicable: {why}")),
+                Err(SolveError::Failed(_)) => Err("failed".into()),
+            };
+            Some(Score {
+                solver,
+                kind,
+                distances,
+            })
         })
-    })
-    .collect()
+        .collect()
 }
 
 /// |Q − Q_MDR| / max |Q_MDR|: the worst over every step, and at each path position.
@@ -107,7 +117,7 @@ pub fn table(run: &CaseRun) -> Table {
     let rows = scores(run)
         .into_iter()
         .map(|score| {
-            let mut row = vec![Cell::plain(&score.solver), Cell::plain(score.kind)];
+            let mut row = vec![Cell::plain(&score.solver), Cell::plain(&score.kind)];
             match score.distances {
                 Ok((worst, at)) => {
                     row.push(Cell::with_class(format(worst), "info"));
@@ -131,8 +141,9 @@ pub fn section(run: &CaseRun) -> Section {
     Section {
         title: TITLE.into(),
         paragraphs: vec![
-            "Every DEM tangential law of this case, built into the crate or run in a real DEM code \
-             (LAMMPS pair_style granular, YADE), against MDR, the exact Mindlin–Deresiewicz \
+            "Every DEM tangential law of this case — built into the crate, run in a real DEM code \
+             (LAMMPS pair_style granular, YADE), or the case's own (a program or stored results the \
+             case marks `kind = \"dem-law\"` or `\"dem-code\"`) — against MDR, the exact Mindlin–Deresiewicz \
              solution along the same path: |Q − Q_MDR| / max |Q_MDR|, the worst over every step \
              and at each path position. Measured and published, never judged; a code that is not \
              installed is named, never drawn as zero."

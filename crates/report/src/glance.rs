@@ -137,7 +137,15 @@ pub fn worst_text(outcome: &Outcome) -> String {
 /// One line per solver of the case.
 fn solver_lines(run: &CaseRun) -> Table {
     // The time last: the one cell that changes from run to run ends the row.
-    let header = ["solver", "status", "model", "resolution", "worst check", "time"];
+    let header = [
+        "solver",
+        "kind",
+        "status",
+        "model",
+        "resolution",
+        "worst check",
+        "time",
+    ];
     let rows = run
         .case
         .required_solvers()
@@ -164,6 +172,7 @@ fn solver_lines(run: &CaseRun) -> Table {
             };
             vec![
                 Cell::plain(name),
+                Cell::plain(run.case.kind_in_words(name)),
                 status,
                 Cell::plain(model),
                 Cell::plain(resolution),

@@ -83,7 +83,7 @@ mod tests {
         let text = format!(
             "friction = 0.2\nsolvers = [\"hertz\", \"{long}\"]\n[body1]\nradius = 0.1\nyoung = 70e9\npoisson = 0.3\n\
              [path]\nunit = \"um\"\ndelta_n = [0, 10]\ndelta_t = [0, 0]\nsubsteps = 1\n\
-             [[command_solvers]]\nname = \"{long}\"\ncommand = [\"true\"]\n"
+             [[command_solvers]]\nname = \"{long}\"\nkind = \"analytic\"\ncommand = [\"true\"]\n"
         );
         let case = Case::parse(std::path::Path::new("wide.toml"), &text).unwrap();
         let run = CaseRun {

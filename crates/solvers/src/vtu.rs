@@ -6,7 +6,7 @@
 
 use spherecontact_model::history::{History, Layout, SurfaceField};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -279,6 +279,10 @@ pub struct SurfaceVtu {
 impl Solver for SurfaceVtu {
     fn name(&self) -> &str {
         self.inner.name()
+    }
+
+    fn kind(&self) -> Kind {
+        self.inner.kind()
     }
 
     fn cores(&self) -> usize {

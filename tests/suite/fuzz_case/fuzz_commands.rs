@@ -89,7 +89,7 @@ fn command_case(rng: &mut Rng, ran: &Path) -> String {
     };
     let mut text = SMALL_CASE.replace("solvers = [\"hertz\", \"mdr\"]", &solvers);
     text.push_str(&format!(
-        "\n[[command_solvers]]\nname = {name}\ncommand = [{}]\ntimeout = {}\ndescription = {}\n",
+        "\n[[command_solvers]]\nname = {name}\nkind = \"analytic\"\ncommand = [{}]\ntimeout = {}\ndescription = {}\n",
         command.join(", "),
         half(rng, "60", TIMEOUTS),
         toml_string(*rng.pick(NAMES))
@@ -152,7 +152,7 @@ fn the_opt_in_runs_such_a_program(dir: &Path, ran: &Path) {
     let program = format!("touch {}", ran.display());
     let case =
         format!(
-        "{}\n[[command_solvers]]\nname = \"mine\"\ncommand = [\"sh\", \"-c\", {program:?}]\ntimeout = 60\n",
+        "{}\n[[command_solvers]]\nname = \"mine\"\nkind = \"analytic\"\ncommand = [\"sh\", \"-c\", {program:?}]\ntimeout = 60\n",
         SMALL_CASE.replace("solvers = [\"hertz\", \"mdr\"]", "solvers = [\"hertz\", \"mine\"]")
     );
     let file = dir.join("case.toml");

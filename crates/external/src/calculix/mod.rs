@@ -41,6 +41,7 @@ use spherecontact_model::limits::{MAX_CCX_RESULTS_BYTES, MERIDIAN_POLE};
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::split::{DeckCommand, SplitDeck};
+use spherecontact_model::solver::Kind;
 use spherecontact_model::solver::{SolveError, Solver};
 use spherecontact_solvers::fem::mesh::geo::{self, QuadraticMesh};
 use spherecontact_system::process::Job;
@@ -192,6 +193,10 @@ impl SplitDeck for CcxAxisym {
 impl Solver for CcxAxisym {
     fn name(&self) -> &str {
         NAME
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::FiniteElement
     }
 
     fn description(&self) -> &str {

@@ -45,6 +45,7 @@ use spherecontact_model::limits::SOLID_POLE;
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::split::{DeckCommand, SplitDeck};
+use spherecontact_model::solver::Kind;
 use spherecontact_model::solver::{SolveError, Solver};
 use spherecontact_solvers::fem::mesh::solid;
 use spherecontact_solvers::fem::mesh::solid_geo::{self, SolidMeshFiles, Zones};
@@ -421,6 +422,10 @@ fn applicable(scene: &Scene) -> Result<(), SolveError> {
 impl Solver for CcxSolid {
     fn name(&self) -> &str {
         NAME
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::FiniteElement
     }
 
     fn description(&self) -> &str {

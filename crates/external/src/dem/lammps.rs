@@ -23,7 +23,7 @@ use crate::program;
 use spherecontact_model::history::{History, Metadata, StepResult};
 use spherecontact_model::pair::ContactPair;
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 use spherecontact_system::process::{Environment, Job};
 use spherecontact_system::toolchain::{Tool, Toolchain};
 
@@ -131,6 +131,10 @@ impl Lammps {
 impl Solver for Lammps {
     fn name(&self) -> &str {
         self.model.solver_name()
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::DemCode
     }
 
     fn description(&self) -> &str {

@@ -22,7 +22,7 @@ use crate::exchange::scene_file;
 use crate::program;
 use spherecontact_model::history::{History, Metadata};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 use spherecontact_system::process::{Environment, Job};
 use spherecontact_system::toolchain::{Tool, Toolchain};
 
@@ -127,6 +127,10 @@ pub fn job(yade: &Path, dir: &Path, script: &str, text: &str, timeout: Duration)
 impl Solver for Yade {
     fn name(&self) -> &str {
         self.law.solver_name()
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::DemCode
     }
 
     fn description(&self) -> &str {

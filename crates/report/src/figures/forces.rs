@@ -15,6 +15,7 @@ use crate::{
 };
 use spherecontact_model::domain::models_a_finite_body;
 use spherecontact_model::history::{History, Quantity};
+use spherecontact_model::solver::Kind;
 use spherecontact_verify::bench::CORRECTED_REFERENCE;
 use spherecontact_verify::CaseRun;
 
@@ -47,8 +48,10 @@ enum Family {
 }
 
 impl Family {
-    fn of(name: &str) -> Self {
-        if models_a_finite_body(name) || name == "bem" || name == CORRECTED_REFERENCE {
+    /// The family of the solver `name` of kind `kind` (the case's own solvers by the kind the
+    /// case gives them).
+    fn of(name: &str, kind: Option<Kind>) -> Self {
+        if name == CORRECTED_REFERENCE || kind.is_some_and(Kind::is_continuum) {
             Family::Continuum
         } else {
             Family::Particle
@@ -77,7 +80,9 @@ fn panels(run: &CaseRun, half_space: &str) -> Vec<Panel> {
     let has = |name: &str| ran.iter().any(|n| n == name);
     let members = |family: Family, except: &str| -> Vec<String> {
         ran.iter()
-            .filter(|n| Family::of(n) == family && *n != except && *n != CORRECTED_REFERENCE)
+            .filter(|n| {
+                Family::of(n, run.case.solver_kind(n)) == family && *n != except && *n != CORRECTED_REFERENCE
+            })
             .cloned()
             .collect()
     };
@@ -406,28 +411,35 @@ mod tests {
     use super::*;
     use spherecontact_model::history::StepResult;
 
+    /// Requirement: finite and boundary elements — built in, external decks, or a case's own
+    /// solver the case marks `fe` or `be` — are drawn in the continuum panel; closed forms, DEM
+    /// laws and codes (and a case's own of those kinds) in the other.
     #[test]
     fn solvers_fall_into_their_family() {
+        let registry = spherecontact_case::registry::registry();
+        let kind = |name: &str| registry.iter().find(|s| s.name() == name).map(|s| s.kind());
         for name in [
             "fem-axisym",
             "fem-3d",
             "freefem-axisym",
             "fenicsx-3d",
+            "ccx-3d",
             "bem",
-            CORRECTED_REFERENCE,
         ] {
-            assert_eq!(Family::of(name), Family::Continuum, "{name}");
+            assert_eq!(Family::of(name, kind(name)), Family::Continuum, "{name}");
         }
-        for name in [
-            "hertz",
-            "mdr",
-            "thornton",
-            "lammps-mindlin",
-            "yade-mindlin",
-            "my-command",
-        ] {
-            assert_eq!(Family::of(name), Family::Particle, "{name}");
+        assert_eq!(
+            Family::of(CORRECTED_REFERENCE, kind(CORRECTED_REFERENCE)),
+            Family::Continuum
+        );
+        for name in ["hertz", "mdr", "thornton", "lammps-mindlin", "yade-mindlin"] {
+            assert_eq!(Family::of(name, kind(name)), Family::Particle, "{name}");
         }
+        assert_eq!(
+            Family::of("my-fe-code", Some(Kind::FiniteElement)),
+            Family::Continuum
+        );
+        assert_eq!(Family::of("my-law", Some(Kind::DemLaw)), Family::Particle);
     }
 
     #[test]

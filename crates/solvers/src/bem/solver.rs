@@ -11,7 +11,7 @@ use spherecontact_model::limits::MAX_BEM_GRID;
 use spherecontact_model::path::Step;
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::{Scene, DISSIMILARITY_BETA};
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 
 use super::grid::Grid;
 use super::state::{ContactState, IncrementCost, IncrementError, Snapshot, Tolerances};
@@ -228,6 +228,10 @@ fn increment_failure(error: IncrementError, step: usize) -> SolveError {
 impl Solver for Bem {
     fn name(&self) -> &'static str {
         "bem"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::BoundaryElement
     }
 
     fn description(&self) -> &'static str {

@@ -20,7 +20,7 @@ use spherecontact_model::limits::MERIDIAN_POLE;
 use spherecontact_model::memory::{self, Budget};
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 use spherecontact_reference::mdr::Mdr;
 use spherecontact_reference::mdr_series::{SeriesCompliance, SeriesMdr};
 
@@ -114,6 +114,10 @@ impl MdrDomain {
 impl Solver for MdrDomain {
     fn name(&self) -> &'static str {
         "mdr-domain"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::Analytic
     }
 
     fn description(&self) -> &'static str {

@@ -31,7 +31,7 @@ use spherecontact_model::limits::MERIDIAN_POLE;
 use spherecontact_model::progress;
 use spherecontact_model::resolution::{PoleLimits, ResolutionError};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 use spherecontact_system::toolchain::Toolchain;
 
 /// Default pole element size in units of the path's largest contact radius. At c/40 the P, p0
@@ -137,6 +137,10 @@ impl PoleSized for FemAxisym {
 impl Solver for FemAxisym {
     fn name(&self) -> &'static str {
         "fem-axisym"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::FiniteElement
     }
 
     fn description(&self) -> &'static str {

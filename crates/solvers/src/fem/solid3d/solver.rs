@@ -58,7 +58,7 @@ use spherecontact_model::limits::SOLID_POLE;
 use spherecontact_model::memory::{self, Budget};
 use spherecontact_model::resolution::{PoleLimits, ResolutionError};
 use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::{SolveError, Solver};
+use spherecontact_model::solver::{Kind, SolveError, Solver};
 use spherecontact_model::stick_slope::StickSlope;
 use spherecontact_system::toolchain::Toolchain;
 
@@ -200,6 +200,10 @@ impl PoleSized for FemSolid3d {
 impl Solver for FemSolid3d {
     fn name(&self) -> &'static str {
         "fem-3d"
+    }
+
+    fn kind(&self) -> Kind {
+        Kind::FiniteElement
     }
 
     fn description(&self) -> &'static str {
