@@ -186,6 +186,8 @@ enum Command {
         out: PathBuf,
         #[command(flatten)]
         force: Force,
+        #[command(flatten)]
+        commands: CommandOptions,
     },
     /// Sweep each solver's resolution: error against CPU and wall time, side by side in one run
     /// (build with --release for representative numbers).
@@ -317,9 +319,16 @@ fn main() -> ExitCode {
         } => commands
             .permission()
             .and_then(|p| bench(&case, &solvers, repeat as usize, out, force.force, roots, &p)),
-        Command::Impact { cases, out, force } => impact::report(&cases, &out, force.force)
-            .map(|ok| if ok { ExitCode::SUCCESS } else { ExitCode::FAILURE })
-            .map_err(InputError),
+        Command::Impact {
+            cases,
+            out,
+            force,
+            commands,
+        } => commands.permission().and_then(|permission| {
+            impact::report(&cases, &out, force.force, &permission)
+                .map(|ok| if ok { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+                .map_err(InputError)
+        }),
     };
     match result {
         Ok(code) => code,
@@ -407,7 +416,7 @@ fn run(
     permission: &CommandPermission,
 ) -> Result<ExitCode, InputError> {
     if impact::is_impact_file(case) {
-        let plan = impact::plan(case, solvers, out, force).map_err(InputError)?;
+        let plan = impact::plan(case, solvers, out, force, permission).map_err(InputError)?;
         let ok = plan.execute().map_err(InputError)?;
         return Ok(if ok { ExitCode::SUCCESS } else { ExitCode::FAILURE });
     }

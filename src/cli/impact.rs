@@ -6,9 +6,11 @@ use std::path::{Path, PathBuf};
 
 use spherecontact::case;
 use spherecontact::impact::case::ImpactCase;
+use spherecontact::impact::own_run;
 use spherecontact::impact::run::{self, solver_names};
 use spherecontact::impact::{files, ImpactRun};
 use spherecontact::io::{self, OutputFolder};
+use spherecontact::permission::CommandPermission;
 
 /// A validated `run` of an impact case: nothing is written before it exists.
 #[derive(Debug)]
@@ -25,8 +27,14 @@ pub use spherecontact::case::is_impact_file;
 
 /// Plans a run: the case validated, each solver named once and known, `out` claimed (`force`:
 /// also a folder holding files the harness did not write).
-pub fn plan(file: &Path, solvers: &[String], out: &Path, force: bool) -> Result<RunPlan, String> {
-    let case = case::load_impact(file).map_err(|e| e.to_string())?;
+pub fn plan(
+    file: &Path,
+    solvers: &[String],
+    out: &Path,
+    force: bool,
+    permission: &CommandPermission,
+) -> Result<RunPlan, String> {
+    let case = load(file, permission)?;
     let solvers = if solvers.is_empty() {
         case.solvers.clone()
     } else {
@@ -38,12 +46,19 @@ pub fn plan(file: &Path, solvers: &[String], out: &Path, force: bool) -> Result<
                 "--solver: `{name}` is named twice (allowed: each solver once)"
             ));
         }
-        if !solver_names().contains(&name.as_str()) {
+        if !solver_names().contains(&name.as_str()) && case.own_solver(name).is_none() {
+            let own = case.own_solvers.iter().map(|s| s.name.as_str());
+            let allowed: Vec<&str> = solver_names().into_iter().chain(own).collect();
             return Err(format!(
                 "--solver: `{name}` cannot run an impact (allowed: {})",
-                solver_names().join(", ")
+                allowed.join(", ")
             ));
         }
+    }
+    if solvers.iter().any(|name| case.own_solver(name).is_some()) {
+        own_run::command_lines(&case)
+            .iter()
+            .for_each(|line| eprintln!("{line}"));
     }
     let out = claim(out, force)?;
     Ok(RunPlan { case, solvers, out })
@@ -84,7 +99,12 @@ impl RunPlan {
 /// `spherecontact impact`: plans (every case valid, `out` claimed), runs every case with its
 /// checks, writes each case's solver files into `out/<case>/` and the report into `out`, prints
 /// the check rows; true when every case passed.
-pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String> {
+pub fn report(
+    files: &[PathBuf],
+    out: &Path,
+    force: bool,
+    permission: &CommandPermission,
+) -> Result<bool, String> {
     let files = if files.is_empty() {
         spherecontact::case::case_files(&[PathBuf::from("cases/impact")]).map_err(|e| e.to_string())?
     } else {
@@ -95,8 +115,12 @@ pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String
     }
     let cases = files
         .iter()
-        .map(|f| case::load_impact(f).map_err(|e| e.to_string()))
+        .map(|f| load(f, permission))
         .collect::<Result<Vec<_>, _>>()?;
+    cases
+        .iter()
+        .flat_map(own_run::command_lines)
+        .for_each(|line| eprintln!("{line}"));
     let folder = claim(out, force)?;
     let out = folder.path();
     let runs: Vec<ImpactRun> = cases.into_iter().map(ImpactRun::of).collect();
@@ -113,6 +137,13 @@ pub fn report(files: &[PathBuf], out: &Path, force: bool) -> Result<bool, String
         .map_err(|e| format!("--out {}: {e}", out.display()))?;
     println!("report: {}", out.join("report.html").display());
     Ok(runs.iter().all(ImpactRun::passed))
+}
+
+/// The impact case at `file`, its programs allowed to run as `permission` says.
+fn load(file: &Path, permission: &CommandPermission) -> Result<ImpactCase, String> {
+    let mut case = case::load_impact(file).map_err(|e| e.to_string())?;
+    case.permit_commands(permission);
+    Ok(case)
 }
 
 /// `out` claimed as this run's output folder (refused: `--out DIR: why`).

@@ -233,7 +233,7 @@ fn verify_plan(
         .iter()
         .flat_map(|case| match case {
             plan::Member::Path(case) => case.command_lines(),
-            plan::Member::Impact(_) => Vec::new(),
+            plan::Member::Impact(case) => spherecontact::impact::own_run::command_lines(case),
         })
         .collect();
     commands.iter().for_each(|line| println!("{line}"));

@@ -135,29 +135,7 @@ impl Case {
     /// Lines that say which commands a run of the case would run and whether they may: for
     /// `verify`, `list` and `doctor`; none for a case without command solvers.
     pub fn command_lines(&self) -> Vec<String> {
-        let commands = self.commands();
-        let Some(first) = commands.first() else {
-            return Vec::new();
-        };
-        let mut lines = vec![format!(
-            "{}: command solvers {}",
-            self.name(),
-            first.permission.state()
-        )];
-        let runs = if first.permission.is_allowed() {
-            "runs"
-        } else {
-            "would run"
-        };
-        lines.extend(commands.iter().map(|c| {
-            format!(
-                "  {} {runs} (timeout {} s): {}",
-                c.name,
-                c.timeout.as_secs_f64(),
-                c.shown()
-            )
-        }));
-        lines
+        spherecontact_external::command::lines(self.name(), &self.commands())
     }
 }
 
@@ -185,6 +163,17 @@ impl Validator<'_> {
 
     /// Checks that `name` is a plain name that no built-in or earlier case solver has.
     fn new_name(&self, name: &Spanned<String>, field: &str, earlier: &[CaseSolver]) -> Result<(), CaseError> {
+        let earlier: Vec<&str> = earlier.iter().map(CaseSolver::name).collect();
+        self.new_solver_name(name, field, &earlier)
+    }
+
+    /// Checks that `name` is a plain name that no built-in solver and none of `earlier` has.
+    pub(super) fn new_solver_name(
+        &self,
+        name: &Spanned<String>,
+        field: &str,
+        earlier: &[&str],
+    ) -> Result<(), CaseError> {
         let text = name.get_ref();
         let plain = !text.is_empty()
             && text.len() <= MAX_NAME
@@ -200,7 +189,10 @@ impl Validator<'_> {
                 format!("`{text}` is not a plain name (allowed: 1 to {MAX_NAME} ASCII letters, digits, . _ -, starting with a letter or digit)"),
             ));
         }
-        if registry::by_name(text).is_some() || earlier.iter().any(|s| s.name() == text) {
+        if registry::by_name(text).is_some()
+            || earlier.contains(&text.as_str())
+            || super::impact_solvers::solver_names().contains(&text.as_str())
+        {
             return Err(self.error(
                 name,
                 field,
@@ -210,7 +202,11 @@ impl Validator<'_> {
         Ok(())
     }
 
-    fn command_solver(&self, raw: &RawCommandSolver, field: &str) -> Result<CommandSolver, CaseError> {
+    pub(super) fn command_solver(
+        &self,
+        raw: &RawCommandSolver,
+        field: &str,
+    ) -> Result<CommandSolver, CaseError> {
         let command = raw.command.get_ref();
         if command.first().is_none_or(|p| p.trim().is_empty()) {
             return Err(self.error(

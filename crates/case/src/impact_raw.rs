@@ -8,7 +8,7 @@ use toml::Spanned;
 #[derive(Debug, Deserialize)]
 #[serde(
     deny_unknown_fields,
-    expecting = "an impact case: a table of kind, friction, solvers, body1 …"
+    expecting = "an impact case: a table of kind, friction, solvers, body1 … (and command_solvers, stored_results)"
 )]
 pub(super) struct RawImpact {
     pub(super) kind: Spanned<String>,
@@ -25,6 +25,21 @@ pub(super) struct RawImpact {
     pub(super) sweep: Option<RawSweep>,
     #[serde(default)]
     pub(super) checks: Vec<RawImpactCheck>,
+    #[serde(default)]
+    pub(super) command_solvers: Vec<super::raw::RawCommandSolver>,
+    #[serde(default)]
+    pub(super) stored_results: Vec<RawImpactStored>,
+}
+
+/// An impact's results computed elsewhere, named as a solver, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawImpactStored {
+    pub(super) name: Spanned<String>,
+    pub(super) kind: Spanned<String>,
+    pub(super) file: Spanned<String>,
+    pub(super) elastic_file: Option<Spanned<String>>,
+    pub(super) description: Option<String>,
 }
 
 /// A body of an impact as written.

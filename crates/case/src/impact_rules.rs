@@ -104,12 +104,19 @@ pub fn parse_impact(file: &std::path::Path, text: &str) -> Result<ImpactCase, Ca
             super::error::parser_message(&e),
         )
     })?;
+    let own = raw
+        .command_solvers
+        .iter()
+        .map(|s| &s.name)
+        .chain(raw.stored_results.iter().map(|s| &s.name))
+        .map(|name| name.get_ref().clone())
+        .collect();
     let validator = Validator {
         file,
         text,
-        // An impact case names no file: its tree is the default one, never read from.
+        // The files an impact case names (its stored results) lie in the case file's own tree.
         tree: super::ReadRoots::default().tree(file),
-        own: Vec::new(),
+        own,
     };
     validator.impact(raw)
 }
@@ -174,8 +181,10 @@ impl Validator<'_> {
             steps,
             springs,
             checks: Vec::new(),
+            own_solvers: Vec::new(),
         };
         self.impact_physics(&case, &raw)?;
+        case.own_solvers = self.impact_own_solvers(&raw, &case)?;
         case.checks = raw
             .checks
             .iter()
@@ -389,7 +398,7 @@ impl Validator<'_> {
 
     fn impact_solver_name(&self, name: &Spanned<String>, field: &str) -> Result<String, CaseError> {
         let known = solver_names();
-        if known.contains(&name.get_ref().as_str()) {
+        if known.contains(&name.get_ref().as_str()) || self.own.contains(name.get_ref()) {
             Ok(name.get_ref().clone())
         } else {
             Err(self.error(
@@ -477,7 +486,7 @@ impl Validator<'_> {
             toml::Value::String(s) if s == "hertz" => ImpactReference::Hertz,
             toml::Value::Table(t) if t.len() == 1 && t.get("solver").is_some_and(|s| s.is_str()) => {
                 let name = t["solver"].as_str().unwrap_or_default();
-                if !solver_names().contains(&name) {
+                if !solver_names().contains(&name) && !self.own.iter().any(|o| o == name) {
                     return Err(self.error(
                         &raw.reference,
                         format!("{field}.reference"),

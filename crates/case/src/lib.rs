@@ -106,6 +106,7 @@ mod check_rules;
 mod domain;
 mod error;
 mod fem3d;
+mod impact_own;
 mod impact_raw;
 mod impact_rules;
 mod impact_solvers;

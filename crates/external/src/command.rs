@@ -206,6 +206,29 @@ impl CommandSolver {
     }
 }
 
+/// Lines that say which of `commands` a run of the case `case` would run and whether they may:
+/// for `verify`, `list` and `doctor`; none without commands.
+pub fn lines(case: &str, commands: &[&CommandSolver]) -> Vec<String> {
+    let Some(first) = commands.first() else {
+        return Vec::new();
+    };
+    let mut lines = vec![format!("{case}: command solvers {}", first.permission.state())];
+    let runs = if first.permission.is_allowed() {
+        "runs"
+    } else {
+        "would run"
+    };
+    lines.extend(commands.iter().map(|c| {
+        format!(
+            "  {} {runs} (timeout {} s): {}",
+            c.name,
+            c.timeout.as_secs_f64(),
+            c.shown()
+        )
+    }));
+    lines
+}
+
 /// Writes the scene file into `dir`, runs `job` there in `environment` and reads back the History
 /// CSV it wrote (validated against the path) and its optional [`METADATA_FILE`] (masked and
 /// bounded: `CommandMetadata::shown`); also its wall time [s].

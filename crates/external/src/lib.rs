@@ -40,7 +40,7 @@ pub mod fenicsx;
 pub mod fenicsx3d;
 pub mod field_files;
 pub mod freefem;
-pub mod permission;
+pub use spherecontact_system::permission;
 pub mod placeholder;
 pub mod plan;
 pub mod program;

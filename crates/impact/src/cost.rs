@@ -22,6 +22,7 @@
 use super::case::ImpactCase;
 use super::code_rule;
 use super::code_run::Code;
+use spherecontact_reference::impact::own_solver::Source;
 
 /// One integration step with a DEM law (the integrator, the law's increment, the damping) [s]:
 /// measured 4e-8 to 8e-8 of CPU and 4e-8 to 2.5e-7 of wall time a step (thornton, walton-braun,
@@ -34,6 +35,10 @@ pub const LAW_STEP: f64 = 1.0e-7;
 /// springs; test 4 at 20 000 steps and at 40 000 springs, test 1 at 400 000 springs: linear in
 /// both, the largest bed 30 % dearer a spring).
 pub const MDR_SPRING_STEP: f64 = 3.0e-9;
+
+/// A case's own program over one variant's sweep [s]: unknown beforehand (it is the user's);
+/// the plan needs a cost to balance shards by until a baseline records the measured one.
+pub const OWN_PROGRAM_SECONDS: f64 = 1.0;
 
 /// The integration steps of one impact of `case`.
 fn steps_per_point(case: &ImpactCase) -> f64 {
@@ -48,6 +53,12 @@ pub fn points(case: &ImpactCase) -> usize {
 /// The expected wall time of `solver` over `case`'s sweep in one variant [s].
 fn sweep_seconds(case: &ImpactCase, solver: &str) -> f64 {
     let steps = steps_per_point(case) * case.points().len() as f64;
+    if let Some(own) = case.own_solver(solver) {
+        return match own.source {
+            Source::Stored { .. } => 0.0,
+            Source::Command { .. } => OWN_PROGRAM_SECONDS,
+        };
+    }
     match Code::named(solver) {
         Some(code) => code.estimated_seconds(steps),
         None if code_rule::is_reference(solver) => (LAW_STEP + MDR_SPRING_STEP * case.springs as f64) * steps,

@@ -1,29 +1,21 @@
 //! The output files of an impact run (docs/impact.md):
 //!
 //! - `DIR/<solver>.csv`: one row per sweep point, the prescribed variant: `sweep`, `value`, then
-//!   the quantities of [`Quantity::ALL`] (SI; an empty cell where undefined);
+//!   the quantities of `Quantity::ALL` (SI; an empty cell where undefined);
 //! - `DIR/<solver>-elastic.csv`: the same for the elastic variant, when e < 1;
 //! - `DIR/<solver>-trace.csv`: the first sweep point of the prescribed variant against time:
 //!   `time`, `overlap`, `normal_force`, `tangential_force`, `approach_rate`, `slip_velocity`,
 //!   `spin1`, `spin2`.
 //!
-//! Numbers are written in their shortest exact form ([`Short`]); never NaN or ∞ (undefined
-//! values are empty cells).
+//! Numbers are written in their shortest exact form (`Short` (spherecontact-model)); never NaN or ∞
+//! (undefined values are empty cells).
 
-use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-use super::case::{ImpactCase, Quantity, Variant};
+use super::case::{ImpactCase, Variant};
 use super::solver_run::SolverRun;
-use spherecontact_model::number::Short;
+use spherecontact_reference::impact::table::{self as sweep_table, cell};
 use spherecontact_system::io::write_atomically;
-
-/// A number as a cell: empty unless finite.
-fn cell(value: Option<f64>) -> String {
-    value
-        .filter(|v| v.is_finite())
-        .map_or_else(String::new, |v| Short(v).to_string())
-}
 
 /// The file of a run's sweep table in `dir`.
 pub fn table_path(dir: &Path, run: &SolverRun) -> PathBuf {
@@ -33,20 +25,13 @@ pub fn table_path(dir: &Path, run: &SolverRun) -> PathBuf {
     }
 }
 
-/// The sweep table of `run`.
+/// The sweep table of `run` ([`spherecontact_reference::impact::table`]).
 pub fn table(case: &ImpactCase, run: &SolverRun) -> String {
-    let mut text = String::from("sweep,value");
-    for q in Quantity::ALL {
-        let _ = write!(text, ",{}", q.name());
-    }
-    text.push('\n');
     let sweep = case.sweep.as_ref().map_or("none", |s| s.variable.name());
+    let mut text = sweep_table::header();
+    text.push('\n');
     for (value, result) in &run.points {
-        let _ = write!(text, "{sweep},{}", cell(*value));
-        for q in Quantity::ALL {
-            let v = result.as_ref().ok().and_then(|o| o.get(q));
-            let _ = write!(text, ",{}", cell(v));
-        }
+        text.push_str(&sweep_table::row(sweep, *value, result.as_ref().ok()));
         text.push('\n');
     }
     text

@@ -42,6 +42,8 @@ mod cross_check;
 pub mod files;
 pub mod judge;
 pub mod lammps;
+pub mod own_run;
+pub mod own_scene;
 pub mod placement;
 pub mod run;
 pub mod solver_run;

@@ -76,6 +76,11 @@ fn run_tallied(case: &ImpactCase, solver: &str, variant: Variant, tally: Tally) 
     if let Some(code) = super::code_run::Code::named(solver) {
         return super::code_run::run_sweep(case, code, variant, tally);
     }
+    if let Some(own) = case.own_solver(solver) {
+        let run = super::own_run::run_own(case, own, variant);
+        tally.tick(case.points().len());
+        return run;
+    }
     let start = Instant::now();
     let mut trace = Vec::new();
     let points = case

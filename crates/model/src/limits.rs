@@ -139,6 +139,11 @@ pub const MAX_SHOWN_LINES: usize = 12;
 /// 24 characters each, with separators under 256 bytes a row). Read as a stream, never whole.
 pub const MAX_HISTORY_BYTES: u64 = 256 << 20;
 
+/// The largest impact sweep table read back (a case's own impact solver's, stored or written by
+/// its program) [bytes]: a sweep has at most 200 points of nine cells, about 40 kB written in
+/// full; 1 MiB leaves room for padding, never for a flood.
+pub const MAX_SWEEP_TABLE_BYTES: u64 = 1 << 20;
+
 /// The largest `metadata.json` a command solver may write [bytes] (1 MiB): a version, a model,
 /// a resolution and warnings in a few lines; read whole.
 pub const MAX_METADATA_BYTES: u64 = 1 << 20;

@@ -18,6 +18,7 @@ pub mod excerpt;
 pub mod input;
 pub mod io;
 pub mod mask;
+pub mod permission;
 pub mod process;
 pub mod reap;
 pub mod text;

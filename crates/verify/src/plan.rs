@@ -82,7 +82,9 @@ impl CaseOptions {
     /// [`CaseOptions::load_member`] of the case file `file` whose text is `text`.
     pub fn parse_member(&self, file: &Path, text: &str) -> Result<Member, PlanError> {
         if spherecontact_case::is_impact(text) {
-            Ok(Member::Impact(spherecontact_case::parse_impact(file, text)?))
+            let mut case = spherecontact_case::parse_impact(file, text)?;
+            case.permit_commands(&self.permission);
+            Ok(Member::Impact(case))
         } else {
             self.parse(file, text).map(Member::Path)
         }

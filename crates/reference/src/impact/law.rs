@@ -230,6 +230,11 @@ impl Damping {
         Self { coefficient, bound }
     }
 
+    /// c, the coefficient of δn^{1/4} δ̇ [N s/m^{5/4}].
+    pub fn coefficient(&self) -> f64 {
+        self.coefficient
+    }
+
     /// The total normal force: `elastic` plus the viscous force at approach `delta_n` and
     /// approach rate `rate` = dδn/dt, clamped at zero.
     pub fn total(&self, elastic: f64, delta_n: f64, rate: f64) -> f64 {

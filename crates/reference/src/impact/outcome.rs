@@ -26,6 +26,14 @@ pub struct Outcome {
 }
 
 impl Outcome {
+    /// The outcome with these values, in the order of [`Quantity::ALL`] (a sweep table's row,
+    /// [`super::table`]); a non-finite value is none.
+    pub fn from_values(values: [Option<f64>; 7]) -> Self {
+        Self {
+            values: values.map(|v| v.filter(|v| v.is_finite())),
+        }
+    }
+
     /// The outcome of `integration` of `point`.
     pub fn of(point: &Point, integration: &Integration) -> Self {
         let arms = point.lever_arms();

@@ -287,6 +287,8 @@ pub struct ImpactCase {
     pub springs: usize,
     /// The checks.
     pub checks: Vec<ImpactCheck>,
+    /// The solvers the case defines itself (stored results, programs), in the case's order.
+    pub own_solvers: Vec<super::own_solver::OwnSolver>,
 }
 
 impl ImpactCase {
@@ -295,6 +297,20 @@ impl ImpactCase {
         ContactPair {
             body1: self.body1.body,
             body2: self.body2.body,
+        }
+    }
+
+    /// The solver the case defines itself under `name`, if any.
+    pub fn own_solver(&self, name: &str) -> Option<&super::own_solver::OwnSolver> {
+        self.own_solvers.iter().find(|s| s.name == name)
+    }
+
+    /// Lets the case's command solvers run under `permission` (they are refused until then).
+    pub fn permit_commands(&mut self, permission: &spherecontact_system::permission::CommandPermission) {
+        for solver in &mut self.own_solvers {
+            if let super::own_solver::Source::Command { permission: p, .. } = &mut solver.source {
+                *p = permission.clone();
+            }
         }
     }
 
@@ -317,6 +333,21 @@ impl ImpactCase {
             vec![Variant::Prescribed, Variant::Elastic]
         } else {
             vec![Variant::Prescribed]
+        }
+    }
+
+    /// The swept variable's name as a sweep table's `sweep` column writes it ("none" without a
+    /// sweep).
+    pub fn sweep_name(&self) -> &'static str {
+        self.sweep.as_ref().map_or("none", |s| s.variable.name())
+    }
+
+    /// The initial conditions of every sweep point in `variant`.
+    pub fn points_of(&self, variant: Variant) -> Vec<Point> {
+        let points = self.points();
+        match variant {
+            Variant::Prescribed => points,
+            Variant::Elastic => points.into_iter().map(Point::elastic).collect(),
         }
     }
 

@@ -6,7 +6,7 @@
 //! An allowed program runs in a minimal environment ([`spherecontact_system::process::MINIMAL_ENV`]) plus the variables named
 //! with [`PASS_ENV_FLAG`]: the secrets of the harness's environment do not reach it.
 
-use spherecontact_system::process::Environment;
+use crate::process::Environment;
 
 /// The command-line flag that allows a case's command solvers to run.
 pub const ALLOW_FLAG: &str = "--allow-commands";
