@@ -63,7 +63,11 @@ fn example_commands() -> Vec<Vec<String>> {
 fn journey_folder(case_text: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join(CASE), case_text).unwrap();
-    std::fs::copy(common::root().join("examples/own_law").join(LAW), dir.path().join(LAW)).unwrap();
+    std::fs::copy(
+        common::root().join("examples/own_law").join(LAW),
+        dir.path().join(LAW),
+    )
+    .unwrap();
     dir
 }
 
@@ -97,7 +101,11 @@ fn scoreboard_distance(report: &str, solver: &str, origin: &str) -> f64 {
 #[test]
 fn the_readmes_own_law_example_verifies_and_is_ranked_in_the_dem_scoreboard() {
     let commands = example_commands();
-    assert_eq!(commands.len(), 2, "the README shows verify and compare: {commands:?}");
+    assert_eq!(
+        commands.len(),
+        2,
+        "the README shows verify and compare: {commands:?}"
+    );
     assert_eq!(commands[0][0], "verify");
     assert_eq!(commands[1][0], "compare");
     let dir = journey_folder(&example_case());
@@ -106,8 +114,14 @@ fn the_readmes_own_law_example_verifies_and_is_ranked_in_the_dem_scoreboard() {
     let printed = run_ok(&commands[0], dir.path());
     let rows: Vec<&str> = printed.lines().filter(|l| l.contains("| my-law ")).collect();
     assert_eq!(rows.len(), 2, "{printed}");
-    assert!(rows[0].starts_with("OK ") && rows[0].contains("normal_force"), "{printed}");
-    assert!(rows[1].starts_with("INFO ") && rows[1].contains("tangential_force"), "{printed}");
+    assert!(
+        rows[0].starts_with("OK ") && rows[0].contains("normal_force"),
+        "{printed}"
+    );
+    assert!(
+        rows[1].starts_with("INFO ") && rows[1].contains("tangential_force"),
+        "{printed}"
+    );
     let scored: f64 = rows[1]
         .split("| error ")
         .nth(1)
@@ -121,7 +135,10 @@ fn the_readmes_own_law_example_verifies_and_is_ranked_in_the_dem_scoreboard() {
     let out = commands[1].iter().skip_while(|a| *a != "--out").nth(1).unwrap();
     let report = text(&dir.path().join(out).join("report.md"));
     let distance = scoreboard_distance(&report, "my-law", "your law (a program)");
-    assert!((distance - scored).abs() <= 5e-5, "scoreboard {distance}, check {scored}");
+    assert!(
+        (distance - scored).abs() <= 5e-5,
+        "scoreboard {distance}, check {scored}"
+    );
     // An approximate law (no micro-slip), far from exact MD on this path, yet not absurd.
     assert!(distance > 0.01 && distance < 1.0, "{distance}");
 }
@@ -139,7 +156,10 @@ fn the_readmes_example_is_the_shipped_own_law_case_in_essence() {
     assert_eq!(example.solver_kind("my-law"), Some(Kind::DemLaw));
     assert_eq!(shipped.solver_kind("my-law"), Some(Kind::DemLaw));
     let shipped_text = text(&common::root().join("cases/own-law.toml"));
-    assert!(shipped_text.contains(&format!("examples/own_law/{LAW}")), "{shipped_text}");
+    assert!(
+        shipped_text.contains(&format!("examples/own_law/{LAW}")),
+        "{shipped_text}"
+    );
 }
 
 #[test]
