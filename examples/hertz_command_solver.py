@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A command solver for spherecontact in a few lines: Hertz normal contact from the scene file.
 
-Reads scene.json (README, "Check your own solver"), writes history.csv with one row per step.
+Reads scene.json (docs/own-solver.md; every key: docs/case-files.md), writes history.csv with one row per step.
 Run by cases/command-solver.toml; its check against the built-in `hertz` passes at round-off.
 """
 import csv

@@ -52,6 +52,7 @@ mod impact;
 mod impact_codes;
 mod impact_verify;
 mod mdr_reference;
+mod own_law_journey;
 mod path_walker;
 mod plot_layout;
 mod report_browser;
