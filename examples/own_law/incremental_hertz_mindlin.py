@@ -25,29 +25,44 @@ import os
 import sys
 
 
-def contact(scene, rescale):
-    """The rows (step, position, δn, δt, P, Q, a) of the law along the scene's steps."""
-    effective = scene["effective"]  # E*, R*, Mindlin's G*: the harness's own constants
-    e_star, r_star = effective["modulus"], effective["radius"]
-    g_star, mu = effective["mindlin_shear_modulus"], scene["friction"]
-    q, a_prev, previous = 0.0, 0.0, None
-    for s in scene["steps"]:
-        dn = s["delta_n"]
-        if dn <= 0.0:  # the gap is open: no force, no history
-            q, a_prev, p, a = 0.0, 0.0, 0.0, 0.0
+class Law:
+    """The law, one increment at a time: along a path here, in an impact in impact_hertz_mindlin.py."""
+
+    def __init__(self, e_star, r_star, g_star, mu, rescale):
+        self.e_star, self.r_star, self.g_star, self.mu, self.rescale = e_star, r_star, g_star, mu, rescale
+        self.release()
+
+    def release(self):
+        """The gap is open: no force, no history."""
+        self.q, self.a, self.touching = 0.0, 0.0, False
+
+    def step(self, dn, ddt):
+        """P and Q at approach dn after the tangential increment ddt."""
+        if dn <= 0.0:
+            self.release()
+            return 0.0, 0.0
+        a_prev, a = self.a, math.sqrt(self.r_star * dn)
+        p = 4.0 / 3.0 * self.e_star * a * dn
+        if not self.touching:
+            self.q = 0.0  # the increment that closes the gap starts the contact at rest
         else:
-            a = math.sqrt(r_star * dn)
-            p = 4.0 / 3.0 * e_star * a * dn
-            if previous is None or previous["delta_n"] <= 0.0:
-                q = 0.0  # the increment that closes the gap starts the contact at rest
-            else:
-                if rescale and a < a_prev:
-                    q *= a / a_prev  # unloading: the stored force shrinks with the contact
-                q += 8.0 * g_star * a * (s["delta_t"] - previous["delta_t"])
-                q = min(max(q, -mu * p), mu * p)  # Coulomb
-            a_prev = a
-        yield s, p, q, a
-        previous = s
+            if self.rescale and a < a_prev:
+                self.q *= a / a_prev  # unloading: the stored force shrinks with the contact
+            self.q += 8.0 * self.g_star * a * ddt
+            self.q = min(max(self.q, -self.mu * p), self.mu * p)  # Coulomb
+        self.a, self.touching = a, True
+        return p, self.q
+
+
+def contact(scene, rescale):
+    """The rows (step, P, Q, a) of the law along the scene's steps."""
+    effective = scene["effective"]  # E*, R*, Mindlin's G*: the harness's own constants
+    law = Law(effective["modulus"], effective["radius"], effective["mindlin_shear_modulus"], scene["friction"], rescale)
+    previous_dt = 0.0
+    for s in scene["steps"]:
+        p, q = law.step(s["delta_n"], s["delta_t"] - previous_dt)
+        previous_dt = s["delta_t"]
+        yield s, p, q, law.a
 
 
 def main(argv):

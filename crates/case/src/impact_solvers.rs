@@ -1,5 +1,6 @@
 //! The solvers an impact case may name.
 
+use spherecontact_model::solver::Kind;
 use spherecontact_reference::impact::problem as impact;
 
 /// The names of the solvers an impact case may run: the exact references, the DEM laws, then
@@ -21,4 +22,18 @@ pub fn solver_names() -> Vec<&'static str> {
         spherecontact_external::dem::yade::YadeLaw::Mindlin.solver_name(),
     ))
     .collect()
+}
+
+/// The kind of the impact solver `name` of `case` in words, for tables: "DEM law", "DEM code",
+/// "analytic" (the exact references), or for the case's own solvers "DEM law, yours (a
+/// program)".
+pub fn impact_kind_in_words(case: &impact::ImpactCase, name: &str) -> String {
+    if let Some(own) = case.own_solver(name) {
+        return format!("{}, yours ({})", own.kind, own.origin());
+    }
+    let references = [impact::REFERENCE, impact::LAMMPS_REFERENCE, impact::YADE_REFERENCE];
+    if references.contains(&name) {
+        return Kind::Analytic.to_string();
+    }
+    crate::registry::by_name(name).map_or_else(|| "unknown".to_owned(), |s| s.kind().to_string())
 }

@@ -121,7 +121,7 @@ mod scene_rules;
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
 pub use impact_rules::{is_impact, is_impact_file, load_impact, parse_impact};
-pub use impact_solvers::solver_names;
+pub use impact_solvers::{impact_kind_in_words, solver_names};
 pub use listing::{case_files, ListError};
 pub use reads::{CaseTree, ReadRoots};
 pub use spherecontact_model::limits::{self, MAX_FIELD_POSITIONS, MAX_INCREMENTS};

@@ -57,7 +57,7 @@ pub fn worst_distance(
 
 /// The distance table of one case: a row per DEM law and variant, a column per quantity.
 fn distance_table(run: &ImpactRun) -> Table {
-    let mut header = vec!["solver".to_owned(), "variant".to_owned()];
+    let mut header = vec!["solver".to_owned(), "kind".to_owned(), "variant".to_owned()];
     header.extend(Quantity::ALL.iter().map(|q| {
         let kind = if matches!(
             q,
@@ -87,7 +87,11 @@ fn distance_table(run: &ImpactRun) -> Table {
                 .runs
                 .iter()
                 .find(|x| x.solver == Rule::of(&r.solver).reference() && x.variant == r.variant)?;
-            let mut row = vec![Cell::plain(&r.solver), Cell::plain(r.variant.name())];
+            let mut row = vec![
+                Cell::plain(&r.solver),
+                Cell::plain(spherecontact_case::impact_kind_in_words(&run.case, &r.solver)),
+                Cell::plain(r.variant.name()),
+            ];
             row.extend(Quantity::ALL.iter().map(|&q| {
                 Cell::plain(match worst_distance(r, reference, q) {
                     Some((d, at)) => format!("{} (at {})", format_value(Some(d)), format_value(at)),
