@@ -50,6 +50,7 @@ mod hostile_writes;
 mod house;
 mod impact;
 mod impact_codes;
+mod impact_own;
 mod impact_verify;
 mod mdr_reference;
 mod own_law_journey;

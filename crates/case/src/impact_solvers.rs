@@ -31,7 +31,11 @@ pub fn impact_kind_in_words(case: &impact::ImpactCase, name: &str) -> String {
     if let Some(own) = case.own_solver(name) {
         return format!("{}, yours ({})", own.kind, own.origin());
     }
-    let references = [impact::REFERENCE, impact::LAMMPS_REFERENCE, impact::YADE_REFERENCE];
+    let references = [
+        impact::REFERENCE,
+        impact::LAMMPS_REFERENCE,
+        impact::YADE_REFERENCE,
+    ];
     if references.contains(&name) {
         return Kind::Analytic.to_string();
     }
