@@ -324,6 +324,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
         name == "mdr"
             || [
                 "hertz-mindlin-spring",
+                "hertz-mindlin-spring-rescaled",
                 "thornton",
                 "md-incremental",
                 "walton-braun",
@@ -331,13 +332,14 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
             .contains(&name)
             || name.starts_with("lammps-")
             || name.starts_with("yade-")
+            || name.starts_with("kratos-")
     };
     case.solvers.retain(|s| wanted(s));
     case.checks
         .retain(|c| wanted(&c.solver) && matches!(&c.reference, Reference::Solver(r) if r == "mdr"));
     let run = spherecontact::verify::run_case(case);
     let scores = dem_scoreboard::scores(&run);
-    assert_eq!(scores.len(), 9, "four built-in laws and five code solvers");
+    assert_eq!(scores.len(), 11, "five built-in laws and six code solvers");
     for outcome in &run.outcomes {
         let score = scores.iter().find(|s| s.solver == outcome.spec.solver).unwrap();
         match (&score.distances, outcome.error) {
@@ -352,7 +354,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
     }
     let section = dem_scoreboard::section(&run);
     assert_eq!(section.title, dem_scoreboard::TITLE);
-    assert_eq!(section.tables[0].rows.len(), 9);
+    assert_eq!(section.tables[0].rows.len(), 11);
     // The spring law is far from MDR (no micro-slip): the board must show it, not hide it.
     let spring = scores
         .iter()
