@@ -64,6 +64,7 @@ json.dump({"materials": [material("m1", 1, b1), material("m2", 2, b2)],
            "material_assignation_table": [["SpheresPart.Parts_one", "m1"], ["SpheresPart.Parts_two", "m2"]]},
           open("materials.json", "w"))
 
+FINAL = DT * (len(steps) - 0.5)
 parameters = {
     "Dimension": 3, "PeriodicDomainOption": False, "BoundingBoxOption": False, "AutomaticBoundingBoxOption": False,
     "dem_inlet_option": False, "GravityX": 0.0, "GravityY": 0.0, "GravityZ": 0.0, "RotationOption": True,
@@ -73,8 +74,9 @@ parameters = {
     "VirtualMassCoefficient": 1.0, "RollingFrictionOption": False, "GlobalDamping": 0.0, "ContactMeshOption": False,
     "OutputFileType": "Binary", "Multifile": "multiple_files", "ElementType": "SphericPartDEMElement3D",
     "TranslationalIntegrationScheme": "Symplectic_Euler", "RotationalIntegrationScheme": "Direct_Integration",
-    "MaxTimeStep": DT, "FinalTime": DT * (len(steps) - 0.5), "NeighbourSearchFrequency": 1,
-    "GraphExportFreq": 1e300, "VelTrapGraphExportFreq": 1e300, "OutputTimeStep": 1e300,
+    "MaxTimeStep": DT, "FinalTime": FINAL, "NeighbourSearchFrequency": 1,
+    # Graphs and post files never written: their periods past the end (finite: Kratos divides them by the step).
+    "GraphExportFreq": 10 * FINAL, "VelTrapGraphExportFreq": 10 * FINAL, "OutputTimeStep": 10 * FINAL,
     "problem_name": PROBLEM,
 }
 FIXED = (KM.VELOCITY_X, KM.VELOCITY_Y, KM.VELOCITY_Z,
