@@ -5,13 +5,16 @@
 #   dolfinx 0.5.2 for /usr/bin/python3, meshio 5 and h5py;
 #   the DEM codes LAMMPS (Debian 20220106, "29 Sep 2021 - Update 2", GRANULAR built in) and
 #   YADE 2023.02a (the lammps-* and yade-mindlin solvers);
-#   CalculiX ccx 2.20 (calculix-ccx, SPOOLES; the ccx-axisym solver), about 5 MB.
+#   CalculiX ccx 2.20 (calculix-ccx, SPOOLES; the ccx-axisym solver), about 5 MB;
+#   Kratos 10.4.4 with its DEMApplication (PyPI wheels, not a Debian package) in the project's own
+#   virtual environment /opt/spherecontact/venv, made with Debian's /usr/bin/python3 (3.11):
+#   the kratos-* solvers; about 40 MB, 20-30 s.
 # Measured: ~245 packages, ~200 MB download, 2-3 minutes on a fresh machine (docs/toolchain.md);
 # LAMMPS and YADE add 115 packages, 192 MB, about 2 minutes (docs/toolchain.md).
 # Afterwards prints the versions found (the same facts as `spherecontact doctor`).
 set -euo pipefail
 
-PACKAGES=(gmsh python3-gmsh freefem++ libfreefem++ python3-dolfinx-real python3-meshio python3-h5py lammps yade calculix-ccx)
+PACKAGES=(gmsh python3-gmsh freefem++ libfreefem++ python3-dolfinx-real python3-meshio python3-h5py lammps yade calculix-ccx python3-venv)
 export DEBIAN_FRONTEND=noninteractive
 APT=(apt-get -y -q -o DPkg::Lock::Timeout=900 --no-install-recommends)
 
@@ -42,6 +45,13 @@ if [ -w "$PREF" ] || [ "$(id -u)" -eq 0 ]; then
   grep -qs '/usr/lib/freefem++' "$PREF" || echo 'loadpath += "/usr/lib/freefem++"' >> "$PREF"
 fi
 
+# Kratos: pinned wheels in the project's environment (the path is KRATOS_PYTHON's in
+# crates/system/src/toolchain.rs); pip leaves an environment that already has them as it is.
+KRATOS_VENV=/opt/spherecontact/venv
+KRATOS_WHEELS=("KratosMultiphysics==10.4.4" "KratosDEMApplication==10.4.4")
+[ -x "$KRATOS_VENV/bin/python" ] || /usr/bin/python3 -m venv "$KRATOS_VENV"
+"$KRATOS_VENV/bin/pip" install -q --disable-pip-version-check "${KRATOS_WHEELS[@]}"
+
 # Versions found (fail if a tool does not run).
 echo "gmsh      $(command -v gmsh): $(gmsh -version 2>&1 | tail -n1)"
 smoke=$(mktemp --suffix=.edp)
@@ -57,3 +67,6 @@ echo "YADE      $(command -v yade): $(yade --version 2>&1 | sed -n 's/^Yade vers
 ccxout=$(ccx -v 2>&1) || true
 echo "$ccxout" | grep -q "Version" || { echo "setup.sh: ccx does not report its version: $ccxout"; exit 1; }
 echo "CalculiX  $(command -v ccx): $(echo "$ccxout" | sed -n 's/.*Version *//p' | head -n1)"
+kratosout=$(OMP_NUM_THREADS=1 "$KRATOS_VENV/bin/python" -c "import importlib.metadata as m, KratosMultiphysics.DEMApplication; print('kratosversion', m.version('KratosDEMApplication'))" 2>&1) \
+  || { echo "$kratosout" | tail -n 5; exit 1; }
+echo "Kratos    $KRATOS_VENV/bin/python: DEMApplication $(echo "$kratosout" | sed -n 's/^kratosversion //p')"

@@ -1,13 +1,15 @@
-//! The real DEM codes (LAMMPS `pair_style granular`, YADE `MindlinPhys`) against the closed forms
-//! of their laws: Hertz's normal force, the no-slip spring's initial stiffness 8G*c, the Coulomb
-//! cap μP; their runs are quasi-static (rate-independent); YADE's MindlinDeresiewitz law gives no
-//! tangential force at all.
+//! The real DEM codes (LAMMPS `pair_style granular`, YADE `MindlinPhys`, Kratos DEMApplication)
+//! against the closed forms of their laws: Hertz's normal force, the no-slip spring's initial
+//! stiffness 8G*c, the Coulomb cap μP; their runs are quasi-static (rate-independent); YADE's
+//! MindlinDeresiewitz law gives no tangential force at all; Kratos' law is the in-crate
+//! `hertz-mindlin-spring-rescaled` but for its spinning-arm term, computed.
 //!
-//! Tests that need LAMMPS or YADE print why they skip where those are absent (install them with
-//! `scripts/setup.sh`). Run: `cargo test --test suite dem_codes::`.
+//! Tests that need LAMMPS, YADE or Kratos print why they skip where those are absent (install
+//! them with `scripts/setup.sh`). Run: `cargo test --test suite dem_codes::`.
 
 use crate::common;
 
+use spherecontact::dem::kratos::{Kratos, KratosLaw};
 use spherecontact::dem::lammps::{Lammps, TangentialModel};
 use spherecontact::dem::yade::{Yade, YadeLaw};
 use spherecontact::history::History;
@@ -49,6 +51,9 @@ fn installed_codes(test: &str) -> Vec<Box<dyn Solver>> {
     }
     if present(Tool::Yade, test) {
         codes.push(Box::new(Yade::new(YadeLaw::Mindlin)));
+    }
+    if present(Tool::KratosDem, test) {
+        codes.extend(KratosLaw::ALL.map(|law| Box::new(Kratos::new(law)) as Box<dyn Solver>));
     }
     codes
 }
@@ -126,6 +131,12 @@ fn the_runs_are_quasi_static_the_step_length_changes_nothing() {
             slow.timestep = 1e3;
             pairs.push((Box::new(Yade::new(YadeLaw::Mindlin)), Box::new(slow)));
         }
+        if present(Tool::KratosDem, "quasi-static") {
+            let law = KratosLaw::HertzViscousCoulomb;
+            let mut slow = Kratos::new(law);
+            slow.timestep = 1e3;
+            pairs.push((Box::new(Kratos::new(law)), Box::new(slow)));
+        }
         pairs
     };
     for (fast, slow) in pairs {
@@ -174,6 +185,94 @@ fn yade_mindlin_deresiewitz_gives_no_tangential_force() {
     }
 }
 
+/// Requirement: Kratos' `DEM_D_Hertz_viscous_Coulomb` is the in-crate
+/// `hertz-mindlin-spring-rescaled` (the same law, written from its source) on a path whose overlap
+/// rises and falls while it shears, at every step, to within the one term Kratos adds: its
+/// spinning-arm unloading (crates/external/src/dem/kratos.rs), computed here from the path.
+/// Reference: the in-crate law. Tolerance: the bound of that term, plus the codes' rounding.
+#[test]
+#[ignore = "heavy: Kratos along the paper path, 8 s with other builds running; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
+fn kratos_is_the_rescaled_spring_but_for_its_spinning_arm_term() {
+    if !present(Tool::KratosDem, "kratos vs rescaled spring") {
+        return;
+    }
+    let scene = common::case("cases/paper-fig7.toml").scene;
+    let kratos = solve(&Kratos::new(KratosLaw::HertzViscousCoulomb), &scene);
+    let mirror = spherecontact::analytic::dem_laws()
+        .into_iter()
+        .find(|law| law.name == "hertz-mindlin-spring-rescaled")
+        .unwrap();
+    let mirror = solve(&mirror, &scene);
+    let peak = mirror.peak(spherecontact::history::Quantity::TangentialForce);
+    // The spinning arm's relative loss per step, Δs²/(4ℓδ) with ℓ = R1 − δ/2 (equal moduli), of
+    // the force carried into the step; a loss is never regained (later steps only scale it down
+    // or cap it), so the gap is at most the sum of the losses (first order).
+    let r1 = scene.pair.body1.radius;
+    let mut arm_term = 0.0;
+    let (mut largest_gap, mut largest_bound) = (0.0_f64, 0.0_f64);
+    for (k, (a, b)) in kratos.steps.iter().zip(&mirror.steps).enumerate() {
+        if k > 0 && a.delta_n > 0.0 {
+            let ds = a.delta_t - kratos.steps[k - 1].delta_t;
+            let carried = mirror.steps[k - 1].tangential_force.unwrap().abs();
+            arm_term += ds * ds / (4.0 * (r1 - a.delta_n / 2.0) * a.delta_n) * carried;
+        }
+        // P: Hertz from the same overlap in both; the overlap's rounding as above.
+        let (p, q) = (a.normal_force.unwrap(), b.normal_force.unwrap());
+        assert!(
+            (p - q).abs() <= 1e-10 * q.abs().max(1e-3),
+            "step {}: P {p} against {q}",
+            a.step
+        );
+        // Q: the arm term, plus 1e-12 of the peak for the codes' rounding (an ulp or two per
+        // increment over ~1200 increments).
+        let gap = (a.tangential_force.unwrap() - b.tangential_force.unwrap()).abs();
+        let bound = arm_term + 1e-12 * peak;
+        assert!(
+            gap <= bound,
+            "step {}: Kratos Q {} against the rescaled spring's {} (gap {gap:e} N, bound {bound:e} N)",
+            a.step,
+            a.tangential_force.unwrap(),
+            b.tangential_force.unwrap()
+        );
+        largest_gap = largest_gap.max(gap);
+        largest_bound = largest_bound.max(bound);
+    }
+    eprintln!("kratos vs hertz-mindlin-spring-rescaled: largest gap {largest_gap:e} N, bound {largest_bound:e} N, peak {peak} N");
+}
+
+/// Requirement: the one term by which Kratos departs from the rescaled spring is its spinning
+/// arm: at constant overlap δ, a stick step Δs scales the stored force by
+/// √(δ/(δ + Δs²/2ℓ)), a loss of Δs²/(4ℓδ) (crates/external/src/dem/kratos.rs), second order in
+/// the step. Reference: that closed form, at two step lengths (the loss quadruples when the step
+/// doubles). Tolerance 2e-3 of the loss: Kratos' overlap is taken from positions of size 0.2 m
+/// (ulp 2.8e-17 m) against the arm's normal displacement Δs²/2ℓ of 5e-14 m at Δs = 0.1 µm.
+#[test]
+fn kratos_loses_the_spinning_arm_term_at_constant_overlap() {
+    if !present(Tool::KratosDem, "kratos spinning arm") {
+        return;
+    }
+    let mut scene = common::case("cases/cattaneo.toml").scene;
+    let delta = 10e-6;
+    let arm = scene.pair.body1.radius - delta / 2.0;
+    for ds in [0.1e-6, 0.2e-6] {
+        let p = |n: f64, t: f64| Position {
+            delta_n: n,
+            delta_t: t,
+        };
+        scene.path =
+            LoadingPath::try_new(vec![p(0.0, 0.0), p(delta, 0.0), p(delta, 2.0 * ds)], vec![10, 2]).unwrap();
+        let history = solve(&Kratos::new(KratosLaw::HertzViscousCoulomb), &scene);
+        let q = |k: usize| history.steps[k].tangential_force.unwrap();
+        // Q1 = k_t Δs; Q2 = Q1 (1 − loss) + k_t Δs.
+        let loss = (2.0 * q(11) - q(12)) / q(11);
+        let closed_form = ds * ds / (4.0 * arm * delta);
+        assert!(
+            (loss / closed_form - 1.0).abs() < 2e-3,
+            "Δs {ds:e}: Kratos loses {loss:e} of its stored force, the spinning arm {closed_form:e}"
+        );
+    }
+}
+
 /// Requirement: a YADE run along a path leaves nothing outside its own run folder: no
 /// `/tmp/yade-XXXXXX` (one was left by every run), nothing in HOME (its IPython's `~/.ipython/`)
 /// or in TMPDIR.
@@ -185,6 +284,15 @@ fn a_yade_path_run_leaves_nothing_behind() {
     }
 }
 
+/// Requirement: a Kratos run along a path leaves nothing outside its own run folder (its graphs,
+/// post files and model files are written in it), nothing in HOME or TMPDIR.
+#[test]
+fn a_kratos_path_run_leaves_nothing_behind() {
+    if present(Tool::KratosDem, "a_kratos_path_run_leaves_nothing_behind") {
+        common::leftovers::assert_run_leaves_nothing(common::SMALL_CASE, "kratos-hertz-coulomb");
+    }
+}
+
 #[test]
 fn missing_codes_are_not_available_and_a_flat_is_not_applicable() {
     let scene = shear_scene();
@@ -192,7 +300,9 @@ fn missing_codes_are_not_available_and_a_flat_is_not_applicable() {
     lammps.toolchain.lammps = "/nonexistent/lmp".into();
     let mut yade = Yade::new(YadeLaw::Mindlin);
     yade.toolchain.yade = "/nonexistent/yade".into();
-    for solver in [&lammps as &dyn Solver, &yade] {
+    let mut kratos = Kratos::new(KratosLaw::HertzViscousCoulomb);
+    kratos.toolchain.kratos_python = "/nonexistent/python".into();
+    for solver in [&lammps as &dyn Solver, &yade, &kratos] {
         let e = solver.solve(&scene).unwrap_err();
         assert!(matches!(e, SolveError::Unavailable(_)), "{e}");
         assert!(e.to_string().contains("scripts/setup.sh"), "{e}");
@@ -214,6 +324,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
         name == "mdr"
             || [
                 "hertz-mindlin-spring",
+                "hertz-mindlin-spring-rescaled",
                 "thornton",
                 "md-incremental",
                 "walton-braun",
@@ -221,13 +332,14 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
             .contains(&name)
             || name.starts_with("lammps-")
             || name.starts_with("yade-")
+            || name.starts_with("kratos-")
     };
     case.solvers.retain(|s| wanted(s));
     case.checks
         .retain(|c| wanted(&c.solver) && matches!(&c.reference, Reference::Solver(r) if r == "mdr"));
     let run = spherecontact::verify::run_case(case);
     let scores = dem_scoreboard::scores(&run);
-    assert_eq!(scores.len(), 9, "four built-in laws and five code solvers");
+    assert_eq!(scores.len(), 11, "five built-in laws and six code solvers");
     for outcome in &run.outcomes {
         let score = scores.iter().find(|s| s.solver == outcome.spec.solver).unwrap();
         match (&score.distances, outcome.error) {
@@ -242,7 +354,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
     }
     let section = dem_scoreboard::section(&run);
     assert_eq!(section.title, dem_scoreboard::TITLE);
-    assert_eq!(section.tables[0].rows.len(), 9);
+    assert_eq!(section.tables[0].rows.len(), 11);
     // The spring law is far from MDR (no micro-slip): the board must show it, not hide it.
     let spring = scores
         .iter()

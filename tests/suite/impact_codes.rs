@@ -15,7 +15,7 @@ use spherecontact::impact::case::{Quantity, Variant};
 use spherecontact::impact::closed_form::HertzImpact;
 use spherecontact::impact::code_readback::{ReadbackError, Rows};
 use spherecontact::impact::outcome::Outcome;
-use spherecontact::impact::placement::{Placement, FLAT_RADIUS_FACTOR};
+use spherecontact::impact::placement::{points_file, Placement, FLAT_RADIUS_FACTOR};
 use spherecontact::impact::run::run_solver;
 use spherecontact::impact::solver_run::SolverRun;
 use spherecontact::impact::{lammps, yade, ImpactCase};
@@ -85,9 +85,9 @@ fn a_flat_is_a_big_fixed_sphere_with_the_flats_stiffness() {
 }
 
 #[test]
-fn the_yade_points_carry_every_placement() {
+fn the_points_file_carries_every_placement() {
     let case = load("cases/impact/chung-ooi-7.toml");
-    let text = yade::points(&placements(&case));
+    let text = points_file(&placements(&case));
     let points: serde_json::Value = serde_json::from_str(&text).unwrap();
     let points = points.as_array().unwrap();
     assert_eq!(points.len(), 17);
@@ -263,6 +263,15 @@ fn lammps_runs_one_sweep_point_under_its_own_rule() {
 fn yade_runs_one_sweep_point_under_its_own_rule() {
     if present(Tool::Yade, "yade_runs_one_sweep_point_under_its_own_rule") {
         judge_code("yade-mindlin", "mdr-yade");
+    }
+}
+
+/// Kratos' normal damping is YADE's rule (its DEM material set-up takes Thornton et al.'s β for a
+/// "Hertz" law, crates/impact/src/code_rule.rs): its e_n meets `mdr-yade`'s.
+#[test]
+fn kratos_runs_one_sweep_point_under_its_own_rule() {
+    if present(Tool::KratosDem, "kratos_runs_one_sweep_point_under_its_own_rule") {
+        judge_code("kratos-hertz-coulomb", "mdr-yade");
     }
 }
 

@@ -4,7 +4,8 @@ use spherecontact_model::solver::Kind;
 use spherecontact_reference::impact::problem as impact;
 
 /// The names of the solvers an impact case may run: the exact references, the DEM laws, then
-/// the DEM codes (LAMMPS per tangential model, YADE), named as their kinematic adapters.
+/// the DEM codes (LAMMPS per tangential model, YADE, Kratos per law), named as their kinematic
+/// adapters.
 pub fn solver_names() -> Vec<&'static str> {
     [
         impact::REFERENCE,
@@ -21,6 +22,7 @@ pub fn solver_names() -> Vec<&'static str> {
     .chain(std::iter::once(
         spherecontact_external::dem::yade::YadeLaw::Mindlin.solver_name(),
     ))
+    .chain(spherecontact_external::dem::kratos::KratosLaw::ALL.map(|law| law.solver_name()))
     .collect()
 }
 

@@ -9,7 +9,7 @@
 //! |---|---|---|---|
 //! | harness (LIGGGHTS' Tsuji) | 2 √(5/6) \|β\| √(2E*√R* m*), β = ln e / √(ln² e + π²) | elastic force | `mdr` |
 //! | LAMMPS `damping tsuji` (+ `limit_damping`) | α(e) √(4/3 E*√R* m*), α Tsuji's polynomial | total force | `mdr-lammps` |
-//! | YADE `Ip2_FrictMat_FrictMat_MindlinPhys(en = e)` | 2 β_T(e) √(2E*√R* m*), β_T Thornton et al.'s fit | total force | `mdr-yade` |
+//! | YADE `Ip2_FrictMat_FrictMat_MindlinPhys(en = e)`, Kratos `COEFFICIENT_OF_RESTITUTION = e` | 2 β_T(e) √(2E*√R* m*), β_T Thornton et al.'s fit | total force | `mdr-yade` |
 //!
 //! Sources (the installed builds): LAMMPS 29 Sep 2021, `pair_granular.cpp` — `coeff()` turns the
 //! restitution into α = 1.2728 − 4.2783e + 11.087e² − 22.348e³ + 27.467e⁴ − 18.022e⁵ + 4.8218e⁶,
@@ -20,8 +20,16 @@
 //! total at zero and caps the shear force at μ |F_total|. YADE's shear damping (β_s = β_n unless
 //! `es` is given) is switched off (`es = 1`), as LAMMPS's tangential damping is (0): both codes
 //! are compared on their normal damping only, the MDR reference having none tangentially.
+//! Kratos 10.4.4 takes the same β: its `DEM_D_Hertz_viscous_Coulomb` is a "Hertz" law, for which
+//! the DEMApplication's material set-up computes `DAMPING_GAMMA = GammaForHertzThornton(e)`, and
+//! damps with 2γ √(m* K_n), K_n = 2E*√(R*δ), the total clamped at zero and the shear capped at
+//! μ times it (`DEM_D_Hertz_viscous_Coulomb_CL.cpp`): YADE's rule, so `mdr-yade` is its reference
+//! too. Unlike the other two it damps the tangential spring as well (2γ √(m* K_t), which no
+//! option turns off), which the reference has not: at e < 1 its tangential outcomes carry that
+//! difference (docs/impact.md); at e = 1 (the elastic variants) none is damped.
 
 use super::case::{LAMMPS_REFERENCE, REFERENCE, YADE_REFERENCE};
+use spherecontact_external::dem::kratos::KratosLaw;
 use spherecontact_external::dem::lammps::TangentialModel;
 use spherecontact_external::dem::yade::YadeLaw;
 use spherecontact_model::hertz::Hertz;
@@ -34,7 +42,7 @@ pub enum Rule {
     Harness,
     /// LAMMPS's (`lammps-*` and `mdr-lammps`).
     Lammps,
-    /// YADE's (`yade-mindlin` and `mdr-yade`).
+    /// YADE's (`yade-mindlin` and `mdr-yade`), which is Kratos' too (`kratos-*`).
     Yade,
 }
 
@@ -43,7 +51,10 @@ impl Rule {
     pub fn of(solver: &str) -> Self {
         if solver == LAMMPS_REFERENCE || TangentialModel::ALL.iter().any(|m| m.solver_name() == solver) {
             Rule::Lammps
-        } else if solver == YADE_REFERENCE || solver == YadeLaw::Mindlin.solver_name() {
+        } else if solver == YADE_REFERENCE
+            || solver == YadeLaw::Mindlin.solver_name()
+            || KratosLaw::ALL.iter().any(|law| law.solver_name() == solver)
+        {
             Rule::Yade
         } else {
             Rule::Harness
@@ -118,6 +129,7 @@ mod tests {
         assert_eq!(Rule::of("lammps-mindlin-rescale-force"), Rule::Lammps);
         assert_eq!(Rule::of("mdr-lammps"), Rule::Lammps);
         assert_eq!(Rule::of("yade-mindlin"), Rule::Yade);
+        assert_eq!(Rule::of("kratos-hertz-coulomb"), Rule::Yade);
         assert_eq!(Rule::of("thornton"), Rule::Harness);
         assert_eq!(Rule::of("lammps-mindlin").reference(), "mdr-lammps");
         assert!(is_reference("mdr-yade") && !is_reference("yade-mindlin"));

@@ -41,6 +41,7 @@ pub mod cost;
 mod cross_check;
 pub mod files;
 pub mod judge;
+pub mod kratos;
 pub mod lammps;
 pub mod own_run;
 pub mod own_scene;

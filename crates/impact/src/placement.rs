@@ -14,6 +14,8 @@
 //! rad in test 5, ≤ 2e-6 elsewhere). The step is h = t_c / `steps` (t_c Hertz's duration at the
 //! point's normal speed), as the built-in laws'; docs/impact.md shows it converged.
 
+use serde_json::json;
+
 use super::budget::STEP_BUDGET;
 use super::case::{ImpactCase, Point};
 use super::closed_form::HertzImpact;
@@ -96,4 +98,33 @@ impl Placement {
             half_box: 2.0 * (r1 + r2) + travel,
         }
     }
+}
+
+/// The points file's name in the run folder.
+pub const POINTS: &str = "points.json";
+
+/// The points file for `placements`: every field of each, as JSON, which the YADE and Kratos
+/// scripts read (numbers only: no case text reaches a script).
+pub fn points_file(placements: &[Placement]) -> String {
+    let points: Vec<serde_json::Value> = placements
+        .iter()
+        .map(|p| {
+            json!({
+                "index": p.index,
+                "radius": p.radius,
+                "density": p.density,
+                "centre": p.centre,
+                "velocity": p.velocity,
+                "spin_y": p.spin_y,
+                "fixed": p.fixed,
+                "young": p.young,
+                "poisson": p.poisson,
+                "friction": p.friction,
+                "restitution": p.restitution,
+                "step": p.step,
+                "max_steps": p.max_steps,
+            })
+        })
+        .collect();
+    serde_json::Value::Array(points).to_string()
 }

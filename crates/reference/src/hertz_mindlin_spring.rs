@@ -1,5 +1,7 @@
 //! The no-slip Hertz–Mindlin spring with a Coulomb cap: the tangential law that LIGGGHTS
-//! (`tangential_history`) and YADE (`Law2_ScGeom_MindlinPhys_Mindlin`) ship.
+//! (`tangential_history`) and YADE (`Law2_ScGeom_MindlinPhys_Mindlin`) ship, and its variant
+//! whose stored force shrinks with the contact on unloading (Kratos' `DEM_D_Hertz_viscous_Coulomb`,
+//! LAMMPS' `mindlin_rescale/force`).
 //!
 //! The tangential stiffness is Mindlin's initial stiffness at the current contact radius,
 //! k_t = 8 G* c = 8 G* √(R* δn), and the force is integrated incrementally and capped:
@@ -10,6 +12,15 @@
 //! This is YADE's force-incremental form. LIGGGHTS stores the accumulated displacement instead
 //! and multiplies it by the current k_t, which differs when δn varies. Neither has the
 //! micro-slip softening of Mindlin's law, so Q rises too steeply before gross sliding.
+//!
+//! The rescaled variant ([`HertzMindlinSpring::rescaled`]) first scales the stored force by the
+//! contact's shrinkage when the overlap decreases, as Kratos does (`minoring_factor =
+//! sqrt(indentation / previous_indentation)` in `DEM_D_Hertz_viscous_Coulomb_CL.cpp`):
+//!
+//! ```text
+//! Q ← clamp(Q · c_after/c_before + k_t(c_after) Δδt, −μP, μP)   when c_after < c_before
+//! ```
+//! so that a stored force never outlives the contact that carries it (c/c_before = √(δ/δ_before)).
 
 use super::incremental::{coulomb_cap, Increment, TangentialLaw};
 use spherecontact_model::scene::Scene;
@@ -22,6 +33,8 @@ pub struct HertzMindlinSpring {
     friction: f64,
     /// Current tangential force Q [N].
     force: f64,
+    /// Whether the stored force is scaled by c_after/c_before when the contact shrinks.
+    rescale_on_unloading: bool,
 }
 
 impl HertzMindlinSpring {
@@ -31,15 +44,30 @@ impl HertzMindlinSpring {
             shear_modulus: scene.pair.mindlin_shear_modulus(),
             friction: scene.friction,
             force: 0.0,
+            rescale_on_unloading: false,
+        }
+    }
+
+    /// The variant whose stored force is scaled by c_after/c_before when the contact shrinks.
+    pub fn rescaled(scene: &Scene) -> Self {
+        Self {
+            rescale_on_unloading: true,
+            ..Self::new(scene)
         }
     }
 }
 
 impl TangentialLaw for HertzMindlinSpring {
     fn advance(&mut self, increment: &Increment) -> f64 {
-        let stiffness = 8.0 * self.shear_modulus * increment.after.radius;
+        let (before, after) = (increment.before.radius, increment.after.radius);
+        let stored = if self.rescale_on_unloading && after < before {
+            self.force * (after / before)
+        } else {
+            self.force
+        };
+        let stiffness = 8.0 * self.shear_modulus * after;
         self.force = coulomb_cap(
-            self.force + stiffness * increment.delta_t,
+            stored + stiffness * increment.delta_t,
             self.friction,
             increment.after.force,
         );

@@ -59,6 +59,7 @@
 //! | `mdr` | method of dimensionality reduction | exact Mindlin–Deresiewicz |
 //! | `mdr-domain` ([`mdr_series`], run by `fem::axisym`) | MDR in series with a finite body's compliances | exact MD for the modelled finite body, to first order |
 //! | `hertz-mindlin-spring` | no-slip spring with Coulomb cap | approximate (DEM) |
+//! | `hertz-mindlin-spring-rescaled` | the spring, its stored force scaled by c/c_before on unloading | approximate (DEM) |
 //! | `thornton` | Thornton (1991): M–D increments, T*, T** | approximate (DEM) |
 //! | `md-incremental` | Mindlin–Deresiewicz incremental cases (the basis of Zhang & Vu-Quoc 2007), Masing memory | approximate (DEM) |
 //! | `walton-braun` | Walton & Braun (1986), T* scaled with N | approximate (DEM) |
@@ -97,6 +98,12 @@ pub fn dem_laws() -> Vec<IncrementalSolver> {
             name: "hertz-mindlin-spring",
             description: "no-slip Hertz–Mindlin spring k_t = 8G*c with a Coulomb cap (LIGGGHTS, YADE)",
             make_law: |scene| Box::new(hertz_mindlin_spring::HertzMindlinSpring::new(scene)),
+        },
+        IncrementalSolver {
+            name: "hertz-mindlin-spring-rescaled",
+            description: "the spring with its stored force scaled by c/c_before on unloading \
+                          (Kratos DEM_D_Hertz_viscous_Coulomb, LAMMPS mindlin_rescale/force)",
+            make_law: |scene| Box::new(hertz_mindlin_spring::HertzMindlinSpring::rescaled(scene)),
         },
         IncrementalSolver {
             name: "thornton",

@@ -161,7 +161,7 @@ fn kind(file_type: &std::fs::FileType) -> &'static str {
 
 /// A size in bytes as a limit is written: whole MiB when it is one, else bytes.
 fn size(bytes: u64) -> String {
-    if bytes >= 1 << 20 && bytes % (1 << 20) == 0 {
+    if bytes >= 1 << 20 && bytes.is_multiple_of(1 << 20) {
         format!("{} MiB", bytes >> 20)
     } else {
         format!("{bytes} bytes")

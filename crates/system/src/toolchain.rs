@@ -3,6 +3,8 @@
 //! Debian 12's packages are the dependable set (docs/toolchain.md): gmsh 4.8.4,
 //! FreeFem++ 4.11 with its plugins in `/usr/lib/freefem++`, and dolfinx 0.5.2, meshio and h5py
 //! for Debian's own `/usr/bin/python3` (not whichever `python3` is first on PATH).
+//! Kratos (DEMApplication) is not a Debian package: `scripts/setup.sh` installs its PyPI wheels
+//! into the project's own virtual environment, [`KRATOS_PYTHON`]'s, with Debian's Python 3.11.
 //! `scripts/setup.sh` installs them all.
 
 use std::path::{Path, PathBuf};
@@ -14,6 +16,10 @@ use super::process::{self, Job};
 /// Where Debian's libfreefem++ puts the FreeFEM plugins (`gmsh`, `iovtk`); Debian's
 /// `/etc/freefem++.pref` points elsewhere, so every FreeFem++ run gets `FF_LOADPATH` set to this.
 pub const FF_LOADPATH: &str = "/usr/lib/freefem++";
+
+/// The Python of the project's Kratos environment (`scripts/setup.sh` makes it: a virtual
+/// environment of Debian's `/usr/bin/python3` with the `KratosMultiphysics` wheels).
+pub const KRATOS_PYTHON: &str = "/opt/spherecontact/venv/bin/python";
 
 /// How long a version probe may take (a dolfinx import takes 1–2 s).
 const PROBE_TIMEOUT: Duration = Duration::from_secs(60);
@@ -35,11 +41,13 @@ pub enum Tool {
     Yade,
     /// CalculiX (`ccx`): the `ccx-axisym` deck.
     Ccx,
+    /// Kratos' DEMApplication, for [`KRATOS_PYTHON`]: the `kratos-*` DEM solvers.
+    KratosDem,
 }
 
 impl Tool {
     /// Every tool, in the order `doctor` lists them.
-    pub const ALL: [Tool; 7] = [
+    pub const ALL: [Tool; 8] = [
         Tool::Gmsh,
         Tool::FreeFem,
         Tool::Dolfinx,
@@ -47,6 +55,7 @@ impl Tool {
         Tool::Lammps,
         Tool::Yade,
         Tool::Ccx,
+        Tool::KratosDem,
     ];
 
     /// The tool's name in messages.
@@ -59,6 +68,7 @@ impl Tool {
             Tool::Lammps => "LAMMPS",
             Tool::Yade => "YADE",
             Tool::Ccx => "CalculiX",
+            Tool::KratosDem => "Kratos DEM",
         }
     }
 
@@ -72,6 +82,10 @@ impl Tool {
             Tool::Lammps => "apt-get install lammps",
             Tool::Yade => "apt-get install yade",
             Tool::Ccx => "apt-get install --no-install-recommends calculix-ccx",
+            Tool::KratosDem => {
+                "python3 -m venv /opt/spherecontact/venv && /opt/spherecontact/venv/bin/pip install \
+                 KratosMultiphysics==10.4.4 KratosDEMApplication==10.4.4"
+            }
         }
     }
 }
@@ -91,10 +105,13 @@ pub struct Toolchain {
     pub yade: PathBuf,
     /// The CalculiX executable.
     pub ccx: PathBuf,
+    /// The Python interpreter that has Kratos (its DEMApplication).
+    pub kratos_python: PathBuf,
 }
 
 impl Default for Toolchain {
-    /// Debian's: `gmsh`, `FreeFem++`, `lmp`, `yade` and `ccx` from PATH, `/usr/bin/python3`.
+    /// Debian's: `gmsh`, `FreeFem++`, `lmp`, `yade` and `ccx` from PATH, `/usr/bin/python3`;
+    /// Kratos' [`KRATOS_PYTHON`].
     fn default() -> Self {
         Self {
             gmsh: "gmsh".into(),
@@ -103,6 +120,7 @@ impl Default for Toolchain {
             lammps: "lmp".into(),
             yade: "yade".into(),
             ccx: "ccx".into(),
+            kratos_python: KRATOS_PYTHON.into(),
         }
     }
 }
@@ -151,6 +169,7 @@ impl Toolchain {
             Tool::Lammps => &self.lammps,
             Tool::Yade => &self.yade,
             Tool::Ccx => &self.ccx,
+            Tool::KratosDem => &self.kratos_python,
         }
     }
 
@@ -260,6 +279,16 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         Tool::Lammps => (vec!["-h".into()], vec![]),
         Tool::Yade => (vec!["--version".into()], vec![]),
         Tool::Ccx => (vec!["-v".into()], vec![]),
+        // Kratos prints a banner when imported: the version comes on a line of its own.
+        Tool::KratosDem => (
+            vec![
+                "-c".into(),
+                "import importlib.metadata as m, KratosMultiphysics.DEMApplication; \
+                 print('kratosversion', m.version('KratosDEMApplication'))"
+                    .into(),
+            ],
+            vec![("OMP_NUM_THREADS".into(), "1".into())],
+        ),
     };
     let job = Job {
         program: path.to_path_buf(),
@@ -291,6 +320,10 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         Tool::Ccx => text
             .lines()
             .find_map(|l| l.trim().strip_prefix("This is Version"))
+            .map(|v| v.trim().to_owned()),
+        Tool::KratosDem => text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("kratosversion "))
             .map(|v| v.trim().to_owned()),
         _ => text
             .lines()
