@@ -4,18 +4,20 @@
 //! ```toml
 //! [[command_solvers]]
 //! name = "hertz-python"                 # a plain name (letters, digits, . _ -), not a built-in's
+//! kind = "analytic"                     # required: analytic, dem-law, dem-code, fe or be
 //! command = ["python3", "{case_dir}/../examples/hertz_command_solver.py", "{scene}"]
 //! timeout = 60                          # s, optional (default 600), 0 < t ≤ 86400
 //! description = "…"                     # optional
 //!
 //! [[stored_results]]
 //! name = "lab-rig"
+//! kind = "fe"                           # required, as above
 //! file = "data/lab-rig.csv"             # a History CSV, relative to the case file, inside
 //!                                       # its tree (`super::reads`), at most 256 MiB
 //! description = "…"                     # optional
 //! ```
 //! Both formats (the scene file a command reads, the History CSV it writes and a stored file
-//! holds) are in `spherecontact_external::exchange` and the README ("Check your own solver"). A stored file is
+//! holds) are in `spherecontact_external::exchange` and docs/own-solver.md. A stored file is
 //! validated against the path here, when the case is read.
 
 use std::path::Path;

@@ -1,5 +1,5 @@
 //! A command solver: any program named by a case, given the scene file and read back through the
-//! History CSV (README, "Check your own solver"; docs/security.md, "Programs a case may run").
+//! History CSV (docs/own-solver.md; docs/security.md, "Programs a case may run").
 //!
 //! It runs only when allowed ([`super::permission`]): otherwise it is not available, with the
 //! reason and the command it would run. The run: a fresh temporary folder; `scene.json` written

@@ -4,7 +4,7 @@
 //! - [`scene_file`]: the scene written for such a program (`scene.json`, versioned, SI);
 //! - [`results_csv`]: the History CSV read back from it, validated against the path.
 //!
-//! Both formats are documented in the README ("Check your own solver").
+//! Both formats are documented in docs/own-solver.md.
 
 pub mod results_csv;
 pub mod scene_file;

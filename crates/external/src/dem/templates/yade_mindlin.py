@@ -1,5 +1,5 @@
 # spherecontact @SOLVER@: YADE along the path of scene.json, written to history.csv
-# (the scene file and History CSV of README "Check your own solver"). Run as `yade -n -x`.
+# (the scene file and History CSV of docs/own-solver.md). Run as `yade -n -x`.
 #
 # Two spheres driven kinematically, one YADE step per path increment:
 #  - sphere 0 sits at the origin, sphere 1 on the z axis at z = R0 + R1 - delta_n (set directly
