@@ -1,5 +1,5 @@
-//! The no-slip Hertz–Mindlin spring with a Coulomb cap: the tangential law that LIGGGHTS
-//! (`tangential_history`) and YADE (`Law2_ScGeom_MindlinPhys_Mindlin`) ship.
+//! The no-slip Hertz–Mindlin spring with a Coulomb cap, incremental: the tangential law that YADE
+//! (`Law2_ScGeom_MindlinPhys_Mindlin`) and LAMMPS (`tangential mindlin/force`) ship.
 //!
 //! The tangential stiffness is Mindlin's initial stiffness at the current contact radius,
 //! k_t = 8 G* c = 8 G* √(R* δn), and the force is integrated incrementally and capped:
@@ -7,8 +7,9 @@
 //! ```text
 //! Q ← clamp(Q + k_t(c_after) Δδt, −μP, μP)
 //! ```
-//! This is YADE's force-incremental form. LIGGGHTS stores the accumulated displacement instead
-//! and multiplies it by the current k_t, which differs when δn varies. Neither has the
+//! This is YADE's force-incremental form. LIGGGHTS (`tangential history`) and LAMMPS
+//! (`mindlin`) store the accumulated displacement instead and multiply it by the current k_t,
+//! which differs when δn varies ([`super::hertz_mindlin_total`]). Neither has the
 //! micro-slip softening of Mindlin's law, so Q rises too steeply before gross sliding.
 
 use super::incremental::{coulomb_cap, Increment, TangentialLaw};

@@ -33,19 +33,23 @@ pub enum Tool {
     Lammps,
     /// YADE (`yade`): the `yade-mindlin` DEM solver.
     Yade,
+    /// LIGGGHTS-PUBLIC (`liggghts`) with `pair gran` Hertz and tangential history: the
+    /// `liggghts-*` DEM solvers.
+    Liggghts,
     /// CalculiX (`ccx`): the `ccx-axisym` deck.
     Ccx,
 }
 
 impl Tool {
     /// Every tool, in the order `doctor` lists them.
-    pub const ALL: [Tool; 7] = [
+    pub const ALL: [Tool; 8] = [
         Tool::Gmsh,
         Tool::FreeFem,
         Tool::Dolfinx,
         Tool::Meshio,
         Tool::Lammps,
         Tool::Yade,
+        Tool::Liggghts,
         Tool::Ccx,
     ];
 
@@ -58,6 +62,7 @@ impl Tool {
             Tool::Meshio => "meshio",
             Tool::Lammps => "LAMMPS",
             Tool::Yade => "YADE",
+            Tool::Liggghts => "LIGGGHTS",
             Tool::Ccx => "CalculiX",
         }
     }
@@ -71,6 +76,7 @@ impl Tool {
             Tool::Meshio => "apt-get install python3-meshio python3-h5py",
             Tool::Lammps => "apt-get install lammps",
             Tool::Yade => "apt-get install yade",
+            Tool::Liggghts => "apt-get install liggghts",
             Tool::Ccx => "apt-get install --no-install-recommends calculix-ccx",
         }
     }
@@ -89,12 +95,15 @@ pub struct Toolchain {
     pub lammps: PathBuf,
     /// The YADE executable.
     pub yade: PathBuf,
+    /// The LIGGGHTS executable.
+    pub liggghts: PathBuf,
     /// The CalculiX executable.
     pub ccx: PathBuf,
 }
 
 impl Default for Toolchain {
-    /// Debian's: `gmsh`, `FreeFem++`, `lmp`, `yade` and `ccx` from PATH, `/usr/bin/python3`.
+    /// Debian's: `gmsh`, `FreeFem++`, `lmp`, `yade`, `liggghts` and `ccx` from PATH,
+    /// `/usr/bin/python3`.
     fn default() -> Self {
         Self {
             gmsh: "gmsh".into(),
@@ -102,6 +111,7 @@ impl Default for Toolchain {
             python: "/usr/bin/python3".into(),
             lammps: "lmp".into(),
             yade: "yade".into(),
+            liggghts: "liggghts".into(),
             ccx: "ccx".into(),
         }
     }
@@ -150,6 +160,7 @@ impl Toolchain {
             Tool::Dolfinx | Tool::Meshio => &self.python,
             Tool::Lammps => &self.lammps,
             Tool::Yade => &self.yade,
+            Tool::Liggghts => &self.liggghts,
             Tool::Ccx => &self.ccx,
         }
     }
@@ -221,6 +232,19 @@ fn lammps_version(help: &str) -> Result<Option<String>, String> {
         .find_map(|l| l.split_once("Simulator - ").map(|(_, v)| v.trim().to_owned())))
 }
 
+/// The version of `liggghts -h` ("LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0, compiled …"), if
+/// its help lists the models the `liggghts-*` solvers use (normal `hertz`, tangential `history`).
+fn liggghts_version(help: &str) -> Result<Option<String>, String> {
+    let listed = |word: &str| help.lines().any(|l| l.split_whitespace().any(|w| w == word));
+    if !(listed("hertz") && listed("history")) {
+        return Err("liggghts lists no normal model hertz or tangential model history (liggghts -h)".into());
+    }
+    Ok(help.lines().find_map(|l| {
+        let rest = l.split_once("(Version ")?.1;
+        Some(rest.split([',', ')']).next()?.trim().to_owned())
+    }))
+}
+
 /// Runs the tool's version query in a temporary directory.
 fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
     let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory: {e}"))?;
@@ -259,6 +283,7 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         ),
         Tool::Lammps => (vec!["-h".into()], vec![]),
         Tool::Yade => (vec!["--version".into()], vec![]),
+        Tool::Liggghts => (vec!["-h".into()], vec![]),
         Tool::Ccx => (vec!["-v".into()], vec![]),
     };
     let job = Job {
@@ -268,8 +293,9 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         timeout: PROBE_TIMEOUT,
     };
     let run = process::run(&job, dir.path(), "version").map_err(|e| e.to_string())?;
-    // ccx 2.20 prints its version and exits with code 201.
-    let answered = tool == Tool::Ccx && matches!(run.ending, process::Ending::Exited(_));
+    // ccx 2.20 prints its version and exits with code 201; liggghts 3.8.0 its help with code 1.
+    let answered =
+        matches!(tool, Tool::Ccx | Tool::Liggghts) && matches!(run.ending, process::Ending::Exited(_));
     if let Some(failure) = run
         .ending
         .failure(tool.name(), PROBE_TIMEOUT, |_| "its version probe failed")
@@ -280,6 +306,7 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
     let text = format!("{}\n{}", run.stdout, run.stderr);
     let version = match tool {
         Tool::Lammps => lammps_version(&text)?,
+        Tool::Liggghts => liggghts_version(&text)?,
         Tool::FreeFem => text
             .lines()
             .find_map(|l| l.trim().strip_prefix("ffversion "))
@@ -320,6 +347,17 @@ mod tests {
             message.contains("not installed") && message.contains("scripts/setup.sh"),
             "{message}"
         );
+    }
+
+    #[test]
+    fn liggghts_help_gives_its_version_and_needs_its_models() {
+        let help = "LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0, compiled 2022-01-26 by buildd)\n\
+                    * Normal models for pair gran:\nhertz   hooke\n* Tangential models for pair gran:\nhistory   no_history\n";
+        assert_eq!(
+            liggghts_version(help),
+            Ok(Some("LIGGGHTS-PUBLIC 3.8.0".to_owned()))
+        );
+        assert!(liggghts_version("LIGGGHTS (Version X)\nhooke\n").is_err());
     }
 
     #[test]

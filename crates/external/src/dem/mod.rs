@@ -1,6 +1,6 @@
-//! Real DEM codes along the path: LAMMPS (`pair_style granular`) and YADE (`MindlinPhys` laws),
-//! driven through input generated from the case and run as subprocesses, their forces read back
-//! into the same [`History`](spherecontact_model::history::History) as every other solver.
+//! Real DEM codes along the path: LAMMPS (`pair_style granular`), YADE (`MindlinPhys` laws) and
+//! LIGGGHTS (`pair gran`), driven through input generated from the case and run as subprocesses,
+//! their forces read back into the same [`History`](spherecontact_model::history::History) as every other solver.
 //!
 //! | solver | code and law |
 //! |---|---|
@@ -9,14 +9,17 @@
 //! | `lammps-mindlin-force` | `mindlin/force` (incremental force) |
 //! | `lammps-mindlin-rescale-force` | `mindlin_rescale/force` (force scaled by a/a_old on unloading) |
 //! | `yade-mindlin` | YADE `Law2_ScGeom_MindlinPhys_Mindlin` (incremental no-slip spring) |
+//! | `liggghts-hertz-history` | LIGGGHTS `pair gran model hertz tangential history` (stored displacement × current stiffness) |
 //!
 //! How the runs are made quasi-static: both codes move the spheres kinematically, one step per
 //! path increment, with no time integration of forces and no damping (see the templates). The
 //! normal approach is set by position along the line of centres; the tangential displacement by
 //! spinning one sphere, so the contact normal never turns. The codes need `scripts/setup.sh`
-//! (Debian's `lammps` and `yade`); without them these solvers are "not available".
+//! (Debian's `lammps`, `yade` and `liggghts`); without them these solvers are "not available".
 
 pub mod lammps;
+pub mod liggghts;
+pub mod path_rows;
 pub mod yade;
 
 use lammps::{Lammps, TangentialModel};
@@ -31,6 +34,7 @@ pub fn solvers() -> Vec<Box<dyn Solver>> {
         .map(|model| Box::new(Lammps::new(model)) as Box<dyn Solver>)
         .collect();
     solvers.push(Box::new(Yade::new(YadeLaw::Mindlin)));
+    solvers.push(Box::new(liggghts::Liggghts::default()));
     solvers
 }
 
