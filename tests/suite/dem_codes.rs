@@ -1,4 +1,4 @@
-//! The real DEM codes (LAMMPS `pair_style granular`, YADE `MindlinPhys`) against the closed forms
+//! The real DEM codes (LAMMPS `pair_style granular`, YADE `MindlinPhys`, LIGGGHTS `pair gran`) against the closed forms
 //! of their laws: Hertz's normal force, the no-slip spring's initial stiffness 8G*c, the Coulomb
 //! cap μP; their runs are quasi-static (rate-independent); YADE's MindlinDeresiewitz law gives no
 //! tangential force at all.
@@ -224,7 +224,7 @@ fn missing_codes_are_not_available_and_a_flat_is_not_applicable() {
 }
 
 #[test]
-#[ignore = "heavy: LAMMPS and YADE along the paper path, 7 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
+#[ignore = "heavy: LAMMPS, YADE and LIGGGHTS along the paper path, 8 s (two test threads); .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn the_scoreboard_measures_what_the_informational_checks_measure() {
     use spherecontact::check::Reference;
     use spherecontact::report::dem_scoreboard;
@@ -234,6 +234,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
         name == "mdr"
             || [
                 "hertz-mindlin-spring",
+                "hertz-mindlin-total",
                 "thornton",
                 "md-incremental",
                 "walton-braun",
@@ -241,13 +242,14 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
             .contains(&name)
             || name.starts_with("lammps-")
             || name.starts_with("yade-")
+            || name.starts_with("liggghts-")
     };
     case.solvers.retain(|s| wanted(s));
     case.checks
         .retain(|c| wanted(&c.solver) && matches!(&c.reference, Reference::Solver(r) if r == "mdr"));
     let run = spherecontact::verify::run_case(case);
     let scores = dem_scoreboard::scores(&run);
-    assert_eq!(scores.len(), 9, "four built-in laws and five code solvers");
+    assert_eq!(scores.len(), 11, "five built-in laws and six code solvers");
     for outcome in &run.outcomes {
         let score = scores.iter().find(|s| s.solver == outcome.spec.solver).unwrap();
         match (&score.distances, outcome.error) {
@@ -262,7 +264,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
     }
     let section = dem_scoreboard::section(&run);
     assert_eq!(section.title, dem_scoreboard::TITLE);
-    assert_eq!(section.tables[0].rows.len(), 9);
+    assert_eq!(section.tables[0].rows.len(), 11);
     // The spring law is far from MDR (no micro-slip): the board must show it, not hide it.
     let spring = scores
         .iter()
