@@ -72,6 +72,7 @@ fn the_codes_reproduce_hertz_the_initial_stiffness_8gc_and_the_coulomb_cap() {
 /// initial stiffness 8G*a and the Coulomb cap μP to its rounding (the same closed forms and
 /// tolerances as LAMMPS and YADE above; one LIGGGHTS run of 108 steps, about 0.5 s).
 #[test]
+#[ignore = "heavy: LIGGGHTS runs behind the toolchain probe of every code, 7 s on the shared machine; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn liggghts_reproduces_hertz_the_initial_stiffness_8ga_and_the_coulomb_cap() {
     if present(Tool::Liggghts, "liggghts closed forms") {
         assert_closed_forms(&Liggghts::default(), &shear_scene());
@@ -298,6 +299,7 @@ fn varied_scene() -> Scene {
 /// Requirement: the LIGGGHTS run is quasi-static: a timestep 1000 times longer (spins 1000 times
 /// slower, the same increments) gives the same forces.
 #[test]
+#[ignore = "heavy: LIGGGHTS runs behind the toolchain probe of every code, 8 s on the shared machine; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn liggghts_is_quasi_static_the_step_length_changes_nothing() {
     if !present(Tool::Liggghts, "liggghts quasi-static") {
         return;
@@ -325,6 +327,7 @@ fn liggghts_is_quasi_static_the_step_length_changes_nothing() {
 /// `hertz-mindlin-total` (stored displacement × current 8G*c, capped at μP), so along the same
 /// path they agree at round-off, while δn varies too.
 #[test]
+#[ignore = "heavy: LIGGGHTS runs behind the toolchain probe of every code, 7 s on the shared machine; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn liggghts_history_is_the_total_form_spring_at_round_off() {
     if !present(Tool::Liggghts, "liggghts total form") {
         return;
@@ -352,6 +355,7 @@ fn liggghts_history_is_the_total_form_spring_at_round_off() {
 /// shear[0])`, kt = 8 G* √(R* δn) of the current δn, normal_model_hertz.h:232): Q jumps by
 /// √(6/5) = 1.095.
 #[test]
+#[ignore = "heavy: LIGGGHTS runs behind the toolchain probe of every code, 7 s on the shared machine; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn liggghts_rescales_its_stored_force_when_the_normal_load_rises() {
     let scene = common::case("cases/liggghts-rising-load.toml").scene;
     let at = |k: usize| {
@@ -396,6 +400,7 @@ fn liggghts_rescales_its_stored_force_when_the_normal_load_rises() {
 /// r = 2R − δ (compute_pair_gran_local.cpp:558), twice Hertz's π a² = π R δ / 2: the contact
 /// radius √(area/π) it gives is √2 times Hertz's.
 #[test]
+#[ignore = "heavy: LIGGGHTS runs behind the toolchain probe of every code, 7 s on the shared machine; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn liggghts_contact_area_is_the_lens_twice_hertz() {
     if !present(Tool::Liggghts, "liggghts contact area") {
         return;

@@ -285,6 +285,7 @@ fn yade_runs_one_sweep_point_under_its_own_rule() {
 /// Requirement: LIGGGHTS run dynamically on a sphere spinning onto its wall: Hertz's closed forms
 /// (elastic) and the exact reference under its own rule (`mdr-liggghts`, damped).
 #[test]
+#[ignore = "heavy: LIGGGHTS runs behind the toolchain probe of every code, 8 s on the shared machine; .ci/run runs it (docs/verification-at-scale.md, \"A fast test command\")"]
 fn liggghts_runs_one_sweep_point_under_its_own_rule() {
     if present(Tool::Liggghts, "liggghts_runs_one_sweep_point_under_its_own_rule") {
         judge_code_rule("liggghts-hertz-history", "mdr-liggghts", false);
@@ -348,7 +349,7 @@ fn the_liggghts_input_has_a_block_per_sweep_point_and_numbers_only() {
     assert_eq!(input.matches("\nclear\n").count(), 17, "one block per spin");
     assert!(input.contains("log             point-16.txt"));
     // Two spheres: no wall; LIGGGHTS' own damping from e = 0.5, clamped, no tangential damping.
-    assert!(!input.contains("wall/gran"));
+    assert!(!input.contains("fix             wall all wall/gran"));
     assert!(input.contains("coefficientRestitution peratomtypepair 2 5e-1 5e-1 5e-1 5e-1"));
     assert!(input.contains("tangential history tangential_damping off limitForce on"));
     // No word of the case's own (its name, its description) reaches the input.
