@@ -4,7 +4,8 @@
 #   gmsh 4.8.4 (+ python3-gmsh), FreeFem++ 4.11 (+ libfreefem++ plugins: gmsh, iovtk),
 #   dolfinx 0.5.2 for /usr/bin/python3, meshio 5 and h5py;
 #   the DEM codes LAMMPS (Debian 20220106, "29 Sep 2021 - Update 2", GRANULAR built in) and
-#   YADE 2023.02a (the lammps-* and yade-mindlin solvers);
+#   YADE 2023.02a (the lammps-* and yade-mindlin solvers), LIGGGHTS-PUBLIC 3.8.0 (liggghts, serial;
+#   the liggghts-* solvers);
 #   CalculiX ccx 2.20 (calculix-ccx, SPOOLES; the ccx-axisym solver), about 5 MB;
 #   Kratos 10.4.4 with its DEMApplication (PyPI wheels, not a Debian package) in the project's own
 #   virtual environment /opt/spherecontact/venv, made with Debian's /usr/bin/python3 (3.11):
@@ -14,7 +15,7 @@
 # Afterwards prints the versions found (the same facts as `spherecontact doctor`).
 set -euo pipefail
 
-PACKAGES=(gmsh python3-gmsh freefem++ libfreefem++ python3-dolfinx-real python3-meshio python3-h5py lammps yade calculix-ccx python3-venv)
+PACKAGES=(gmsh python3-gmsh freefem++ libfreefem++ python3-dolfinx-real python3-meshio python3-h5py lammps yade liggghts calculix-ccx python3-venv)
 export DEBIAN_FRONTEND=noninteractive
 APT=(apt-get -y -q -o DPkg::Lock::Timeout=900 --no-install-recommends)
 
@@ -64,6 +65,10 @@ lmpout=$(lmp -h 2>&1) || { echo "$lmpout" | tail -n 5; exit 1; }
 echo "$lmpout" | grep -qw GRANULAR || { echo "setup.sh: lmp lacks the GRANULAR package"; exit 1; }
 echo "LAMMPS    $(command -v lmp): $(echo "$lmpout" | sed -n 's/.*Simulator - //p' | head -n1) (GRANULAR package)"
 echo "YADE      $(command -v yade): $(yade --version 2>&1 | sed -n 's/^Yade version: *//p')"
+# liggghts -h prints its help and exits with code 1.
+ligout=$(liggghts -h 2>&1) || true
+echo "$ligout" | grep -q "Version LIGGGHTS" || { echo "setup.sh: liggghts does not report its version: $(echo "$ligout" | tail -n 3)"; exit 1; }
+echo "LIGGGHTS  $(command -v liggghts): $(echo "$ligout" | sed -n 's/.*(Version \([^,)]*\).*/\1/p' | head -n1)"
 ccxout=$(ccx -v 2>&1) || true
 echo "$ccxout" | grep -q "Version" || { echo "setup.sh: ccx does not report its version: $ccxout"; exit 1; }
 echo "CalculiX  $(command -v ccx): $(echo "$ccxout" | sed -n 's/.*Version *//p' | head -n1)"

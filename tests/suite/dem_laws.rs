@@ -12,8 +12,9 @@ use spherecontact::scene::Scene;
 use spherecontact::{registry, solver};
 
 /// Every incremental law in the registry.
-const LAWS: [&str; 4] = [
+const LAWS: [&str; 5] = [
     "hertz-mindlin-spring",
+    "hertz-mindlin-total",
     "thornton",
     "md-incremental",
     "walton-braun",

@@ -8,11 +8,12 @@ use common::{paper_scene_with_path, solve};
 use spherecontact::driver::NEVER_CLOSES;
 
 /// The in-crate solvers whose paths the walker drives (fem-axisym: its never-closing rule).
-const WALKING: [&str; 7] = [
+const WALKING: [&str; 8] = [
     "bem",
     "mdr",
     "fem-axisym",
     "hertz-mindlin-spring",
+    "hertz-mindlin-total",
     "thornton",
     "md-incremental",
     "walton-braun",

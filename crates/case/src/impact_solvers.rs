@@ -4,13 +4,14 @@ use spherecontact_model::solver::Kind;
 use spherecontact_reference::impact::problem as impact;
 
 /// The names of the solvers an impact case may run: the exact references, the DEM laws, then
-/// the DEM codes (LAMMPS per tangential model, YADE, Kratos per law), named as their kinematic
-/// adapters.
+/// the DEM codes (LAMMPS per tangential model, YADE, LIGGGHTS, Kratos per law), named as their
+/// kinematic adapters.
 pub fn solver_names() -> Vec<&'static str> {
     [
         impact::REFERENCE,
         impact::LAMMPS_REFERENCE,
         impact::YADE_REFERENCE,
+        impact::LIGGGHTS_REFERENCE,
     ]
     .into_iter()
     .chain(
@@ -19,9 +20,10 @@ pub fn solver_names() -> Vec<&'static str> {
             .map(|law| law.name),
     )
     .chain(spherecontact_external::dem::lammps::TangentialModel::ALL.map(|m| m.solver_name()))
-    .chain(std::iter::once(
+    .chain([
         spherecontact_external::dem::yade::YadeLaw::Mindlin.solver_name(),
-    ))
+        spherecontact_external::dem::liggghts::NAME,
+    ])
     .chain(spherecontact_external::dem::kratos::KratosLaw::ALL.map(|law| law.solver_name()))
     .collect()
 }
@@ -37,6 +39,7 @@ pub fn impact_kind_in_words(case: &impact::ImpactCase, name: &str) -> String {
         impact::REFERENCE,
         impact::LAMMPS_REFERENCE,
         impact::YADE_REFERENCE,
+        impact::LIGGGHTS_REFERENCE,
     ];
     if references.contains(&name) {
         return Kind::Analytic.to_string();

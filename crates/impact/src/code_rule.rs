@@ -8,6 +8,7 @@
 //! | rule | c | friction bounded by | reference |
 //! |---|---|---|---|
 //! | harness (LIGGGHTS' Tsuji) | 2 √(5/6) \|β\| √(2E*√R* m*), β = ln e / √(ln² e + π²) | elastic force | `mdr` |
+//! | LIGGGHTS `coefficientRestitution` (+ `limitForce on`) | the harness's | total force | `mdr-liggghts` |
 //! | LAMMPS `damping tsuji` (+ `limit_damping`) | α(e) √(4/3 E*√R* m*), α Tsuji's polynomial | total force | `mdr-lammps` |
 //! | YADE `Ip2_FrictMat_FrictMat_MindlinPhys(en = e)`, Kratos `COEFFICIENT_OF_RESTITUTION = e` | 2 β_T(e) √(2E*√R* m*), β_T Thornton et al.'s fit | total force | `mdr-yade` |
 //!
@@ -20,17 +21,23 @@
 //! total at zero and caps the shear force at μ |F_total|. YADE's shear damping (β_s = β_n unless
 //! `es` is given) is switched off (`es = 1`), as LAMMPS's tangential damping is (0): both codes
 //! are compared on their normal damping only, the MDR reference having none tangentially.
+//! LIGGGHTS 3.8.0, `normal_model_hertz.h` — β from the restitution (`global_properties.cpp:539`),
+//! γ_n = 2 √(5/6) β √(S_n m*), S_n = 2E*√(R*δ) (:231, :237): the harness's coefficient; the total
+//! clamped at zero only under `limitForce on` (:258, off by default: set here), the Coulomb cap
+//! μ |F_n| of the total (`tangential_model_history.h:175`); its tangential damping γ_t (on by
+//! default, :238) is switched off (`tangential_damping off`), as the others'.
 //! Kratos 10.4.4 takes the same β: its `DEM_D_Hertz_viscous_Coulomb` is a "Hertz" law, for which
 //! the DEMApplication's material set-up computes `DAMPING_GAMMA = GammaForHertzThornton(e)`, and
 //! damps with 2γ √(m* K_n), K_n = 2E*√(R*δ), the total clamped at zero and the shear capped at
 //! μ times it (`DEM_D_Hertz_viscous_Coulomb_CL.cpp`): YADE's rule, so `mdr-yade` is its reference
-//! too. Unlike the other two it damps the tangential spring as well (2γ √(m* K_t), which no
+//! too. Unlike the others it damps the tangential spring as well (2γ √(m* K_t), which no
 //! option turns off), which the reference has not: at e < 1 its tangential outcomes carry that
 //! difference (docs/impact.md); at e = 1 (the elastic variants) none is damped.
 
-use super::case::{LAMMPS_REFERENCE, REFERENCE, YADE_REFERENCE};
+use super::case::{LAMMPS_REFERENCE, LIGGGHTS_REFERENCE, REFERENCE, YADE_REFERENCE};
 use spherecontact_external::dem::kratos::KratosLaw;
 use spherecontact_external::dem::lammps::TangentialModel;
+use spherecontact_external::dem::liggghts;
 use spherecontact_external::dem::yade::YadeLaw;
 use spherecontact_model::hertz::Hertz;
 use spherecontact_reference::impact::law::{Damping, FrictionBound};
@@ -44,6 +51,8 @@ pub enum Rule {
     Lammps,
     /// YADE's (`yade-mindlin` and `mdr-yade`), which is Kratos' too (`kratos-*`).
     Yade,
+    /// LIGGGHTS' (`liggghts-hertz-history` and `mdr-liggghts`).
+    Liggghts,
 }
 
 impl Rule {
@@ -56,6 +65,8 @@ impl Rule {
             || KratosLaw::ALL.iter().any(|law| law.solver_name() == solver)
         {
             Rule::Yade
+        } else if solver == LIGGGHTS_REFERENCE || solver == liggghts::NAME {
+            Rule::Liggghts
         } else {
             Rule::Harness
         }
@@ -67,6 +78,7 @@ impl Rule {
             Rule::Harness => REFERENCE,
             Rule::Lammps => LAMMPS_REFERENCE,
             Rule::Yade => YADE_REFERENCE,
+            Rule::Liggghts => LIGGGHTS_REFERENCE,
         }
     }
 
@@ -86,13 +98,17 @@ impl Rule {
                 2.0 * thornton_beta(restitution) * (2.0 * scale).sqrt(),
                 FrictionBound::Total,
             ),
+            Rule::Liggghts => Damping::with_coefficient(
+                Damping::new(restitution, mass, hertz).coefficient(),
+                FrictionBound::Total,
+            ),
         })
     }
 }
 
 /// True for the exact references (MDR under each rule).
 pub fn is_reference(solver: &str) -> bool {
-    [REFERENCE, LAMMPS_REFERENCE, YADE_REFERENCE].contains(&solver)
+    [REFERENCE, LAMMPS_REFERENCE, YADE_REFERENCE, LIGGGHTS_REFERENCE].contains(&solver)
 }
 
 /// Tsuji's polynomial α(e), as LAMMPS's `damping tsuji` computes it from the restitution.
@@ -133,6 +149,8 @@ mod tests {
         assert_eq!(Rule::of("thornton"), Rule::Harness);
         assert_eq!(Rule::of("lammps-mindlin").reference(), "mdr-lammps");
         assert!(is_reference("mdr-yade") && !is_reference("yade-mindlin"));
+        assert_eq!(Rule::of("liggghts-hertz-history").reference(), "mdr-liggghts");
+        assert!(is_reference("mdr-liggghts"));
     }
 
     #[test]
@@ -151,6 +169,11 @@ mod tests {
         assert_eq!(harness, Damping::new(0.5, 2.0, &h));
         let lammps = Rule::Lammps.damping(0.5, 2.0, &h).unwrap();
         let yade = Rule::Yade.damping(0.5, 2.0, &h).unwrap();
+        // LIGGGHTS' coefficient is the harness's; only its friction bound differs.
+        let liggghts = Rule::Liggghts.damping(0.5, 2.0, &h).unwrap();
+        assert_eq!(liggghts.coefficient(), harness.coefficient());
+        assert_eq!(liggghts.bound, FrictionBound::Total);
+        assert_ne!(harness.bound, FrictionBound::Total);
         assert_eq!(lammps.bound, FrictionBound::Total);
         assert_eq!(yade.bound, FrictionBound::Total);
         // At δn = 1, δ̇ = 1 the viscous force is the coefficient itself.

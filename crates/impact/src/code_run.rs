@@ -1,8 +1,10 @@
 //! The real DEM codes run dynamically over an impact sweep: LAMMPS (`pair_style granular`, one
 //! solver per tangential model of the kinematic adapters, `fix nve/sphere`), YADE
-//! (`Law2_ScGeom_MindlinPhys_Mindlin`, `NewtonIntegrator`) and Kratos (`DEM_D_Hertz_viscous_Coulomb`,
-//! symplectic Euler). Each sweep is one process: the input is generated from the case
-//! ([`super::lammps`], [`super::yade`], [`super::kratos`]), run in a fresh folder with
+//! (`Law2_ScGeom_MindlinPhys_Mindlin`, `NewtonIntegrator`), LIGGGHTS (`pair gran` hertz +
+//! tangential history, `fix nve/sphere`, a rigid flat its own `fix wall/gran`) and Kratos
+//! (`DEM_D_Hertz_viscous_Coulomb`, symplectic Euler). Each sweep is one process: the input is
+//! generated from the case ([`super::lammps`], [`super::yade`], [`super::liggghts`],
+//! [`super::kratos`]), run in a fresh folder with
 //! the process handling of every external program (`spherecontact_external::program`: timeout, the
 //! whole process tree killed, the folder and its log kept on failure), and each sweep point's
 //! rows read back ([`super::code_readback`]) into the outcome the built-in laws produce.
@@ -18,7 +20,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use super::budget::TRACE_SAMPLES;
+use super::budget::{STEP_BUDGET, TRACE_SAMPLES};
 use super::case::{ImpactCase, Point, Variant};
 use super::code_readback::{self, Rows};
 use super::placement::{points_file, Placement, POINTS};
@@ -26,6 +28,7 @@ use super::solver_run::SolverRun;
 use super::tally::Tally;
 use spherecontact_external::dem::kratos::KratosLaw;
 use spherecontact_external::dem::lammps::TangentialModel;
+use spherecontact_external::dem::liggghts;
 use spherecontact_external::dem::yade::YadeLaw;
 use spherecontact_external::program;
 use spherecontact_model::progress;
@@ -66,6 +69,13 @@ pub const YADE_STEP_S: f64 = 4.0e-5;
 pub const KRATOS_START_UP_S: f64 = 0.8;
 /// See [`KRATOS_START_UP_S`].
 pub const KRATOS_STEP_S: f64 = 2.5e-4;
+/// LIGGGHTS's start-up [s] and its wall time a step of an impact sweep (with its per-step
+/// thermo row) [s], for the estimate: each point runs its whole step budget (no `fix halt`), so a
+/// step is counted four times ([`super::budget`]: the budget is 4 contact durations); measured
+/// as [`LAMMPS_START_UP_S`] (docs/impact.md "Speed").
+pub const LIGGGHTS_START_UP_S: f64 = 0.6;
+/// See [`LIGGGHTS_START_UP_S`].
+pub const LIGGGHTS_STEP_S: f64 = 4.0e-5;
 
 /// A DEM code as an impact solver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,6 +86,8 @@ pub enum Code {
     Yade,
     /// Kratos with one DEM law.
     Kratos(KratosLaw),
+    /// LIGGGHTS' `hertz` + `tangential history`.
+    Liggghts,
 }
 
 impl Code {
@@ -92,6 +104,7 @@ impl Code {
                     .find(|law| law.solver_name() == solver)
                     .map(Code::Kratos)
             })
+            .or_else(|| (solver == liggghts::NAME).then_some(Code::Liggghts))
     }
 
     /// The solver's name.
@@ -100,6 +113,7 @@ impl Code {
             Code::Lammps(model) => model.solver_name(),
             Code::Yade => YadeLaw::Mindlin.solver_name(),
             Code::Kratos(law) => law.solver_name(),
+            Code::Liggghts => liggghts::NAME,
         }
     }
 
@@ -111,6 +125,7 @@ impl Code {
             Code::Lammps(_) => LAMMPS_START_UP_S + LAMMPS_STEP_S * steps,
             Code::Yade => YADE_START_UP_S + YADE_STEP_S * steps,
             Code::Kratos(_) => KRATOS_START_UP_S + KRATOS_STEP_S * steps,
+            Code::Liggghts => LIGGGHTS_START_UP_S + LIGGGHTS_STEP_S * STEP_BUDGET as f64 * steps,
         }
     }
 
@@ -119,6 +134,23 @@ impl Code {
             Code::Lammps(_) => Tool::Lammps,
             Code::Yade => Tool::Yade,
             Code::Kratos(_) => Tool::KratosDem,
+            Code::Liggghts => Tool::Liggghts,
+        }
+    }
+
+    /// The rows of a point's output `file` (LIGGGHTS: its log's thermo rows).
+    fn rows(self, file: &Path) -> Result<Rows, code_readback::ReadbackError> {
+        match self {
+            Code::Liggghts => super::liggghts::rows(file),
+            Code::Lammps(_) | Code::Yade | Code::Kratos(_) => Rows::read(file),
+        }
+    }
+
+    /// The placement a point's rows are read against (LIGGGHTS' wall: its mirror sphere).
+    fn seen(self, placement: &Placement) -> Placement {
+        match self {
+            Code::Liggghts => super::liggghts::readback(placement),
+            Code::Lammps(_) | Code::Yade | Code::Kratos(_) => *placement,
         }
     }
 
@@ -135,6 +167,18 @@ impl Code {
                 Ok(Job {
                     program: toolchain.lammps.clone(),
                     args: ["-in", super::lammps::INPUT, "-log", "none", "-nocite"]
+                        .map(String::from)
+                        .to_vec(),
+                    env: Vec::new(),
+                    timeout,
+                })
+            }
+            Code::Liggghts => {
+                let input = super::liggghts::input(placements, super::liggghts::WALL_STIFFNESS_FACTOR);
+                std::fs::write(dir.join(super::liggghts::INPUT), input)?;
+                Ok(Job {
+                    program: toolchain.liggghts.clone(),
+                    args: ["-in", super::liggghts::INPUT, "-log", "none", "-nocite"]
                         .map(String::from)
                         .to_vec(),
                     env: Vec::new(),
@@ -260,8 +304,8 @@ fn run_in_folder(
                 } else {
                     0
                 };
-                Rows::read(&file)
-                    .and_then(|rows| rows.integration(p, stride))
+                code.rows(&file)
+                    .and_then(|rows| rows.integration(&code.seen(p), stride))
                     .map_err(|e| SolveError::Failed(format!("{}: {e}", file.display())))
             })
             .collect()

@@ -2,7 +2,7 @@
 //!
 //! **Job.** Running the impact benchmarks: every law and DEM code of an impact case over its sweep, beside the exact reference, and the case's checks on their outcomes.
 //!
-//! **May depend on.** `spherecontact-model`, `spherecontact-system`, `spherecontact-reference` (the impact dynamics), `spherecontact-external` (LAMMPS and YADE), `spherecontact-check`, `spherecontact-case`.
+//! **May depend on.** `spherecontact-model`, `spherecontact-system`, `spherecontact-reference` (the impact dynamics), `spherecontact-external` (LAMMPS, YADE and LIGGGHTS), `spherecontact-check`, `spherecontact-case`.
 //!
 //! **Offers.** `ImpactRun`, `run::run_case`, and the DEM codes' impact adapters.
 //!
@@ -43,6 +43,7 @@ pub mod files;
 pub mod judge;
 pub mod kratos;
 pub mod lammps;
+pub mod liggghts;
 pub mod own_run;
 pub mod own_scene;
 pub mod placement;

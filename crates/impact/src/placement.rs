@@ -43,6 +43,9 @@ pub struct Placement {
     pub fixed: bool,
     /// The one material (E', ν') of both bodies.
     pub young: f64,
+    /// E' before a flat's raise: the pair's one-material E' (2 E1 for a sphere on a rigid flat),
+    /// for a code that models the flat as its own wall (LIGGGHTS, [`super::liggghts`]).
+    pub pair_young: f64,
     /// Its Poisson ratio ν'.
     pub poisson: f64,
     /// μ.
@@ -70,12 +73,12 @@ impl Placement {
             point.body2.body.radius
         };
         let density1 = point.body1.density.unwrap_or_default();
-        let (young, poisson) = spherecontact_external::dem::lammps::equivalent_material(&case.pair());
+        let (pair_young, poisson) = spherecontact_external::dem::lammps::equivalent_material(&case.pair());
         // E*√R* kept: R* = R1 R2 / (R1 + R2) is the flat's R1 only as R2 → ∞.
         let young = if fixed {
-            young * ((r1 + r2) / r2).sqrt()
+            pair_young * ((r1 + r2) / r2).sqrt()
         } else {
-            young
+            pair_young
         };
         let gap = 0.5 * point.approach_speed() * step;
         let max_steps = STEP_BUDGET * case.steps + 2;
@@ -90,6 +93,7 @@ impl Placement {
             spin_y: [-point.body1.spin, point.body2.spin],
             fixed,
             young,
+            pair_young,
             poisson,
             friction: case.friction,
             restitution: point.restitution,

@@ -1,5 +1,5 @@
-//! The no-slip Hertz–Mindlin spring with a Coulomb cap: the tangential law that LIGGGHTS
-//! (`tangential_history`) and YADE (`Law2_ScGeom_MindlinPhys_Mindlin`) ship, and its variant
+//! The no-slip Hertz–Mindlin spring with a Coulomb cap, incremental: the tangential law that YADE
+//! (`Law2_ScGeom_MindlinPhys_Mindlin`) and LAMMPS (`tangential mindlin/force`) ship, and its variant
 //! whose stored force shrinks with the contact on unloading (Kratos' `DEM_D_Hertz_viscous_Coulomb`,
 //! LAMMPS' `mindlin_rescale/force`).
 //!
@@ -9,8 +9,9 @@
 //! ```text
 //! Q ← clamp(Q + k_t(c_after) Δδt, −μP, μP)
 //! ```
-//! This is YADE's force-incremental form. LIGGGHTS stores the accumulated displacement instead
-//! and multiplies it by the current k_t, which differs when δn varies. Neither has the
+//! This is YADE's force-incremental form. LIGGGHTS (`tangential history`) and LAMMPS
+//! (`mindlin`) store the accumulated displacement instead and multiply it by the current k_t,
+//! which differs when δn varies ([`super::hertz_mindlin_total`]). Neither has the
 //! micro-slip softening of Mindlin's law, so Q rises too steeply before gross sliding.
 //!
 //! The rescaled variant ([`HertzMindlinSpring::rescaled`]) first scales the stored force by the

@@ -58,8 +58,9 @@
 //! | `cattaneo-mindlin` | Cattaneo–Mindlin + Masing | only at constant normal load |
 //! | `mdr` | method of dimensionality reduction | exact Mindlin–Deresiewicz |
 //! | `mdr-domain` ([`mdr_series`], run by `fem::axisym`) | MDR in series with a finite body's compliances | exact MD for the modelled finite body, to first order |
-//! | `hertz-mindlin-spring` | no-slip spring with Coulomb cap | approximate (DEM) |
+//! | `hertz-mindlin-spring` | no-slip spring with Coulomb cap, incremental | approximate (DEM) |
 //! | `hertz-mindlin-spring-rescaled` | the spring, its stored force scaled by c/c_before on unloading | approximate (DEM) |
+//! | `hertz-mindlin-total` | no-slip spring with Coulomb cap, total form (stored displacement) | approximate (DEM) |
 //! | `thornton` | Thornton (1991): M–D increments, T*, T** | approximate (DEM) |
 //! | `md-incremental` | Mindlin–Deresiewicz incremental cases (the basis of Zhang & Vu-Quoc 2007), Masing memory | approximate (DEM) |
 //! | `walton-braun` | Walton & Braun (1986), T* scaled with N | approximate (DEM) |
@@ -67,6 +68,7 @@
 pub mod cattaneo_mindlin;
 pub mod hertz;
 pub mod hertz_mindlin_spring;
+pub mod hertz_mindlin_total;
 pub mod impact;
 pub mod incremental;
 pub mod md_cases;
@@ -96,7 +98,7 @@ pub fn dem_laws() -> Vec<IncrementalSolver> {
     vec![
         IncrementalSolver {
             name: "hertz-mindlin-spring",
-            description: "no-slip Hertz–Mindlin spring k_t = 8G*c with a Coulomb cap (LIGGGHTS, YADE)",
+            description: "no-slip Hertz–Mindlin spring k_t = 8G*c with a Coulomb cap, incremental (YADE, LAMMPS mindlin/force)",
             make_law: |scene| Box::new(hertz_mindlin_spring::HertzMindlinSpring::new(scene)),
         },
         IncrementalSolver {
@@ -104,6 +106,12 @@ pub fn dem_laws() -> Vec<IncrementalSolver> {
             description: "the spring with its stored force scaled by c/c_before on unloading \
                           (Kratos DEM_D_Hertz_viscous_Coulomb, LAMMPS mindlin_rescale/force)",
             make_law: |scene| Box::new(hertz_mindlin_spring::HertzMindlinSpring::rescaled(scene)),
+        },
+        IncrementalSolver {
+            name: "hertz-mindlin-total",
+            description: "no-slip Hertz–Mindlin spring in total form: stored displacement × current 8G*c, Coulomb cap \
+                          (LIGGGHTS history, LAMMPS mindlin)",
+            make_law: |scene| Box::new(hertz_mindlin_total::HertzMindlinTotal::new(scene)),
         },
         IncrementalSolver {
             name: "thornton",

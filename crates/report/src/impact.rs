@@ -327,7 +327,8 @@ pub fn document<'a>(runs: impl IntoIterator<Item = &'a ImpactRun>, traces: bool)
              and rotation) beside the exact quasi-static reference: MDR's spring bed, exact \
              Mindlin–Deresiewicz for any oblique history. Where a test prescribes a restitution, \
              every law gets the same Tsuji damping and friction bounded by the elastic normal force \
-             (each DEM code, LAMMPS and YADE run dynamically, its own: mdr-lammps, mdr-yade), and \
+             (each DEM code, LAMMPS, YADE and LIGGGHTS run dynamically, its own: mdr-lammps, \
+             mdr-yade, mdr-liggghts), and \
              the elastic variant (e = 1) runs beside: there the reference is exact without \
              assumption. Conventions, damping and convergence: docs/impact.md."
                 .into(),

@@ -39,6 +39,9 @@ pub enum Tool {
     Lammps,
     /// YADE (`yade`): the `yade-mindlin` DEM solver.
     Yade,
+    /// LIGGGHTS-PUBLIC (`liggghts`) with `pair gran` Hertz and tangential history: the
+    /// `liggghts-*` DEM solvers.
+    Liggghts,
     /// CalculiX (`ccx`): the `ccx-axisym` deck.
     Ccx,
     /// Kratos' DEMApplication, for [`KRATOS_PYTHON`]: the `kratos-*` DEM solvers.
@@ -47,13 +50,14 @@ pub enum Tool {
 
 impl Tool {
     /// Every tool, in the order `doctor` lists them.
-    pub const ALL: [Tool; 8] = [
+    pub const ALL: [Tool; 9] = [
         Tool::Gmsh,
         Tool::FreeFem,
         Tool::Dolfinx,
         Tool::Meshio,
         Tool::Lammps,
         Tool::Yade,
+        Tool::Liggghts,
         Tool::Ccx,
         Tool::KratosDem,
     ];
@@ -67,6 +71,7 @@ impl Tool {
             Tool::Meshio => "meshio",
             Tool::Lammps => "LAMMPS",
             Tool::Yade => "YADE",
+            Tool::Liggghts => "LIGGGHTS",
             Tool::Ccx => "CalculiX",
             Tool::KratosDem => "Kratos DEM",
         }
@@ -81,6 +86,7 @@ impl Tool {
             Tool::Meshio => "apt-get install python3-meshio python3-h5py",
             Tool::Lammps => "apt-get install lammps",
             Tool::Yade => "apt-get install yade",
+            Tool::Liggghts => "apt-get install liggghts",
             Tool::Ccx => "apt-get install --no-install-recommends calculix-ccx",
             Tool::KratosDem => {
                 "python3 -m venv /opt/spherecontact/venv && /opt/spherecontact/venv/bin/pip install \
@@ -103,6 +109,8 @@ pub struct Toolchain {
     pub lammps: PathBuf,
     /// The YADE executable.
     pub yade: PathBuf,
+    /// The LIGGGHTS executable.
+    pub liggghts: PathBuf,
     /// The CalculiX executable.
     pub ccx: PathBuf,
     /// The Python interpreter that has Kratos (its DEMApplication).
@@ -110,8 +118,8 @@ pub struct Toolchain {
 }
 
 impl Default for Toolchain {
-    /// Debian's: `gmsh`, `FreeFem++`, `lmp`, `yade` and `ccx` from PATH, `/usr/bin/python3`;
-    /// Kratos' [`KRATOS_PYTHON`].
+    /// Debian's: `gmsh`, `FreeFem++`, `lmp`, `yade`, `liggghts` and `ccx` from PATH,
+    /// `/usr/bin/python3`; Kratos' [`KRATOS_PYTHON`].
     fn default() -> Self {
         Self {
             gmsh: "gmsh".into(),
@@ -119,6 +127,7 @@ impl Default for Toolchain {
             python: "/usr/bin/python3".into(),
             lammps: "lmp".into(),
             yade: "yade".into(),
+            liggghts: "liggghts".into(),
             ccx: "ccx".into(),
             kratos_python: KRATOS_PYTHON.into(),
         }
@@ -168,6 +177,7 @@ impl Toolchain {
             Tool::Dolfinx | Tool::Meshio => &self.python,
             Tool::Lammps => &self.lammps,
             Tool::Yade => &self.yade,
+            Tool::Liggghts => &self.liggghts,
             Tool::Ccx => &self.ccx,
             Tool::KratosDem => &self.kratos_python,
         }
@@ -240,6 +250,19 @@ fn lammps_version(help: &str) -> Result<Option<String>, String> {
         .find_map(|l| l.split_once("Simulator - ").map(|(_, v)| v.trim().to_owned())))
 }
 
+/// The version of `liggghts -h` ("LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0, compiled …"), if
+/// its help lists the models the `liggghts-*` solvers use (normal `hertz`, tangential `history`).
+fn liggghts_version(help: &str) -> Result<Option<String>, String> {
+    let listed = |word: &str| help.lines().any(|l| l.split_whitespace().any(|w| w == word));
+    if !(listed("hertz") && listed("history")) {
+        return Err("liggghts lists no normal model hertz or tangential model history (liggghts -h)".into());
+    }
+    Ok(help.lines().find_map(|l| {
+        let rest = l.split_once("(Version ")?.1;
+        Some(rest.split([',', ')']).next()?.trim().to_owned())
+    }))
+}
+
 /// Runs the tool's version query in a temporary directory.
 fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
     let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory: {e}"))?;
@@ -278,6 +301,7 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         ),
         Tool::Lammps => (vec!["-h".into()], vec![]),
         Tool::Yade => (vec!["--version".into()], vec![]),
+        Tool::Liggghts => (vec!["-h".into()], vec![]),
         Tool::Ccx => (vec!["-v".into()], vec![]),
         // Kratos prints a banner when imported: the version comes on a line of its own.
         Tool::KratosDem => (
@@ -297,8 +321,9 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
         timeout: PROBE_TIMEOUT,
     };
     let run = process::run(&job, dir.path(), "version").map_err(|e| e.to_string())?;
-    // ccx 2.20 prints its version and exits with code 201.
-    let answered = tool == Tool::Ccx && matches!(run.ending, process::Ending::Exited(_));
+    // ccx 2.20 prints its version and exits with code 201; liggghts 3.8.0 its help with code 1.
+    let answered =
+        matches!(tool, Tool::Ccx | Tool::Liggghts) && matches!(run.ending, process::Ending::Exited(_));
     if let Some(failure) = run
         .ending
         .failure(tool.name(), PROBE_TIMEOUT, |_| "its version probe failed")
@@ -309,6 +334,7 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
     let text = format!("{}\n{}", run.stdout, run.stderr);
     let version = match tool {
         Tool::Lammps => lammps_version(&text)?,
+        Tool::Liggghts => liggghts_version(&text)?,
         Tool::FreeFem => text
             .lines()
             .find_map(|l| l.trim().strip_prefix("ffversion "))
@@ -353,6 +379,17 @@ mod tests {
             message.contains("not installed") && message.contains("scripts/setup.sh"),
             "{message}"
         );
+    }
+
+    #[test]
+    fn liggghts_help_gives_its_version_and_needs_its_models() {
+        let help = "LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0, compiled 2022-01-26 by buildd)\n\
+                    * Normal models for pair gran:\nhertz   hooke\n* Tangential models for pair gran:\nhistory   no_history\n";
+        assert_eq!(
+            liggghts_version(help),
+            Ok(Some("LIGGGHTS-PUBLIC 3.8.0".to_owned()))
+        );
+        assert!(liggghts_version("LIGGGHTS (Version X)\nhooke\n").is_err());
     }
 
     #[test]

@@ -279,10 +279,11 @@ pub fn default_cost(solver: &str) -> f64 {
         "fem-3d" | "fenicsx-3d" => 30.0,
         "freefem-axisym" | "fenicsx-axisym" | "mdr-domain" | "fem-axisym" => 5.0,
         "bem" => 3.0,
-        name if name.starts_with("lammps") || name.starts_with("yade") => 1.0,
+        name if name.starts_with("lammps") || name.starts_with("yade") || name.starts_with("liggghts") => 1.0,
         "hertz"
         | "cattaneo-mindlin"
         | "hertz-mindlin-spring"
+        | "hertz-mindlin-total"
         | "thornton"
         | "md-incremental"
         | "walton-braun" => 0.01,

@@ -19,6 +19,7 @@ use std::time::Duration;
 
 use serde_json::json;
 
+use super::path_rows;
 use crate::program;
 use spherecontact_model::history::{History, Metadata, StepResult};
 use spherecontact_model::pair::ContactPair;
@@ -36,13 +37,6 @@ const OUTPUT: &str = "forces.txt";
 /// LAMMPS's start-up, and the time allowed per path increment (it takes about 0.1 ms).
 const START_UP: Duration = Duration::from_secs(60);
 const PER_STEP: Duration = Duration::from_millis(10);
-
-/// How far the δn LAMMPS reports may be from the path's, relative to the largest |δn|.
-///
-/// Reason: sphere 2 sits at z ≈ R1 + R2, where one ulp is about 3e-17 m for 0.1 m spheres,
-/// 2e-12 of a 17 µm approach; `fix move` recomputes z from its start each step, so the error
-/// stays at a few ulps. 1e-9 is far above that and far below one substep of any path.
-const DELTA_N_MATCH: f64 = 1e-9;
 
 /// One of LAMMPS's tangential models with history.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -253,63 +247,12 @@ pub fn equivalent_material(pair: &ContactPair) -> (f64, f64) {
     (2.0 * e_star * (1.0 - poisson * poisson), poisson)
 }
 
-/// The rows LAMMPS printed (the first of each step: a `run`'s set-up repeats the last step of the
-/// one before), checked against the path; and the largest |δn − δn_path| [m].
+/// The rows LAMMPS printed ([`super::path_rows`]: comments skipped, the first of each step
+/// kept, checked against the path); and the largest |δn − δn_path| [m].
 fn read_output(dir: &Path, scene: &Scene) -> Result<(Vec<StepResult>, f64), SolveError> {
-    let file = dir.join(OUTPUT);
-    let text =
-        std::fs::read_to_string(&file).map_err(|e| SolveError::Failed(format!("{}: {e}", file.display())))?;
-    let path = scene.steps();
-    let scale = path.iter().map(|s| s.delta_n.abs()).fold(0.0, f64::max);
-    let mut rows: Vec<StepResult> = Vec::with_capacity(path.len());
-    let mut worst: f64 = 0.0;
-    for (number, line) in text.lines().enumerate() {
-        if line.starts_with('#') || line.trim().is_empty() {
-            continue;
-        }
-        let bad =
-            |why: &str| SolveError::Failed(format!("{}:{}: {why}: `{line}`", file.display(), number + 1));
-        let values: Vec<f64> = line
-            .split_whitespace()
-            .map(str::parse)
-            .collect::<Result<_, _>>()
-            .map_err(|_| bad("not four numbers"))?;
-        let [step, delta_n, p, q] = values[..] else {
-            return Err(bad("not four numbers"));
-        };
-        if !values.iter().all(|v| v.is_finite()) {
-            return Err(bad("a value is not finite"));
-        }
-        let step = step as usize;
-        if step < rows.len() {
-            continue; // the set-up of the next `run` prints the last step again
-        }
-        let Some(expected) = path.get(step).filter(|_| step == rows.len()) else {
-            return Err(bad("step out of sequence"));
-        };
-        let deviation = (delta_n - expected.delta_n).abs();
-        if deviation > DELTA_N_MATCH * scale {
-            return Err(bad(&format!(
-                "LAMMPS's δn is not the path's {:e} m",
-                expected.delta_n
-            )));
-        }
-        worst = worst.max(deviation);
-        rows.push(StepResult {
-            normal_force: Some(p),
-            tangential_force: Some(q),
-            ..StepResult::at(expected)
-        });
-    }
-    if rows.len() != path.len() {
-        return Err(SolveError::Failed(format!(
-            "{}: {} steps for a path of {}",
-            file.display(),
-            rows.len(),
-            path.len()
-        )));
-    }
-    Ok((rows, worst))
+    let is_data = |line: &str| !(line.starts_with('#') || line.trim().is_empty());
+    let (rows, worst) = path_rows::read(&dir.join(OUTPUT), scene, 4, is_data)?;
+    Ok((path_rows::steps(scene, &rows, |_, _| ()), worst))
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
-//! Real DEM codes along the path: LAMMPS (`pair_style granular`), YADE (`MindlinPhys` laws) and
-//! Kratos (DEMApplication's laws),
-//! driven through input generated from the case and run as subprocesses, their forces read back
-//! into the same [`History`](spherecontact_model::history::History) as every other solver.
+//! Real DEM codes along the path: LAMMPS (`pair_style granular`), YADE (`MindlinPhys` laws),
+//! LIGGGHTS (`pair gran`) and Kratos (DEMApplication's laws), driven through input generated from
+//! the case and run as subprocesses, their forces read back into the same
+//! [`History`](spherecontact_model::history::History) as every other solver.
 //!
 //! | solver | code and law |
 //! |---|---|
@@ -11,16 +11,19 @@
 //! | `lammps-mindlin-rescale-force` | `mindlin_rescale/force` (force scaled by a/a_old on unloading) |
 //! | `yade-mindlin` | YADE `Law2_ScGeom_MindlinPhys_Mindlin` (incremental no-slip spring) |
 //! | `kratos-hertz-coulomb` | Kratos `DEM_D_Hertz_viscous_Coulomb` (incremental spring, force scaled on unloading) |
+//! | `liggghts-hertz-history` | LIGGGHTS `pair gran model hertz tangential history` (stored displacement × current stiffness) |
 //!
 //! How the runs are made quasi-static: the codes move the spheres kinematically, one step per
 //! path increment, with no time integration of forces and no damping (see the templates). The
 //! normal approach is set by position along the line of centres; the tangential displacement by
 //! spinning one sphere, so the contact normal never turns. The codes need `scripts/setup.sh`
-//! (Debian's `lammps` and `yade`, Kratos' wheels in the project's environment); without them
-//! these solvers are "not available".
+//! (Debian's `lammps`, `yade` and `liggghts`, Kratos' wheels in the project's environment);
+//! without them these solvers are "not available".
 
 pub mod kratos;
 pub mod lammps;
+pub mod liggghts;
+pub mod path_rows;
 pub mod yade;
 
 use kratos::{Kratos, KratosLaw};
@@ -29,13 +32,14 @@ use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::{SolveError, Solver};
 use yade::{Yade, YadeLaw};
 
-/// The DEM-code solvers, LAMMPS's models first, then YADE's and Kratos' laws.
+/// The DEM-code solvers, LAMMPS's models first, then YADE's, LIGGGHTS' and Kratos' laws.
 pub fn solvers() -> Vec<Box<dyn Solver>> {
     let mut solvers: Vec<Box<dyn Solver>> = TangentialModel::ALL
         .into_iter()
         .map(|model| Box::new(Lammps::new(model)) as Box<dyn Solver>)
         .collect();
     solvers.push(Box::new(Yade::new(YadeLaw::Mindlin)));
+    solvers.push(Box::new(liggghts::Liggghts::default()));
     solvers.extend(
         KratosLaw::ALL
             .into_iter()

@@ -446,3 +446,6 @@ pub const LAMMPS_REFERENCE: &str = "mdr-lammps";
 
 /// The exact reference under YADE's damping law and friction bound.
 pub const YADE_REFERENCE: &str = "mdr-yade";
+
+/// The exact reference under LIGGGHTS' damping law and friction bound.
+pub const LIGGGHTS_REFERENCE: &str = "mdr-liggghts";
