@@ -14,7 +14,8 @@ use cli::deck::{deck, DeckAction};
 use cli::impact;
 use cli::report::{bench, report, DiscretisationChoice, Report, ReportOptions};
 use cli::verify::{
-    merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, Require, SlurmArgs, VerifyArgs,
+    merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, Require, SlurmArgs,
+    VerifyArgs,
 };
 use spherecontact::case::{limits, Case, ReadRoots};
 use spherecontact::external::permission::CommandPermission;

@@ -289,7 +289,13 @@ pub(crate) fn verify_command(args: VerifyArgs, roots: &ReadRoots) -> Result<Exit
         permission: args.commands.permission()?,
     };
     let outputs = Outputs::checked(args.junit, args.out, args.require, args.force)?;
-    let plan = verify_plan(args.cases, &selection, &options, &args.baselines, baseline::Reading::Compare)?;
+    let plan = verify_plan(
+        args.cases,
+        &selection,
+        &options,
+        &args.baselines,
+        baseline::Reading::Compare,
+    )?;
     verify_cases(plan, shard, jobs, &outputs, args.baselines)
 }
 
@@ -366,7 +372,13 @@ pub(crate) fn update_baselines(
     // file (a folder of baselines only, or marked), one run at a time.
     let folder = io::OutputFolder::claim_recognising(dir, false, baseline::is_baseline_file)
         .map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
-    let verify = verify_plan(cases, &plan::Selection::default(), &options, dir, baseline::Reading::Replace)?;
+    let verify = verify_plan(
+        cases,
+        &plan::Selection::default(),
+        &options,
+        dir,
+        baseline::Reading::Replace,
+    )?;
     let finished = schedule::execute(&verify.plan, jobs.cores());
     for judged in schedule::judge(verify.plan, finished) {
         let run = judged.baselined();
@@ -396,7 +408,13 @@ pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, Inpu
         roots: roots.clone(),
         ..plan::CaseOptions::default()
     };
-    verify_plan(args.cases.clone(), &selection, &options, &args.baselines, baseline::Reading::Compare)?;
+    verify_plan(
+        args.cases.clone(),
+        &selection,
+        &options,
+        &args.baselines,
+        baseline::Reading::Compare,
+    )?;
     let root = std::env::current_dir()?;
     let mut merge_args = vec!["--baselines".to_owned(), text(&root.join(&args.baselines))?];
     for folder in roots.folders() {

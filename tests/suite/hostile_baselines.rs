@@ -215,7 +215,16 @@ fn an_old_format_baseline_is_refused_saying_to_run_baseline_update() {
     std::fs::write(dir.path().join("b/cli-test.toml"), old).unwrap();
     for args in [
         &["verify", "case.toml", "--baselines", "b"][..],
-        &["slurm", "case.toml", "--shards", "2", "--out", "s", "--baselines", "b"],
+        &[
+            "slurm",
+            "case.toml",
+            "--shards",
+            "2",
+            "--out",
+            "s",
+            "--baselines",
+            "b",
+        ],
     ] {
         let (code, out) = run(args, dir.path(), &[]);
         assert_eq!(code, 2, "{out}");
@@ -241,12 +250,7 @@ fn an_old_format_baseline_is_refused_saying_to_run_baseline_update() {
 #[test]
 fn a_baseline_of_another_resolution_fails_the_check() {
     let dir = baselined();
-    let value = |text: &str| {
-        text.lines()
-            .find(|l| l.starts_with("  [8, "))
-            .unwrap()
-            .to_owned()
-    };
+    let value = |text: &str| text.lines().find(|l| l.starts_with("  [8, ")).unwrap().to_owned();
     let stored = common::text(&dir.path().join("b/cli-test.toml"));
     edit(dir.path(), &value(&stored), "  [8, 1.0],");
     let (code, out) = run(&["verify", "case.toml", "--baselines", "b"], dir.path(), &[]);
@@ -279,7 +283,11 @@ fn a_baseline_of_another_resolution_fails_the_check() {
 #[test]
 fn a_missing_baselines_folder_is_an_error() {
     let dir = baselined();
-    let (code, out) = run(&["verify", "case.toml", "--out", "o", "--baselines", "b"], dir.path(), &[]);
+    let (code, out) = run(
+        &["verify", "case.toml", "--out", "o", "--baselines", "b"],
+        dir.path(),
+        &[],
+    );
     assert_eq!(code, 0, "{out}");
     for command in [
         &["verify", "case.toml"][..],
@@ -301,7 +309,16 @@ fn a_case_without_a_baseline_is_said_and_fails_under_require_baselines() {
     let dir = baselined();
     std::fs::create_dir(dir.path().join("empty")).unwrap();
     let (code, out) = run(
-        &["verify", "case.toml", "--baselines", "empty", "--junit", "j.xml", "--out", "o"],
+        &[
+            "verify",
+            "case.toml",
+            "--baselines",
+            "empty",
+            "--junit",
+            "j.xml",
+            "--out",
+            "o",
+        ],
         dir.path(),
         &[],
     );
@@ -313,16 +330,36 @@ fn a_case_without_a_baseline_is_said_and_fails_under_require_baselines() {
     );
     let xml = common::text(&dir.path().join("j.xml"));
     assert!(
-        xml.contains("name=\"baseline\"><skipped message=\"NOBASE cli-test") && xml.contains("failures=\"0\""),
+        xml.contains("name=\"baseline\"><skipped message=\"NOBASE cli-test")
+            && xml.contains("failures=\"0\""),
         "{xml}"
     );
     for args in [
-        &["verify", "case.toml", "--baselines", "empty", "--junit", "j.xml", "--require-baselines"][..],
-        &["merge", "o", "--baselines", "empty", "--junit", "j.xml", "--require-baselines"],
+        &[
+            "verify",
+            "case.toml",
+            "--baselines",
+            "empty",
+            "--junit",
+            "j.xml",
+            "--require-baselines",
+        ][..],
+        &[
+            "merge",
+            "o",
+            "--baselines",
+            "empty",
+            "--junit",
+            "j.xml",
+            "--require-baselines",
+        ],
     ] {
         let (code, out) = run(args, dir.path(), &[]);
         assert_eq!(code, 1, "{args:?}: {out}");
-        assert!(out.contains("they count as failures (--require-baselines)"), "{out}");
+        assert!(
+            out.contains("they count as failures (--require-baselines)"),
+            "{out}"
+        );
         let xml = common::text(&dir.path().join("j.xml"));
         assert!(
             xml.contains("<failure message=\"NO BASELINE (--require-baselines)\">NOBASE cli-test")

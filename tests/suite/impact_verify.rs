@@ -47,12 +47,20 @@ fn junit_lists_each_impact_check_as_a_test_case() {
         .len();
     // Four closed-form checks for each of the five laws and the five DEM-code solvers.
     assert_eq!(checks, 40);
+    // One test case a check, and one `baseline` (skipped: the folder holds no baseline of it).
     let impact_cases = xml.matches("<testcase classname=\"chung-ooi-2\"").count();
-    assert_eq!(impact_cases, checks, "{xml}");
+    assert_eq!(impact_cases, checks + 1, "{xml}");
     assert!(
         xml.contains(&format!(
-            "<testsuite name=\"chung-ooi-2\" tests=\"{checks}\" failures=\"0\">"
+            "<testsuite name=\"chung-ooi-2\" tests=\"{}\" failures=\"0\">",
+            checks + 1
         )),
+        "{xml}"
+    );
+    assert!(
+        xml.contains(
+            "<testcase classname=\"chung-ooi-2\" name=\"baseline\"><skipped message=\"NOBASE chung-ooi-2"
+        ),
         "{xml}"
     );
     assert!(
@@ -61,9 +69,12 @@ fn junit_lists_each_impact_check_as_a_test_case() {
     );
     // The path case's checks sit beside them in the same document, and the totals count both.
     let path_cases = xml.matches("<testcase classname=\"hard-dissimilar\"").count();
-    assert!(path_cases > 0, "{xml}");
+    assert!(path_cases > 1, "{xml}");
     assert!(
-        xml.contains(&format!("tests=\"{}\" failures=\"0\"", checks + path_cases)),
+        xml.contains(&format!(
+            "tests=\"{}\" failures=\"0\" skipped=\"2\"",
+            impact_cases + path_cases
+        )),
         "{xml}"
     );
     // The printed table has the same rows, and the counts include them.

@@ -224,7 +224,11 @@ fn deleting_the_rescale_fails_verify_naming_the_first_step_that_moved() {
         .position(|w| w[1].delta_n < w[0].delta_n)
         .map(|k| k + 1)
         .expect("the path unloads");
-    assert_eq!(steps[first_fall - 1].position, Some(8), "δn first falls after position 8");
+    assert_eq!(
+        steps[first_fall - 1].position,
+        Some(8),
+        "δn first falls after position 8"
+    );
 
     // The accepted law: every value as the shipped baseline holds it, CI's flags.
     let verify = |case: &Path, dir: &Path| {
@@ -249,15 +253,25 @@ fn deleting_the_rescale_fails_verify_naming_the_first_step_that_moved() {
     let law = root.join("examples/own_law").join(LAW);
     let text = text(&shipped).replace(
         &format!(r#""{{case_dir}}/../examples/own_law/{LAW}", "{{scene}}", "{{history}}"]"#),
-        &format!(r#"{:?}, "{{scene}}", "{{history}}", "--no-rescale"]"#, law.display().to_string()),
+        &format!(
+            r#"{:?}, "{{scene}}", "{{history}}", "--no-rescale"]"#,
+            law.display().to_string()
+        ),
     );
-    assert!(text.contains("--no-rescale"), "the case's command line changed:\n{text}");
+    assert!(
+        text.contains("--no-rescale"),
+        "the case's command line changed:\n{text}"
+    );
     let edited = dir.path().join("own-law.toml");
     std::fs::write(&edited, text).unwrap();
     let (code, out) = verify(&edited, dir.path());
     assert_eq!(code, Some(1), "{out}");
     let drifted: Vec<&str> = out.lines().filter(|l| l.starts_with("DRIFT ")).collect();
-    assert_eq!(drifted.len(), 1, "only Q over every step covers the unloading: {out}");
+    assert_eq!(
+        drifted.len(),
+        1,
+        "only Q over every step covers the unloading: {out}"
+    );
     let row = drifted[0];
     assert!(row.contains("my-law tangential_force at every step"), "{row}");
     assert!(

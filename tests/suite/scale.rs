@@ -326,6 +326,24 @@ fn slurm_writes_a_job_array_of_shards_and_a_merge_after_it() {
         "{merge}"
     );
     assert!(text(&out.join("submit.sh")).contains("sbatch --parsable --dependency=afterok:\"$array\""));
+    assert!(!shards.contains("--require-baselines") && !merge.contains("--require-baselines"));
+    // --require-baselines (CI's) goes into the shards' and the merge's command lines.
+    let strict = dir.path().join("strict");
+    let (code, stdout, stderr) = run(&[
+        "slurm",
+        "--label",
+        "hard",
+        "--shards",
+        "3",
+        "--require-baselines",
+        "--out",
+        path(&strict),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    for script in ["shards.sbatch", "merge.sbatch"] {
+        let script = text(&strict.join(script));
+        assert!(script.contains(" '--require-baselines'"), "{script}");
+    }
     // Bad input writes nothing.
     let (code, _, stderr) = run(&[
         "slurm",

@@ -230,7 +230,10 @@ mod tests {
         assert_eq!((largest.step, largest.change), (3, 0.5));
         assert!(drift.fails());
         let cell = drift.cell();
-        assert!(cell.contains("first beyond tol at step 2: 4.4 vs baseline 4"), "{cell}");
+        assert!(
+            cell.contains("first beyond tol at step 2: 4.4 vs baseline 4"),
+            "{cell}"
+        );
         assert!(cell.contains("largest at step 3: 16 vs baseline 8"), "{cell}");
         assert!(cell.contains("3 of 4 values moved"), "{cell}");
     }
@@ -238,16 +241,30 @@ mod tests {
     #[test]
     fn round_off_below_the_tolerance_is_shown_but_does_not_fail() {
         let stored = [(5, 3.0)];
-        let drift = compare("sweep point", &judged(&[(5, 3.0 * (1.0 + 4e-16))]), &stored, 1e-12);
+        let drift = compare(
+            "sweep point",
+            &judged(&[(5, 3.0 * (1.0 + 4e-16))]),
+            &stored,
+            1e-12,
+        );
         assert!(!drift.fails(), "{drift:?}");
-        assert!(drift.cell().contains("none beyond tol; largest at sweep point 5"), "{}", drift.cell());
+        assert!(
+            drift.cell().contains("none beyond tol; largest at sweep point 5"),
+            "{}",
+            drift.cell()
+        );
         let same = compare("step", &judged(&[(5, 3.0)]), &stored, 1e-12);
         assert_eq!(same.cell(), " | drift 0 at all 1 values (tol 1.0000e-12)");
     }
 
     #[test]
     fn a_step_on_one_side_only_fails_naming_it() {
-        let drift = compare("step", &judged(&[(0, 1.0), (2, 1.0)]), &[(0, 1.0), (1, 1.0)], 1e-12);
+        let drift = compare(
+            "step",
+            &judged(&[(0, 1.0), (2, 1.0)]),
+            &[(0, 1.0), (1, 1.0)],
+            1e-12,
+        );
         assert_eq!(
             drift,
             Drift::OtherSteps {
@@ -258,6 +275,16 @@ mod tests {
         );
         assert!(drift.fails());
         let drift = compare("step", &judged(&[(0, 1.0), (1, 1.0)]), &[(0, 1.0)], 1e-12);
-        assert!(matches!(drift, Drift::OtherSteps { step: 1, now: true, .. }), "{drift:?}");
+        assert!(
+            matches!(
+                drift,
+                Drift::OtherSteps {
+                    step: 1,
+                    now: true,
+                    ..
+                }
+            ),
+            "{drift:?}"
+        );
     }
 }

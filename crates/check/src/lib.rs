@@ -287,7 +287,14 @@ impl CheckSpec {
         let peak = pairs.iter().map(|p| p.reference.abs()).fold(0.0, f64::max);
         let (worst_step, value, reference, error) = pairs
             .iter()
-            .map(|p| (p.step, p.value, p.reference, self.error(p.value, p.reference, peak)))
+            .map(|p| {
+                (
+                    p.step,
+                    p.value,
+                    p.reference,
+                    self.error(p.value, p.reference, peak),
+                )
+            })
             .fold(
                 None,
                 |worst: Option<(usize, f64, f64, f64)>, candidate| match worst {

@@ -49,8 +49,18 @@ mod tests {
 
     #[test]
     fn a_cell_reads_back_bit_for_bit_and_is_empty_when_not_finite() {
-        for v in [0.1 + 0.2, -1.8009997416520088e2, 5e-324, 1.7976931348623157e308, -0.0] {
-            assert_eq!(cell(Some(v)).parse::<f64>().unwrap().to_bits(), v.to_bits(), "{v}");
+        for v in [
+            0.1 + 0.2,
+            -1.8009997416520088e2,
+            5e-324,
+            1.7976931348623157e308,
+            -0.0,
+        ] {
+            assert_eq!(
+                cell(Some(v)).parse::<f64>().unwrap().to_bits(),
+                v.to_bits(),
+                "{v}"
+            );
         }
         assert_eq!(cell(Some(f64::NAN)), "");
         assert_eq!(cell(Some(f64::NEG_INFINITY)), "");

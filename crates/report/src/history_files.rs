@@ -15,7 +15,6 @@ pub fn csv_header() -> Vec<&'static str> {
     spherecontact_external::exchange::results_csv::columns()
 }
 
-
 /// The CSV text of a history.
 pub fn to_csv(history: &History) -> anyhow::Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());

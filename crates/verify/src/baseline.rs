@@ -549,13 +549,24 @@ mod tests {
             checks: vec![CheckRecord {
                 index: 3,
                 check: "bem normal_force at every step vs hertz (relative)".into(),
-                values: vec![(0, 0.1 + 0.2), (7, -0.0), (8, 5e-324), (9, 1.7976931348623157e308)],
+                values: vec![
+                    (0, 0.1 + 0.2),
+                    (7, -0.0),
+                    (8, 5e-324),
+                    (9, 1.7976931348623157e308),
+                ],
             }],
         };
         let text = baseline.to_toml();
         let read = toml::from_str::<Baseline>(&text).unwrap();
         assert_eq!(read, baseline, "{text}");
-        let bits = |b: &Baseline| b.checks[0].values.iter().map(|v| v.1.to_bits()).collect::<Vec<_>>();
+        let bits = |b: &Baseline| {
+            b.checks[0]
+                .values
+                .iter()
+                .map(|v| v.1.to_bits())
+                .collect::<Vec<_>>()
+        };
         assert_eq!(bits(&read), bits(&baseline), "bit for bit, -0 included: {text}");
     }
 
