@@ -14,7 +14,8 @@ use cli::deck::{deck, DeckAction};
 use cli::impact;
 use cli::report::{bench, report, DiscretisationChoice, Report, ReportOptions};
 use cli::verify::{
-    merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, SlurmArgs, VerifyArgs,
+    merge_runs, slurm, update_baselines, verify_command, BaselineAction, Outputs, Require, SlurmArgs,
+    VerifyArgs,
 };
 use spherecontact::case::{limits, Case, ReadRoots};
 use spherecontact::external::permission::CommandPermission;
@@ -104,9 +105,8 @@ enum Command {
         /// Write the merged summary (summary.txt) into this folder.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
-        /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
-        #[arg(long)]
-        require_external: bool,
+        #[command(flatten)]
+        require: Require,
         /// Replace a --junit file that spherecontact did not write, or write --out into a folder
         /// that holds files it did not write.
         #[arg(long)]
@@ -270,10 +270,10 @@ fn main() -> ExitCode {
             dirs,
             junit,
             out,
-            require_external,
+            require,
             baselines,
             force,
-        } => Outputs::checked(junit, out, require_external, force)
+        } => Outputs::checked(junit, out, require, force)
             .and_then(|outputs| merge_runs(&dirs, &baselines, &outputs, roots)),
         Command::Baseline {
             action:

@@ -26,9 +26,8 @@ pub(crate) struct VerifyArgs {
     /// Write JUnit XML here.
     #[arg(long, value_name = "FILE")]
     junit: Option<PathBuf>,
-    /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
-    #[arg(long)]
-    require_external: bool,
+    #[command(flatten)]
+    require: Require,
     /// A solver's resolution, over the case's `[resolution]` (repeatable), e.g. bem=128,
     /// fem-axisym=c/80, fem-axisym=10um, mdr=16000.
     #[arg(long = "resolution", value_name = "SOLVER=VALUE")]
@@ -63,6 +62,18 @@ pub(crate) struct VerifyArgs {
     force: bool,
 }
 
+/// What `verify`, `merge` and `slurm`'s jobs count as failures besides failing checks.
+#[derive(clap::Args, Clone, Copy, Default)]
+pub(crate) struct Require {
+    /// Count a check that is N/A (a solver not installed) as a failure, as CI does.
+    #[arg(long)]
+    require_external: bool,
+    /// Count a case that has no baseline in --baselines as a failure, as CI does (without it,
+    /// such a case is said, NOBASE, and passes).
+    #[arg(long)]
+    require_baselines: bool,
+}
+
 /// The arguments of `slurm`.
 #[derive(clap::Args)]
 pub(crate) struct SlurmArgs {
@@ -89,9 +100,9 @@ pub(crate) struct SlurmArgs {
     /// Each job's time limit (Slurm's --time, e.g. 1:00:00).
     #[arg(long)]
     time: Option<String>,
-    /// Count a check that is N/A as a failure.
-    #[arg(long)]
-    require_external: bool,
+    /// Written into the shards' and the merge's command lines.
+    #[command(flatten)]
+    require: Require,
     /// The non-regression baselines.
     #[arg(long, value_name = "DIR", default_value = baseline::DIR)]
     baselines: PathBuf,
@@ -123,14 +134,14 @@ pub(crate) struct Outputs {
     junit: Option<(PathBuf, PathBuf)>,
     /// The output folder, claimed (and locked) for this run.
     out: Option<io::OutputFolder>,
-    require_external: bool,
+    require: Require,
 }
 
 impl Outputs {
     pub(crate) fn checked(
         junit: Option<PathBuf>,
         out: Option<PathBuf>,
-        require_external: bool,
+        require: Require,
         force: bool,
     ) -> Result<Self, InputError> {
         let junit = junit
@@ -141,20 +152,27 @@ impl Outputs {
             })
             .transpose()?;
         let out = out.map(|dir| claim(&dir, force)).transpose()?;
-        Ok(Outputs {
-            junit,
-            out,
-            require_external,
-        })
+        Ok(Outputs { junit, out, require })
     }
 
     /// Prints the verdicts of the judged cases (path and impact) and writes the JUnit and
-    /// summary.
-    fn write(&self, judged: &[Judged]) -> Result<ExitCode, InputError> {
-        let suites: Vec<Suite> = judged.iter().map(Judged::suite).collect();
+    /// summary; `compared` says which had no baseline in which folder.
+    fn write(&self, judged: &[Judged], compared: &Compared) -> Result<ExitCode, InputError> {
+        let suites: Vec<Suite> = judged
+            .iter()
+            .map(|j| {
+                let mut suite = j.suite();
+                if compared.without.contains(&suite.name) {
+                    let file = baseline::file(&compared.dir, &suite.name).display().to_string();
+                    suite.no_baseline = Some(one_line(&file).into_owned());
+                }
+                suite
+            })
+            .collect();
         let conclusion = Conclusion {
             suites: &suites,
-            require_external: self.require_external,
+            require_external: self.require.require_external,
+            require_baselines: self.require.require_baselines,
         };
         let text = conclusion.text();
         print!("{text}");
@@ -173,6 +191,12 @@ impl Outputs {
             ExitCode::FAILURE
         })
     }
+}
+
+/// How the judged cases met their baselines: the folder, and the cases that have none there.
+struct Compared {
+    dir: PathBuf,
+    without: Vec<String>,
 }
 
 /// The impact cases' report *How far is your DEM code from exact Mindlin–Deresiewicz in
@@ -208,6 +232,7 @@ fn verify_plan(
     selection: &plan::Selection,
     options: &plan::CaseOptions,
     baselines: &Path,
+    reading: baseline::Reading,
 ) -> Result<VerifyPlan, InputError> {
     let files = spherecontact::case::case_files(&if files.is_empty() {
         vec![PathBuf::from("cases")]
@@ -228,7 +253,7 @@ fn verify_plan(
             "no case files to verify (none given, or none selected by label)".into(),
         ));
     }
-    let baselines = baseline::load_all(baselines, &cases)?;
+    let baselines = baseline::load_all(baselines, &cases, reading)?;
     let commands: Vec<String> = cases
         .iter()
         .flat_map(|case| match case {
@@ -263,9 +288,15 @@ pub(crate) fn verify_command(args: VerifyArgs, roots: &ReadRoots) -> Result<Exit
         roots: roots.clone(),
         permission: args.commands.permission()?,
     };
-    let outputs = Outputs::checked(args.junit, args.out, args.require_external, args.force)?;
-    let plan = verify_plan(args.cases, &selection, &options, &args.baselines)?;
-    verify_cases(plan, shard, jobs, &outputs)
+    let outputs = Outputs::checked(args.junit, args.out, args.require, args.force)?;
+    let plan = verify_plan(
+        args.cases,
+        &selection,
+        &options,
+        &args.baselines,
+        baseline::Reading::Compare,
+    )?;
+    verify_cases(plan, shard, jobs, &outputs, args.baselines)
 }
 
 fn verify_cases(
@@ -273,6 +304,7 @@ fn verify_cases(
     shard: Option<plan::Shard>,
     jobs: usize,
     outputs: &Outputs,
+    dir: PathBuf,
 ) -> Result<ExitCode, InputError> {
     let plan = match shard {
         Some(shard) => verify.plan.shard(shard),
@@ -286,22 +318,22 @@ fn verify_cases(
             .map_err(|e| InputError(format!("--out {}: {e}", folder.path().display())))?;
     }
     let mut judged = schedule::judge(plan, finished);
-    baseline::compare_all(
+    let without = baseline::compare_all(
         &verify.baselines,
         judged.iter_mut().map(Judged::baselined_mut),
         &chosen,
     );
-    outputs.write(&judged)
+    outputs.write(&judged, &Compared { dir, without })
 }
 
 pub(crate) fn merge_runs(
     dirs: &[PathBuf],
-    baselines: &Path,
+    dir: &Path,
     outputs: &Outputs,
     roots: &ReadRoots,
 ) -> Result<ExitCode, InputError> {
     let merged = merge::merge(dirs, roots)?;
-    let baselines = baseline::load_all(baselines, &merged.plan.cases)?;
+    let baselines = baseline::load_all(dir, &merged.plan.cases, baseline::Reading::Compare)?;
     for (dir, (shard, wall_s)) in dirs.iter().zip(&merged.shards) {
         // The folder's name and the run file's shard field as text (crates/system/src/text.rs): one line each.
         let shard = one_line(shard.as_deref().unwrap_or("whole"));
@@ -312,12 +344,16 @@ pub(crate) fn merge_runs(
         );
     }
     let mut judged = schedule::judge(merged.plan, merged.finished);
-    baseline::compare_all(
+    let without = baseline::compare_all(
         &baselines,
         judged.iter_mut().map(Judged::baselined_mut),
         &merged.options.chosen_solvers(),
     );
-    outputs.write(&judged)
+    let compared = Compared {
+        dir: dir.to_path_buf(),
+        without,
+    };
+    outputs.write(&judged, &compared)
 }
 
 pub(crate) fn update_baselines(
@@ -336,7 +372,13 @@ pub(crate) fn update_baselines(
     // file (a folder of baselines only, or marked), one run at a time.
     let folder = io::OutputFolder::claim_recognising(dir, false, baseline::is_baseline_file)
         .map_err(|e| InputError(format!("--baselines {}: {e}", dir.display())))?;
-    let verify = verify_plan(cases, &plan::Selection::default(), &options, dir)?;
+    let verify = verify_plan(
+        cases,
+        &plan::Selection::default(),
+        &options,
+        dir,
+        baseline::Reading::Replace,
+    )?;
     let finished = schedule::execute(&verify.plan, jobs.cores());
     for judged in schedule::judge(verify.plan, finished) {
         let run = judged.baselined();
@@ -366,14 +408,23 @@ pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, Inpu
         roots: roots.clone(),
         ..plan::CaseOptions::default()
     };
-    verify_plan(args.cases.clone(), &selection, &options, &args.baselines)?;
+    verify_plan(
+        args.cases.clone(),
+        &selection,
+        &options,
+        &args.baselines,
+        baseline::Reading::Compare,
+    )?;
     let root = std::env::current_dir()?;
     let mut merge_args = vec!["--baselines".to_owned(), text(&root.join(&args.baselines))?];
     for folder in roots.folders() {
         merge_args.extend(["--allow-read".to_owned(), text(folder)?]);
     }
-    if args.require_external {
+    if args.require.require_external {
         merge_args.push("--require-external".into());
+    }
+    if args.require.require_baselines {
+        merge_args.push("--require-baselines".into());
     }
     let mut verify_args = args
         .cases

@@ -112,12 +112,12 @@ fn a_garbled_baseline_is_located_not_quoted() {
     let dir = baselined();
     std::fs::write(
         dir.path().join("b/cli-test.toml"),
-        "case = \"cli-test\"\ntoken = \"ghp_secret\"\n",
+        "format = 2\ncase = \"cli-test\"\ntoken = \"ghp_secret\"\n",
     )
     .unwrap();
     let (code, out) = run(&["verify", "case.toml", "--baselines", "b"], dir.path(), &[]);
     assert_eq!(code, 2, "{out}");
-    assert!(out.contains("b/cli-test.toml:2:1: unknown field `…`"), "{out}");
+    assert!(out.contains("b/cli-test.toml:3:1: unknown field `…`"), "{out}");
     assert!(
         out.contains("(allowed: a baseline written by `spherecontact baseline update`"),
         "{out}"
@@ -127,24 +127,30 @@ fn a_garbled_baseline_is_located_not_quoted() {
 
 /// Findings: a value of `nan` or `inf`, a step past the path and another index turned a DRIFT
 /// into OK (for nan/inf the row said "drift non-finite"). Each is now an error naming the
-/// baseline and its entry, exit 2, before any case runs.
+/// baseline and its entry, exit 2, before any case runs; so are steps out of order (a value
+/// would be compared at another step) and an empty list of values.
 #[test]
 fn entries_that_do_not_fit_the_case_are_errors_naming_the_baseline() {
     for (from, to, says) in [
         (
-            "value = ",
-            "value = nan # ",
-            "checks[0]: value is not a finite number",
+            "values = [\n  [0, ",
+            "values = [\n  [0, nan], # ",
+            "checks[0]: values[0]: the value is not a finite number",
         ),
         (
-            "value = ",
-            "value = inf # ",
-            "checks[0]: value is not a finite number",
+            "values = [\n  [0, ",
+            "values = [\n  [0, inf], # ",
+            "checks[0]: values[0]: the value is not a finite number",
         ),
         (
-            "step = ",
-            "step = 9 # ",
-            "checks[0]: step 9 is past the case's 9 steps (allowed: 0 to 8)",
+            "values = [\n  [0, ",
+            "values = [\n  [9, ",
+            "checks[0]: values[0]: step 9 is past the case's 9 steps (allowed: 0 to 8)",
+        ),
+        (
+            "\n  [1, ",
+            "\n  [0, ",
+            "checks[0]: values[1]: step 0 does not follow step 0 (allowed: increasing steps)",
         ),
         (
             "index = 0",
@@ -177,11 +183,66 @@ fn entries_that_do_not_fit_the_case_are_errors_naming_the_baseline() {
         let (code, out) = run(&["verify", "case.toml", "--baselines", "b"], dir.path(), &[]);
         assert_eq!(code, 2, "{from} → {to}: {out}");
         assert!(
-            out.contains("b/cli-test.toml: ") && out.contains(says),
+            out.contains("b/cli-test.toml") && out.contains(says),
             "{from} → {to}: {out}"
         );
         assert!(!out.contains("OK "), "nothing ran: {out}");
     }
+    // An empty list of values: what no `baseline update` writes.
+    let dir = baselined();
+    let text = common::text(&dir.path().join("b/cli-test.toml"));
+    let start = text.find("values = [\n").unwrap();
+    let end = start + text[start..].find("\n]\n").unwrap() + 3;
+    std::fs::write(
+        dir.path().join("b/cli-test.toml"),
+        format!("{}values = []\n{}", &text[..start], &text[end..]),
+    )
+    .unwrap();
+    let (code, out) = run(&["verify", "case.toml", "--baselines", "b"], dir.path(), &[]);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("checks[0]: values is empty"), "{out}");
+}
+
+/// Requirement (issue 39): a baseline of the old format (one value per check, no `format`) is
+/// refused with a message saying to run `baseline update`, which rewrites it.
+#[test]
+fn an_old_format_baseline_is_refused_saying_to_run_baseline_update() {
+    let dir = baselined();
+    let old = "# Non-regression baseline of case `cli-test`: each check's computed value when last accepted,\n\
+               case = \"cli-test\"\n\n[solvers.\"hertz\"]\nversion = \"0.1.0\"\nresolution = \"closed form\"\n\
+               wall_s = 1e-4\n\n[[checks]]\nindex = 0\ncheck = \"mdr normal_force at every step vs hertz (relative)\"\n\
+               step = 8\nvalue = 1.2e3\n";
+    std::fs::write(dir.path().join("b/cli-test.toml"), old).unwrap();
+    for args in [
+        &["verify", "case.toml", "--baselines", "b"][..],
+        &[
+            "slurm",
+            "case.toml",
+            "--shards",
+            "2",
+            "--out",
+            "s",
+            "--baselines",
+            "b",
+        ],
+    ] {
+        let (code, out) = run(args, dir.path(), &[]);
+        assert_eq!(code, 2, "{out}");
+        assert!(
+            out.contains("b/cli-test.toml: no `format`: a baseline of one value per check")
+                && out.contains("run `spherecontact baseline update` to rewrite it"),
+            "{out}"
+        );
+    }
+    let (code, out) = run(
+        &["baseline", "update", "case.toml", "--baselines", "b"],
+        dir.path(),
+        &[],
+    );
+    assert_eq!(code, 0, "{out}");
+    assert!(common::text(&dir.path().join("b/cli-test.toml")).contains("\nformat = 2\n"));
+    let (code, out) = run(&["verify", "case.toml", "--baselines", "b"], dir.path(), &[]);
+    assert_eq!(code, 0, "{out}");
 }
 
 /// Finding: an edited resolution string turned a DRIFT into OK (the check was silently not
@@ -189,14 +250,9 @@ fn entries_that_do_not_fit_the_case_are_errors_naming_the_baseline() {
 #[test]
 fn a_baseline_of_another_resolution_fails_the_check() {
     let dir = baselined();
-    let value = |text: &str| {
-        text.lines()
-            .find(|l| l.starts_with("value = "))
-            .unwrap()
-            .to_owned()
-    };
+    let value = |text: &str| text.lines().find(|l| l.starts_with("  [8, ")).unwrap().to_owned();
     let stored = common::text(&dir.path().join("b/cli-test.toml"));
-    edit(dir.path(), &value(&stored), "value = 1.0");
+    edit(dir.path(), &value(&stored), "  [8, 1.0],");
     let (code, out) = run(&["verify", "case.toml", "--baselines", "b"], dir.path(), &[]);
     assert_eq!(code, 1, "a drifted value fails: {out}");
     edit(dir.path(), "resolution = \"", "resolution = \"edited ");
@@ -227,15 +283,98 @@ fn a_baseline_of_another_resolution_fails_the_check() {
 #[test]
 fn a_missing_baselines_folder_is_an_error() {
     let dir = baselined();
+    let (code, out) = run(
+        &["verify", "case.toml", "--out", "o", "--baselines", "b"],
+        dir.path(),
+        &[],
+    );
+    assert_eq!(code, 0, "{out}");
     for command in [
         &["verify", "case.toml"][..],
         &["slurm", "case.toml", "--shards", "2", "--out", "s"],
+        &["merge", "o"],
     ] {
         let args = [command, &["--baselines", "no-such-dir"]].concat();
         let (code, out) = run(&args, dir.path(), &[]);
         assert_eq!(code, 2, "{out}");
         assert!(out.contains("--baselines no-such-dir: not a folder"), "{out}");
     }
+}
+
+/// Finding (issue 39): a case without a baseline passed unseen. It is said now (NOBASE in the
+/// summary, a skipped JUnit test case `baseline`), and `--require-baselines` (CI's) makes it a
+/// failure, on `verify` and `merge` alike.
+#[test]
+fn a_case_without_a_baseline_is_said_and_fails_under_require_baselines() {
+    let dir = baselined();
+    std::fs::create_dir(dir.path().join("empty")).unwrap();
+    let (code, out) = run(
+        &[
+            "verify",
+            "case.toml",
+            "--baselines",
+            "empty",
+            "--junit",
+            "j.xml",
+            "--out",
+            "o",
+        ],
+        dir.path(),
+        &[],
+    );
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("NOBASE cli-test: no baseline (empty/cli-test.toml)")
+            && out.contains("verify: 1 cases without a baseline"),
+        "{out}"
+    );
+    let xml = common::text(&dir.path().join("j.xml"));
+    assert!(
+        xml.contains("name=\"baseline\"><skipped message=\"NOBASE cli-test")
+            && xml.contains("failures=\"0\""),
+        "{xml}"
+    );
+    for args in [
+        &[
+            "verify",
+            "case.toml",
+            "--baselines",
+            "empty",
+            "--junit",
+            "j.xml",
+            "--require-baselines",
+        ][..],
+        &[
+            "merge",
+            "o",
+            "--baselines",
+            "empty",
+            "--junit",
+            "j.xml",
+            "--require-baselines",
+        ],
+    ] {
+        let (code, out) = run(args, dir.path(), &[]);
+        assert_eq!(code, 1, "{args:?}: {out}");
+        assert!(
+            out.contains("they count as failures (--require-baselines)"),
+            "{out}"
+        );
+        let xml = common::text(&dir.path().join("j.xml"));
+        assert!(
+            xml.contains("<failure message=\"NO BASELINE (--require-baselines)\">NOBASE cli-test")
+                && xml.contains("failures=\"1\""),
+            "{xml}"
+        );
+    }
+    // With its baseline the same flag passes, and the summary says nothing of baselines missing.
+    let (code, out) = run(
+        &["verify", "case.toml", "--baselines", "b", "--require-baselines"],
+        dir.path(),
+        &[],
+    );
+    assert_eq!(code, 0, "{out}");
+    assert!(!out.contains("NOBASE"), "{out}");
 }
 
 /// Finding: `baseline update --baselines DIR` was not claimed like `--out`: it wrote into
@@ -307,7 +446,7 @@ fn every_shipped_baseline_fits_its_case() {
                 .unwrap_or_else(|e| panic!("{}: {e}", file.display()))
         })
         .collect();
-    let loaded = baseline::load_all(&root.join(baseline::DIR), &cases).unwrap();
+    let loaded = baseline::load_all(&root.join(baseline::DIR), &cases, baseline::Reading::Compare).unwrap();
     let shipped = std::fs::read_dir(root.join(baseline::DIR))
         .unwrap()
         .map(|e| e.unwrap().path())

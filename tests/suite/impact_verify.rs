@@ -47,12 +47,20 @@ fn junit_lists_each_impact_check_as_a_test_case() {
         .len();
     // Four closed-form checks for each of the five laws and the five DEM-code solvers.
     assert_eq!(checks, 40);
+    // One test case a check, and one `baseline` (skipped: the folder holds no baseline of it).
     let impact_cases = xml.matches("<testcase classname=\"chung-ooi-2\"").count();
-    assert_eq!(impact_cases, checks, "{xml}");
+    assert_eq!(impact_cases, checks + 1, "{xml}");
     assert!(
         xml.contains(&format!(
-            "<testsuite name=\"chung-ooi-2\" tests=\"{checks}\" failures=\"0\">"
+            "<testsuite name=\"chung-ooi-2\" tests=\"{}\" failures=\"0\">",
+            checks + 1
         )),
+        "{xml}"
+    );
+    assert!(
+        xml.contains(
+            "<testcase classname=\"chung-ooi-2\" name=\"baseline\"><skipped message=\"NOBASE chung-ooi-2"
+        ),
         "{xml}"
     );
     assert!(
@@ -61,9 +69,12 @@ fn junit_lists_each_impact_check_as_a_test_case() {
     );
     // The path case's checks sit beside them in the same document, and the totals count both.
     let path_cases = xml.matches("<testcase classname=\"hard-dissimilar\"").count();
-    assert!(path_cases > 0, "{xml}");
+    assert!(path_cases > 1, "{xml}");
     assert!(
-        xml.contains(&format!("tests=\"{}\" failures=\"0\"", checks + path_cases)),
+        xml.contains(&format!(
+            "tests=\"{}\" failures=\"0\" skipped=\"2\"",
+            impact_cases + path_cases
+        )),
         "{xml}"
     );
     // The printed table has the same rows, and the counts include them.
@@ -174,12 +185,19 @@ fn a_tampered_impact_run_in_a_run_file_is_refused() {
     }
 }
 
-/// `value = X` of the first check entry of a baseline file, scaled by `1 + change`.
+/// The first value (`  [point, X],`) of the first check entry of a baseline file, scaled by
+/// `1 + change`.
 fn perturb_first_value(file: &Path, change: f64) {
     let stored = text(file);
-    let line = stored.lines().find(|l| l.starts_with("value = ")).unwrap();
-    let value: f64 = line["value = ".len()..].parse().unwrap();
-    let perturbed = stored.replacen(line, &format!("value = {:e}", value * (1.0 + change)), 1);
+    let line = stored.lines().find(|l| l.starts_with("  [")).unwrap();
+    let (point, value) = line
+        .trim()
+        .trim_start_matches('[')
+        .trim_end_matches("],")
+        .split_once(", ")
+        .unwrap();
+    let value: f64 = value.parse().unwrap();
+    let perturbed = stored.replacen(line, &format!("  [{point}, {:e}],", value * (1.0 + change)), 1);
     assert_ne!(perturbed, stored);
     std::fs::write(file, perturbed).unwrap();
 }
@@ -224,7 +242,7 @@ fn an_impact_value_that_drifts_from_its_baseline_fails_verify() {
     // tolerance is the round-off 1e-12; the DEM codes' is 1e-9, for their own last digits).
     let in_crate_unmoved = stdout
         .lines()
-        .filter(|l| l.contains("| drift 0.0000e0 (baseline") && l.contains("tol 1.0000e-12)"))
+        .filter(|l| l.contains("| drift 0 at all ") && l.contains("tol 1.0000e-12)"))
         .count();
     assert_eq!(in_crate_unmoved, 20, "{stdout}");
     // Below the round-off tolerance (1e-12): no drift verdict.
@@ -242,7 +260,10 @@ fn an_impact_value_that_drifts_from_its_baseline_fails_verify() {
         .unwrap();
     assert!(row.starts_with("DRIFT chung-ooi-2"), "{row}");
     assert!(
-        row.contains("| drift 1.0000e-9") && row.contains("tol 1.0000e-12"),
+        row.contains("| drift: first beyond tol at sweep point ")
+            && row.contains("(change 1.0000e-9)")
+            && row.contains("1 of ")
+            && row.contains("tol 1.0000e-12"),
         "{row}"
     );
     assert!(

@@ -194,3 +194,106 @@ fn the_rescale_is_all_that_separates_the_law_from_hertz_mindlin_spring() {
     assert!(with.error.unwrap() > 0.05, "{with:?}");
     assert!(with.worst_step.unwrap() > 800, "{with:?}");
 }
+
+/// Runs `spherecontact` with `args` in `dir`: (exit code, standard output).
+fn run_in(args: &[&str], dir: &Path) -> (Option<i32>, String) {
+    let output = spherecontact(args, dir);
+    (
+        output.status.code(),
+        String::from_utf8_lossy(&output.stdout).into_owned() + &String::from_utf8_lossy(&output.stderr),
+    )
+}
+
+/// Requirement (issue 39, "done when"): deleting the user's law's a/a_prev rescale fails
+/// `verify --baselines` against the shipped baseline of cases/own-law.toml, naming the first step
+/// that moved; the accepted law passes it. Reference: the case's path, from which the step is
+/// derived (δn first falls after position 8: the rescale can act from that increment on), and
+/// the rescale's effect measured by `the_rescale_is_all_that_separates_…` (Q moves by ≈ 11 % of
+/// the peak, far beyond the 1e-12 round-off tolerance of a command solver's baseline). Before
+/// issue 39 the baseline kept the worst step's value only (745, before the rescale acts) and this
+/// passed with drift 0.
+#[test]
+fn deleting_the_rescale_fails_verify_naming_the_first_step_that_moved() {
+    let root = common::root();
+    let shipped = root.join("cases/own-law.toml");
+    let baselines = root.join("reference/baselines");
+    let case = Case::load(&shipped).unwrap_or_else(|e| panic!("{e}"));
+    let steps = case.scene.steps();
+    let first_fall = steps
+        .windows(2)
+        .position(|w| w[1].delta_n < w[0].delta_n)
+        .map(|k| k + 1)
+        .expect("the path unloads");
+    assert_eq!(
+        steps[first_fall - 1].position,
+        Some(8),
+        "δn first falls after position 8"
+    );
+
+    // The accepted law: every value as the shipped baseline holds it, CI's flags.
+    let verify = |case: &Path, dir: &Path| {
+        run_in(
+            &[
+                "verify",
+                common::arg(case),
+                "--baselines",
+                common::arg(&baselines),
+                "--require-baselines",
+                "--allow-commands",
+            ],
+            dir,
+        )
+    };
+    let (code, out) = verify(&shipped, &root);
+    assert_eq!(code, Some(0), "{out}");
+    assert_eq!(out.matches("| drift 0 at all ").count(), 3, "{out}");
+
+    // The same case, its law run without the rescale (the example's own flag).
+    let dir = tempfile::tempdir().unwrap();
+    let law = root.join("examples/own_law").join(LAW);
+    let text = text(&shipped).replace(
+        &format!(r#""{{case_dir}}/../examples/own_law/{LAW}", "{{scene}}", "{{history}}"]"#),
+        &format!(
+            r#"{:?}, "{{scene}}", "{{history}}", "--no-rescale"]"#,
+            law.display().to_string()
+        ),
+    );
+    assert!(
+        text.contains("--no-rescale"),
+        "the case's command line changed:\n{text}"
+    );
+    let edited = dir.path().join("own-law.toml");
+    std::fs::write(&edited, text).unwrap();
+    let (code, out) = verify(&edited, dir.path());
+    assert_eq!(code, Some(1), "{out}");
+    let drifted: Vec<&str> = out.lines().filter(|l| l.starts_with("DRIFT ")).collect();
+    assert_eq!(
+        drifted.len(),
+        1,
+        "only Q over every step covers the unloading: {out}"
+    );
+    let row = drifted[0];
+    assert!(row.contains("my-law tangential_force at every step"), "{row}");
+    assert!(
+        row.contains(&format!("| drift: first beyond tol at step {first_fall}: ")),
+        "names the first step that moved ({first_fall}): {row}"
+    );
+    // The largest change is the rescale's, of the order of its 11 % of the peak; the steps
+    // before the first fall did not move at all.
+    let largest: f64 = row
+        .split("largest at step ")
+        .nth(1)
+        .and_then(|s| s.split("(change ").nth(1))
+        .and_then(|s| s.split(')').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no largest change in {row}"));
+    assert!(largest > 0.01, "{row}");
+    let moved: usize = row
+        .split(" of 1101 values moved")
+        .next()
+        .and_then(|s| s.rsplit("; ").next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no count of moved values in {row}"));
+    assert!(moved > 0 && moved <= steps.len() - first_fall, "{row}");
+    assert!(out.contains("1 checks drifted from their baselines"), "{out}");
+}

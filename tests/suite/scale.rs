@@ -249,16 +249,20 @@ fn a_drift_of_1e_9_fails_verify_until_the_baseline_is_updated() {
     let (code, stdout, _) = verify();
     assert_eq!(code, 0, "{stdout}");
     assert!(
-        stdout.contains("OK    cli-test | py normal_force") && stdout.contains("| drift 0.0000e0"),
+        stdout.contains("OK    cli-test | py normal_force") && stdout.contains("| drift 0 at all 9 values"),
         "{stdout}"
     );
     std::fs::write(dir.path().join("factor"), "1.000000001").unwrap();
     let (code, stdout, _) = verify();
     assert_eq!(code, 1, "{stdout}");
     let row = stdout.lines().find(|l| l.contains("py normal_force")).unwrap();
-    // Within the check's own tolerance, beyond the command solver's round-off: DRIFT alone.
+    // Within the check's own tolerance, beyond the command solver's round-off: DRIFT alone,
+    // naming the first step that moved (step 0 is unloaded, P = 0 times any factor) and how many.
     assert!(
-        row.starts_with("DRIFT cli-test") && row.contains("| drift 1.0000e-9"),
+        row.starts_with("DRIFT cli-test")
+            && row.contains("| drift: first beyond tol at step 1: ")
+            && row.contains("(change 1.0000e-9)")
+            && row.contains("8 of 9 values moved"),
         "{row}"
     );
     assert!(
@@ -322,6 +326,24 @@ fn slurm_writes_a_job_array_of_shards_and_a_merge_after_it() {
         "{merge}"
     );
     assert!(text(&out.join("submit.sh")).contains("sbatch --parsable --dependency=afterok:\"$array\""));
+    assert!(!shards.contains("--require-baselines") && !merge.contains("--require-baselines"));
+    // --require-baselines (CI's) goes into the shards' and the merge's command lines.
+    let strict = dir.path().join("strict");
+    let (code, stdout, stderr) = run(&[
+        "slurm",
+        "--label",
+        "hard",
+        "--shards",
+        "3",
+        "--require-baselines",
+        "--out",
+        path(&strict),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    for script in ["shards.sbatch", "merge.sbatch"] {
+        let script = text(&strict.join(script));
+        assert!(script.contains(" '--require-baselines'"), "{script}");
+    }
     // Bad input writes nothing.
     let (code, _, stderr) = run(&[
         "slurm",

@@ -27,6 +27,24 @@ pub struct Suite {
     pub rows: Vec<Row>,
     /// True when no check fails the run and every solver it needs ran or is not installed.
     pub passed: bool,
+    /// The baseline file the case has none at (one line of text), when its values were compared
+    /// with none (set by `verify` and `merge` after the comparison): said in the summary and the
+    /// JUnit, a failure with `--require-baselines`.
+    pub no_baseline: Option<String>,
+}
+
+impl Suite {
+    /// The line that says the case has no baseline, if it has none (printed after its block, and
+    /// its JUnit test case `baseline`).
+    pub fn no_baseline_line(&self) -> Option<String> {
+        self.no_baseline.as_ref().map(|file| {
+            format!(
+                "NOBASE {}: no baseline ({file}): its values are not compared with accepted ones \
+                 (`spherecontact baseline update` writes it)",
+                self.name
+            )
+        })
+    }
 }
 
 /// How many rows of `suites` have `verdict`.

@@ -20,14 +20,14 @@
 
 pub mod judged;
 
-mod drift;
+pub mod drift;
 mod measure;
 pub mod row;
 
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-pub use drift::Drift;
+pub use drift::{Change, Drift, JudgedValue};
 use measure::zeroed;
 pub use measure::{relative_error, ErrorMeasure, ABS_ZERO};
 
@@ -223,7 +223,10 @@ pub struct Outcome {
     pub worst_step: Option<usize>,
     /// Why there is no error to show (solver failed, value missing, nothing to compare).
     pub message: Option<String>,
-    /// The value against its non-regression baseline, when the case has one for this check
+    /// Every value the check judged, in step order (empty when it has no error): what its
+    /// non-regression baseline records and compares.
+    pub judged: Vec<JudgedValue>,
+    /// The values against their non-regression baseline, when the case has one for this check
     /// (`baseline` (spherecontact-verify)).
     pub drift: Option<Drift>,
 }
@@ -272,15 +275,26 @@ impl CheckSpec {
                 let message = format!("{} gives no {} at step {}", self.solver, self.quantity, row.step);
                 return self.outcome_without_error(Verdict::Nook, message);
             };
-            pairs.push((row.step, value, reference));
+            pairs.push(JudgedValue {
+                step: row.step,
+                value,
+                reference,
+            });
         }
         if pairs.is_empty() {
             return self.outcome_without_error(Verdict::Nook, format!("nothing to compare at {}", self.at));
         }
-        let peak = pairs.iter().map(|p| p.2.abs()).fold(0.0, f64::max);
+        let peak = pairs.iter().map(|p| p.reference.abs()).fold(0.0, f64::max);
         let (worst_step, value, reference, error) = pairs
-            .into_iter()
-            .map(|(step, v, r)| (step, v, r, self.error(v, r, peak)))
+            .iter()
+            .map(|p| {
+                (
+                    p.step,
+                    p.value,
+                    p.reference,
+                    self.error(p.value, p.reference, peak),
+                )
+            })
             .fold(
                 None,
                 |worst: Option<(usize, f64, f64, f64)>, candidate| match worst {
@@ -302,6 +316,7 @@ impl CheckSpec {
             error: Some(error),
             worst_step: Some(worst_step),
             message: None,
+            judged: pairs,
             drift: None,
         }
     }
@@ -323,14 +338,23 @@ impl CheckSpec {
                     Some(tolerance) if error <= tolerance => Verdict::Ok,
                     Some(_) => Verdict::Nook,
                 };
+                let worst_step = subject.at_position(position).map(|r| r.step);
                 Outcome {
                     spec: self.clone(),
                     verdict: Verdict::marked(judged, self.known_failure.as_deref()),
                     value: Some(c.rms),
                     reference: Some(c.peak),
                     error: Some(error),
-                    worst_step: subject.at_position(position).map(|r| r.step),
+                    worst_step,
                     message: None,
+                    judged: worst_step
+                        .map(|step| JudgedValue {
+                            step,
+                            value: c.rms,
+                            reference: c.peak,
+                        })
+                        .into_iter()
+                        .collect(),
                     drift: None,
                 }
             }
@@ -371,6 +395,7 @@ impl CheckSpec {
             error: None,
             worst_step: None,
             message: Some(message),
+            judged: Vec::new(),
             drift: None,
         }
     }

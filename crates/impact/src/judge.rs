@@ -7,7 +7,7 @@ use std::fmt::Write;
 use super::case::{ImpactCase, ImpactCheck, ImpactReference, Point, Quantity, Variant};
 use super::closed_form::HertzImpact;
 use super::solver_run::SolverRun;
-use spherecontact_check::{relative_error, Drift, Verdict, ABS_ZERO};
+use spherecontact_check::{relative_error, Drift, JudgedValue, Verdict, ABS_ZERO};
 use spherecontact_model::hertz::Hertz;
 use spherecontact_model::number::format_value;
 use spherecontact_reference::impact::outcome::Outcome;
@@ -23,7 +23,10 @@ pub struct CheckOutcome {
     pub worst: Option<Worst>,
     /// Why there is no error (a solver failed, a value is missing).
     pub message: Option<String>,
-    /// The value against its non-regression baseline, when the case has one for this check
+    /// Every sweep point's judged value (the point's index as its step), in order; empty when
+    /// there is no error: what its non-regression baseline records and compares.
+    pub judged: Vec<JudgedValue>,
+    /// The values against its non-regression baseline, when the case has one for this check
     /// (`baseline` (spherecontact-verify)).
     pub drift: Option<Drift>,
 }
@@ -82,6 +85,7 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
         },
         worst: None,
         message: Some(message),
+        judged: Vec::new(),
         drift: None,
     };
     let Some(subject) = find(runs, &check.solver, check.variant) else {
@@ -104,12 +108,14 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
             verdict: Verdict::Unavailable,
             worst: None,
             message: Some(why),
+            judged: Vec::new(),
             drift: None,
         };
     }
     let hertz = Hertz::of(&case.pair());
     let points = case.points();
     let mut worst: Option<Worst> = None;
+    let mut judged = Vec::new();
     for (index, (at, result)) in subject.points.iter().enumerate() {
         let value = match result {
             Ok(outcome) => outcome.get(check.quantity),
@@ -147,6 +153,11 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
         } else {
             (value - reference).abs()
         };
+        judged.push(JudgedValue {
+            step: index,
+            value,
+            reference,
+        });
         if worst.is_none_or(|w| error > w.error) {
             worst = Some(Worst {
                 index,
@@ -170,6 +181,7 @@ fn judge_one(case: &ImpactCase, check: &ImpactCheck, runs: &[SolverRun]) -> Chec
         message: worst
             .is_none()
             .then(|| "no sweep point defines the quantity".to_owned()),
+        judged,
         drift: None,
     }
 }
@@ -208,12 +220,6 @@ pub fn outcome_row(case: &str, outcome: &CheckOutcome) -> String {
     );
     let _ = write!(row, " | {}", check.reason);
     spherecontact_system::text::one_line(&row).into_owned()
-}
-
-/// The value `check`'s subject gives at sweep point `index`, if it ran and defines it there.
-pub fn value_at(runs: &[SolverRun], check: &ImpactCheck, index: usize) -> Option<f64> {
-    let run = find(runs, &check.solver, check.variant)?;
-    run.points.get(index)?.1.as_ref().ok()?.get(check.quantity)
 }
 
 /// An outcome per sweep point of a solver's run, for tests and reports.

@@ -149,6 +149,7 @@ impl ImpactRun {
             block: self.block(),
             rows,
             passed: self.passed(),
+            no_baseline: None,
         }
     }
 }

@@ -22,6 +22,16 @@ impl fmt::Display for Short {
     }
 }
 
+/// A number as a CSV cell: its shortest round-trip form ([`Short`]: it reads back bit for bit),
+/// empty when absent or not finite (a file never holds NaN or ∞). Every results file is written
+/// with it, so that what is compared with a stored file or a baseline is the value itself, not
+/// its printed digits.
+pub fn cell(value: Option<f64>) -> String {
+    value
+        .filter(|v| v.is_finite())
+        .map_or_else(String::new, |v| Short(v).to_string())
+}
+
 /// Formats a value for people: four significant digits in scientific notation, "—" when absent,
 /// and never "NaN" (a non-finite value prints as what it is).
 pub fn format_value(value: Option<f64>) -> String {
@@ -35,7 +45,27 @@ pub fn format_value(value: Option<f64>) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{format_value, Short};
+    use super::{cell, format_value, Short};
+
+    #[test]
+    fn a_cell_reads_back_bit_for_bit_and_is_empty_when_not_finite() {
+        for v in [
+            0.1 + 0.2,
+            -1.8009997416520088e2,
+            5e-324,
+            1.7976931348623157e308,
+            -0.0,
+        ] {
+            assert_eq!(
+                cell(Some(v)).parse::<f64>().unwrap().to_bits(),
+                v.to_bits(),
+                "{v}"
+            );
+        }
+        assert_eq!(cell(Some(f64::NAN)), "");
+        assert_eq!(cell(Some(f64::NEG_INFINITY)), "");
+        assert_eq!(cell(None), "");
+    }
 
     #[test]
     fn never_prints_nan() {

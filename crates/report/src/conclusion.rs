@@ -13,6 +13,8 @@ pub struct Conclusion<'a> {
     pub suites: &'a [Suite],
     /// A check that is N/A (a solver not installed) counts as a failure (`--require-external`).
     pub require_external: bool,
+    /// A case without a baseline counts as a failure (`--require-baselines`).
+    pub require_baselines: bool,
 }
 
 impl Conclusion<'_> {
@@ -22,7 +24,13 @@ impl Conclusion<'_> {
 
     /// The text printed: each case's block of checks, then the counts.
     pub fn text(&self) -> String {
-        let mut text: String = self.suites.iter().map(|s| s.block.as_str()).collect();
+        let mut text = String::new();
+        for suite in self.suites {
+            text.push_str(&suite.block);
+            if let Some(line) = suite.no_baseline_line() {
+                let _ = writeln!(text, "{line}");
+            }
+        }
         let na = self.count(Verdict::Unavailable);
         let _ = writeln!(
             text,
@@ -45,6 +53,18 @@ impl Conclusion<'_> {
                 "verify: {drifted} checks drifted from their baselines (DRIFT; `spherecontact baseline update` accepts a deliberate change)"
             );
         }
+        let unbaselined = self.unbaselined();
+        if unbaselined > 0 {
+            let _ = writeln!(
+                text,
+                "verify: {unbaselined} cases without a baseline (NOBASE: their values are not compared with accepted ones){}",
+                if self.require_baselines {
+                    "; they count as failures (--require-baselines)"
+                } else {
+                    ""
+                }
+            );
+        }
         if self.require_external && na > 0 {
             let _ = writeln!(
                 text,
@@ -56,13 +76,19 @@ impl Conclusion<'_> {
 
     /// The JUnit XML document.
     pub fn junit(&self) -> String {
-        junit::document(self.suites)
+        junit::document(self.suites, self.require_baselines)
     }
 
-    /// True when every case passed ([`Suite::passed`]) and, with `require_external`, no
-    /// check is N/A.
+    /// How many cases were compared with no baseline.
+    fn unbaselined(&self) -> usize {
+        self.suites.iter().filter(|s| s.no_baseline.is_some()).count()
+    }
+
+    /// True when every case passed ([`Suite::passed`]), with `require_external` no check is
+    /// N/A, and with `require_baselines` every case has a baseline.
     pub fn passed(&self) -> bool {
         self.suites.iter().all(|s| s.passed)
             && !(self.require_external && self.count(Verdict::Unavailable) > 0)
+            && !(self.require_baselines && self.unbaselined() > 0)
     }
 }

@@ -1,20 +1,18 @@
 //! A solver's history as files: `<solver>.csv` (SI, one row per step, empty cells for what the
-//! solver does not produce) and `<solver>.json` (the same rows plus metadata).
+//! solver does not produce) and `<solver>.json` (the same rows plus metadata). Numbers are
+//! written in their shortest round-trip form ([`cell`]): a value read back from the CSV is the
+//! computed one, bit for bit, so a stored copy or a baseline compares at round-off.
 
 use std::path::Path;
 
 use super::figures::surface::FieldView;
 use spherecontact_model::history::{History, Quantity};
+use spherecontact_model::number::cell;
 use spherecontact_system::io::write_atomically;
 
 /// The CSV header: the path columns, then every quantity.
 pub fn csv_header() -> Vec<&'static str> {
     spherecontact_external::exchange::results_csv::columns()
-}
-
-/// A CSV cell: the value, or empty when not produced.
-fn cell(v: Option<f64>) -> String {
-    v.map_or_else(String::new, |v| format!("{v:.10e}"))
 }
 
 /// The CSV text of a history.
@@ -60,9 +58,9 @@ pub fn fields_to_csv(history: &History) -> anyhow::Result<String> {
                 .map(|s| u8::from(s).to_string());
             writer.write_record([
                 field.position().to_string(),
-                format!("{x:.10e}"),
-                format!("{y:.10e}"),
-                format!("{:.10e}", field.pressure(i)),
+                cell(Some(x)),
+                cell(Some(y)),
+                cell(Some(field.pressure(i))),
                 cell(field.traction(i).map(|t| t[0])),
                 cell(field.traction_y(i)),
                 stick.unwrap_or_default(),

@@ -33,24 +33,49 @@ pub fn is_ours(head: &[u8]) -> bool {
 }
 
 /// The JUnit XML document of a verification run: a test suite per case, a test case per check
-/// (path and impact cases alike, [`spherecontact_check::judged`]).
-pub fn document(suites: &[Suite]) -> String {
-    let total: usize = suites.iter().map(|s| s.rows.len()).sum();
+/// (path and impact cases alike, [`spherecontact_check::judged`]), and a test case `baseline`
+/// in the suite of a case compared with no baseline: skipped, or a failure when
+/// `require_baselines` (`--require-baselines`).
+pub fn document(suites: &[Suite], require_baselines: bool) -> String {
+    let unbaselined = suites.iter().filter(|s| s.no_baseline.is_some()).count();
+    let total: usize = suites.iter().map(|s| s.rows.len()).sum::<usize>() + unbaselined;
+    let (failed, skipped) = if require_baselines {
+        (unbaselined, 0)
+    } else {
+        (0, unbaselined)
+    };
     let mut xml = String::from(OPENING);
     let _ = writeln!(
         xml,
         " tests=\"{total}\" failures=\"{}\" skipped=\"{}\">",
-        count(suites, Verdict::Nook) + count(suites, Verdict::Fixed) + count(suites, Verdict::Drift),
-        count(suites, Verdict::Unavailable)
+        count(suites, Verdict::Nook) + count(suites, Verdict::Fixed) + count(suites, Verdict::Drift) + failed,
+        count(suites, Verdict::Unavailable) + skipped
     );
     for suite in suites {
         let name = escape(&suite.name);
-        let failures = suite.rows.iter().filter(|r| r.verdict.fails_run()).count();
+        let missing = suite.no_baseline_line();
+        let failures = suite.rows.iter().filter(|r| r.verdict.fails_run()).count()
+            + usize::from(require_baselines && missing.is_some());
         let _ = writeln!(
             xml,
             "  <testsuite name=\"{name}\" tests=\"{}\" failures=\"{failures}\">",
-            suite.rows.len()
+            suite.rows.len() + usize::from(missing.is_some())
         );
+        if let Some(line) = missing {
+            let text = escape(&line);
+            let _ = if require_baselines {
+                writeln!(
+                    xml,
+                    "    <testcase classname=\"{name}\" name=\"baseline\"><failure message=\"NO BASELINE \
+                     (--require-baselines)\">{text}</failure></testcase>"
+                )
+            } else {
+                writeln!(
+                    xml,
+                    "    <testcase classname=\"{name}\" name=\"baseline\"><skipped message=\"{text}\"/></testcase>"
+                )
+            };
+        }
         for row in &suite.rows {
             let _ = write!(
                 xml,

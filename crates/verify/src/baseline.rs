@@ -1,11 +1,14 @@
-//! Non-regression baselines: every check's computed value as last accepted, stored per case in
-//! `reference/baselines/<case>.toml` beside the references, with each solver's version,
-//! resolution and wall time. `verify` compares each value with its baseline at the solvers'
-//! non-regression tolerance ([`tolerance`]) and reports a change beyond it as DRIFT, a failure;
+//! Non-regression baselines: every value each check judged as last accepted (every step or sweep
+//! point it covers), stored per case in `reference/baselines/<case>.toml` beside the references,
+//! with each solver's version, resolution and wall time. `verify` compares each value with its
+//! baseline at the solvers' non-regression tolerance ([`tolerance`]), names the first step that
+//! moved beyond it and the largest change, and reports such a check as DRIFT, a failure;
 //! `spherecontact baseline update [CASE...]` rewrites the files, so that a deliberate change is
-//! one reviewed diff (Code_Aster's VALE_CALC beside VALE_REFE).
+//! one reviewed diff (Code_Aster's VALE_CALC beside VALE_REFE; MOOSE's CSVDiff compares every
+//! row, LAMMPS' unit tests store whole YAML references).
 //!
 //! ```toml
+//! format = 2
 //! case = "hertz-normal"
 //!
 //! [solvers."bem"]
@@ -16,14 +19,23 @@
 //! [[checks]]
 //! index = 20
 //! check = "bem normal_force at positions [1, 2] vs hertz (relative)"
-//! step = 25
-//! value = 2.0261e3
+//! values = [
+//!   [25, 2.0261041411427e3],
+//!   [50, 5.730707133906211e3],
+//! ]
 //! ```
 //!
+//! Every value, not a digest: a digest (a hash per step) would name the first step that moved
+//! but not by how much, nor the largest change; the values cost some 30 bytes each (the longest
+//! shipped case, paper-fig7, about 1 MB), and a deliberate change reads as a diff of the steps
+//! it moved. Values are written in their shortest round-trip form (`{:e}`), so a value reads back
+//! bit for bit and the tolerance is round-off, not the file's digits.
+//!
 //! A check without a value (its solver not installed or failed) has no entry, and an absent
-//! entry is no drift. A check whose solver now runs at another resolution than the one stored is
-//! not compared (a baseline belongs to a resolution). The wall times are the plan's recorded
-//! costs ([`crate::plan`]).
+//! entry is no drift. A check whose solver now runs at another resolution than the one stored
+//! fails (a baseline belongs to a resolution). A file without `format = 2` (the one value per
+//! check of before) is refused, saying to run `baseline update`. The wall times are the plan's
+//! recorded costs ([`crate::plan`]).
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -33,7 +45,7 @@ use serde::Deserialize;
 
 use crate::plan::Member;
 use crate::CaseRun;
-use spherecontact_check::{Drift, Histories, Verdict};
+use spherecontact_check::{drift, Drift, JudgedValue, Verdict};
 use spherecontact_system::input::foreign::{self, ForeignError};
 
 mod impact;
@@ -58,6 +70,18 @@ pub enum BaselineError {
         .0.display()
     )]
     Folder(PathBuf),
+    /// A baseline of another format than this harness's (the one value per check of before).
+    #[error(
+        "{}: {problem}: a baseline records every judged value since format 2 (allowed: `format = {FORMAT}`; \
+         run `spherecontact baseline update` to rewrite it)",
+        file.display()
+    )]
+    OtherFormat {
+        /// The file.
+        file: PathBuf,
+        /// What it holds instead.
+        problem: String,
+    },
     /// An entry that does not fit its case: the case changed since, or the file was edited.
     #[error(
         "{}: {entry}: {problem} (a baseline holds its case's checks, steps and solvers as `spherecontact \
@@ -74,10 +98,9 @@ pub enum BaselineError {
     },
 }
 
-/// The largest baseline file [bytes] (16 MiB): the shipped ones are under 8 KB, and a baseline
-/// of every judged value of the longest shipped path (the paper case: about 600 checks over its
-/// 101 steps, some 60 bytes a value) under 4 MB; TOML parsing takes about 30 bytes of memory a
-/// byte, 0.5 GB at the limit.
+/// The largest baseline file [bytes] (16 MiB): every judged value of the longest shipped case
+/// (paper-fig7: 56 checks, most over its 1101 steps, about 30 bytes a value) is about 1 MB; TOML
+/// parsing takes about 30 bytes of memory a byte, 0.5 GB at the limit.
 pub const MAX_BASELINE_BYTES: u64 = 16 << 20;
 
 /// The non-regression tolerance of a solver's values (relative) and its reason.
@@ -116,6 +139,10 @@ fn check_tolerance(solvers: &[String]) -> f64 {
     solvers.iter().map(|s| tolerance(s).0).fold(0.0, f64::max)
 }
 
+/// The format of the baselines this harness writes and reads: 2, every judged value (1, never
+/// written as a key, held one value per check).
+pub const FORMAT: u32 = 2;
+
 /// A judged check as a baseline sees it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Judgement {
@@ -125,12 +152,8 @@ pub struct Judgement {
     pub key: String,
     /// The solvers it needs.
     pub solvers: Vec<String>,
-    /// Where its value was taken: a path's step, an impact's sweep point (its worst).
-    pub step: Option<usize>,
-    /// Its value there.
-    pub value: Option<f64>,
-    /// The reference's value there.
-    pub reference: Option<f64>,
+    /// Every value it judged, in step order: a path's steps, an impact's sweep points.
+    pub values: Vec<JudgedValue>,
     /// Its verdict.
     pub verdict: Verdict,
 }
@@ -146,9 +169,8 @@ pub trait Baselined {
     fn resolution(&self, solver: &str) -> Option<String>;
     /// The judged checks, in order.
     fn judgements(&self) -> Vec<Judgement>;
-    /// The value of the `check`-th judged check at `step` (a baseline's step may not be the
-    /// worst one now).
-    fn value_at(&self, check: usize, step: usize) -> Option<f64>;
+    /// What a judged value's step is called: "step" (a path), "sweep point" (an impact).
+    fn unit(&self) -> &'static str;
     /// Records the `check`-th judged check's drift and its verdict.
     fn mark(&mut self, check: usize, drift: Drift, verdict: Verdict);
 }
@@ -195,21 +217,15 @@ impl Baselined for CaseRun {
                     index: self.case.checks.iter().position(|c| *c == o.spec)?,
                     key: key(&o.spec),
                     solvers: o.spec.solvers().cloned().collect(),
-                    step: o.worst_step,
-                    value: o.value,
-                    reference: o.reference,
+                    values: o.judged.clone(),
                     verdict: o.verdict,
                 })
             })
             .collect()
     }
 
-    fn value_at(&self, check: usize, step: usize) -> Option<f64> {
-        let outcome = self.outcomes.get(check)?;
-        if outcome.worst_step == Some(step) {
-            return outcome.value;
-        }
-        current(&outcome.spec, step, &self.histories)
+    fn unit(&self) -> &'static str {
+        "step"
     }
 
     fn mark(&mut self, check: usize, drift: Drift, verdict: Verdict) {
@@ -240,16 +256,17 @@ pub struct CheckRecord {
     pub index: usize,
     /// The check in words ([`key`]): an entry applies only to the same check at the same index.
     pub check: String,
-    /// The step of the value: the check's worst when the baseline was written.
-    pub step: usize,
-    /// The value computed there.
-    pub value: f64,
+    /// Every value it judged when the baseline was written: (step, value), in step order (a
+    /// sweep point's index for an impact case).
+    pub values: Vec<(usize, f64)>,
 }
 
 /// The baseline of one case.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Baseline {
+    /// The format ([`FORMAT`]).
+    pub format: u32,
     /// The case's name.
     pub case: String,
     /// Per solver that ran.
@@ -274,7 +291,14 @@ pub fn key(spec: &spherecontact_check::CheckSpec) -> String {
 
 /// What a baseline file is, as its errors say.
 const FORM: &str =
-    "a baseline written by `spherecontact baseline update`: its case, [solvers.NAME] and [[checks]]";
+    "a baseline written by `spherecontact baseline update`: its format, case, [solvers.NAME] and [[checks]]";
+
+/// What a file must say of itself before it is read as a baseline: its format (a file of the
+/// old format has none). Other keys are left to [`Baseline`]'s own reading.
+#[derive(Deserialize)]
+struct Probe {
+    format: Option<i64>,
+}
 
 /// The first line of every baseline file ([`Baseline::to_toml`]).
 const HEADER: &str = "# Non-regression baseline of case `";
@@ -300,16 +324,15 @@ impl Baseline {
         let checks = run
             .judgements()
             .into_iter()
-            .filter_map(|j| {
-                Some(CheckRecord {
-                    index: j.index,
-                    check: j.key,
-                    step: j.step?,
-                    value: j.value?,
-                })
+            .filter(|j| !j.values.is_empty())
+            .map(|j| CheckRecord {
+                index: j.index,
+                check: j.key,
+                values: j.values.iter().map(|v| (v.step, v.value)).collect(),
             })
             .collect();
         Baseline {
+            format: FORMAT,
             case: run.case_name().to_owned(),
             solvers: run.solver_records(),
             checks,
@@ -324,6 +347,15 @@ impl Baseline {
             return Ok(None);
         }
         let text = foreign::read_text(&file, MAX_BASELINE_BYTES)?;
+        let probe: Probe = foreign::parse_toml(&file, &text, FORM)?;
+        let problem = match probe.format {
+            Some(f) if f == i64::from(FORMAT) => None,
+            Some(f) => Some(format!("format {f}, not this harness's")),
+            None => Some("no `format`: a baseline of one value per check".to_owned()),
+        };
+        if let Some(problem) = problem {
+            return Err(BaselineError::OtherFormat { file, problem });
+        }
         let baseline: Baseline = foreign::parse_toml(&file, &text, FORM)?;
         case.admits(&baseline)
             .map_err(|(entry, problem)| BaselineError::Stale { file, entry, problem })?;
@@ -335,12 +367,14 @@ impl Baseline {
         self.solvers.get(solver).map(|s| s.wall_s)
     }
 
-    /// Compares every check of `run` that has an entry: sets its drift, and its verdict to
-    /// DRIFT when the change exceeds the tolerance (a NOOK stays NOOK) or when the baseline
-    /// records another resolution of one of its solvers than the run's. The checks of a solver
-    /// in `chosen` (a resolution chosen on the command line, `--resolution`) are not compared:
-    /// a baseline belongs to the case's own resolution.
+    /// Compares every check of `run` that has an entry, value by value: sets its drift, and
+    /// its verdict to DRIFT when a value moved beyond the tolerance, a step is judged on one side
+    /// only, or the baseline records another resolution of one of its solvers than the run's (a
+    /// NOOK stays NOOK). A check without a value now (a solver not installed or failed) is not
+    /// compared. The checks of a solver in `chosen` (a resolution chosen on the command line,
+    /// `--resolution`) are not compared: a baseline belongs to the case's own resolution.
     pub fn compare(&self, run: &mut (impl Baselined + ?Sized), chosen: &[String]) {
+        let unit = run.unit();
         for (check, judgement) in run.judgements().into_iter().enumerate() {
             let Some(record) = self
                 .checks
@@ -349,10 +383,7 @@ impl Baseline {
             else {
                 continue;
             };
-            let Some(value) = run.value_at(check, record.step) else {
-                continue;
-            };
-            if judgement.solvers.iter().any(|name| chosen.contains(name)) {
+            if judgement.values.is_empty() || judgement.solvers.iter().any(|name| chosen.contains(name)) {
                 continue;
             }
             // A solver that did not run now has no resolution: nothing to compare.
@@ -370,58 +401,37 @@ impl Baseline {
                 .zip(&now)
                 .find(|(name, now)| self.solvers.get(*name).map(|s| &s.resolution) != Some(now))
                 .map(|(name, _)| name);
-            let (drift, verdict) = match other {
-                Some(solver) => (
-                    Drift::OtherResolution {
-                        solver: solver.clone(),
-                    },
-                    Verdict::Drift,
+            let drift = match other {
+                Some(solver) => Drift::OtherResolution {
+                    solver: solver.clone(),
+                },
+                None => drift::compare(
+                    unit,
+                    &judgement.values,
+                    &record.values,
+                    check_tolerance(&judgement.solvers),
                 ),
-                None => self.measured(&judgement, record.value, value),
+            };
+            let verdict = if drift.fails() && judgement.verdict != Verdict::Nook {
+                Verdict::Drift
+            } else {
+                judgement.verdict
             };
             run.mark(check, drift, verdict);
         }
-    }
-
-    /// The drift of `judgement`'s `value` from its baseline's `stored` value, and its verdict.
-    fn measured(&self, judgement: &Judgement, stored: f64, value: f64) -> (Drift, Verdict) {
-        // Scaled by the magnitude of the quantity judged: for a profile the value is an RMS
-        // difference, some 1e-4 of its reference's peak, and scaling by it would amplify the
-        // external decks' last-bit noise by that cancellation (measured: FreeFEM's profile
-        // RMS moved 4.4e-9 of itself run to run, 1.5e-13 of the peak).
-        let reference = judgement.reference.map_or(0.0, f64::abs);
-        let (difference, scale) = (
-            (value - stored).abs(),
-            stored.abs().max(value.abs()).max(reference),
-        );
-        let change = if difference == 0.0 {
-            0.0
-        } else {
-            difference / scale
-        };
-        let tolerance = check_tolerance(&judgement.solvers);
-        let verdict = if change > tolerance && judgement.verdict != Verdict::Nook {
-            Verdict::Drift
-        } else {
-            judgement.verdict
-        };
-        let drift = Drift::Measured {
-            baseline: stored,
-            change,
-            tolerance,
-        };
-        (drift, verdict)
     }
 
     /// The file's text: a header, the solvers, the checks (values round-trip exact).
     pub fn to_toml(&self) -> String {
         let string = |s: &str| toml::Value::String(s.to_owned()).to_string();
         let mut text = format!(
-            "{HEADER}{}`: each check's computed value when last accepted,\n\
-             # with each solver's version, resolution and wall time. Written by\n\
-             # `spherecontact baseline update`; `verify` reports a change beyond the solvers'\n\
-             # tolerance as DRIFT (crates/verify/src/baseline.rs).\ncase = {}\n",
+            "{HEADER}{}`: every value each check judged when last accepted\n\
+             # ([step, value], a sweep point's index for an impact case), with each solver's version,\n\
+             # resolution and wall time. Written by `spherecontact baseline update`; `verify` reports\n\
+             # a change beyond the solvers' tolerance as DRIFT, naming the first step that moved\n\
+             # (crates/verify/src/baseline.rs).\nformat = {}\ncase = {}\n",
             self.case,
+            self.format,
             string(&self.case)
         );
         for (name, solver) in &self.solvers {
@@ -437,25 +447,17 @@ impl Baseline {
         for check in &self.checks {
             let _ = write!(
                 text,
-                "\n[[checks]]\nindex = {}\ncheck = {}\nstep = {}\nvalue = {:e}\n",
+                "\n[[checks]]\nindex = {}\ncheck = {}\nvalues = [\n",
                 check.index,
                 string(&check.check),
-                check.step,
-                check.value
             );
+            for (step, value) in &check.values {
+                let _ = writeln!(text, "  [{step}, {value:e}],");
+            }
+            text.push_str("]\n");
         }
         text
     }
-}
-
-/// A path check's value at `step` other than its worst: the subject's quantity there (a
-/// profile's value exists at its position's step only).
-fn current(spec: &spherecontact_check::CheckSpec, step: usize, histories: &Histories) -> Option<f64> {
-    if spherecontact_solvers::profile::Field::of(spec.quantity).is_some() {
-        return None;
-    }
-    let history = histories.get(&spec.solver)?.as_ref().ok()?;
-    spec.value(history, history.steps.get(step)?)
 }
 
 /// `x` to two significant digits: a wall time is a cost estimate, and its noise would make every
@@ -469,12 +471,23 @@ pub fn two_digits(x: f64) -> f64 {
     }
 }
 
+/// How baselines are read: to compare runs with them, or to be replaced (`baseline update`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reading {
+    /// Every baseline must be of this format and fit its case.
+    Compare,
+    /// Only their recorded wall times are used (to order the runs): a baseline of another format
+    /// or that no longer fits its case is left out, as `baseline update` rewrites it.
+    Replace,
+}
+
 /// The baselines in `dir` of `cases`, each checked against its case, by case name. A folder
 /// that does not exist is an error (a typo in `--baselines` would turn the check off unseen),
 /// except the default [`DIR`] (cases verified outside a repository have none).
 pub fn load_all<'a>(
     dir: &Path,
     cases: impl IntoIterator<Item = &'a Member>,
+    reading: Reading,
 ) -> Result<BTreeMap<String, Baseline>, BaselineError> {
     let mut baselines = BTreeMap::new();
     if !dir.is_dir() {
@@ -484,24 +497,34 @@ pub fn load_all<'a>(
         return Err(BaselineError::Folder(dir.to_path_buf()));
     }
     for case in cases {
-        if let Some(baseline) = Baseline::load(dir, &Shape::of(case))? {
-            baselines.insert(case.name().to_owned(), baseline);
+        match (Baseline::load(dir, &Shape::of(case)), reading) {
+            (Ok(Some(baseline)), _) => {
+                baselines.insert(case.name().to_owned(), baseline);
+            }
+            (Ok(None), _) => {}
+            (Err(BaselineError::OtherFormat { .. } | BaselineError::Stale { .. }), Reading::Replace) => {}
+            (Err(e), _) => return Err(e),
         }
     }
     Ok(baselines)
 }
 
 /// Compares every run with its case's baseline, if any; `chosen` as for [`Baseline::compare`].
+/// Returns the names of the cases that have none, which `verify` says (and fails with
+/// `--require-baselines`).
 pub fn compare_all<'a>(
     baselines: &BTreeMap<String, Baseline>,
     runs: impl IntoIterator<Item = &'a mut dyn Baselined>,
     chosen: &[String],
-) {
+) -> Vec<String> {
+    let mut without = Vec::new();
     for run in runs {
-        if let Some(baseline) = baselines.get(run.case_name()) {
-            baseline.compare(run, chosen);
+        match baselines.get(run.case_name()) {
+            Some(baseline) => baseline.compare(run, chosen),
+            None => without.push(run.case_name().to_owned()),
         }
     }
+    without
 }
 
 #[cfg(test)]
@@ -511,6 +534,7 @@ mod tests {
     #[test]
     fn the_file_reads_back_what_was_written_bit_for_bit() {
         let baseline = Baseline {
+            format: FORMAT,
             case: "a-case".into(),
             solvers: [(
                 "bem".to_owned(),
@@ -525,12 +549,25 @@ mod tests {
             checks: vec![CheckRecord {
                 index: 3,
                 check: "bem normal_force at every step vs hertz (relative)".into(),
-                step: 7,
-                value: 0.1 + 0.2,
+                values: vec![
+                    (0, 0.1 + 0.2),
+                    (7, -0.0),
+                    (8, 5e-324),
+                    (9, 1.7976931348623157e308),
+                ],
             }],
         };
         let text = baseline.to_toml();
-        assert_eq!(toml::from_str::<Baseline>(&text).unwrap(), baseline, "{text}");
+        let read = toml::from_str::<Baseline>(&text).unwrap();
+        assert_eq!(read, baseline, "{text}");
+        let bits = |b: &Baseline| {
+            b.checks[0]
+                .values
+                .iter()
+                .map(|v| v.1.to_bits())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&read), bits(&baseline), "bit for bit, -0 included: {text}");
     }
 
     #[test]

@@ -93,5 +93,6 @@ pub fn suite(run: &CaseRun) -> Suite {
         block: case_block(run),
         rows,
         passed: run.passed(),
+        no_baseline: None,
     }
 }

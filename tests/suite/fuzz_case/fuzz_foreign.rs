@@ -203,7 +203,12 @@ fn judge_baseline(work: &Workspace, shape: &Shape) -> Option<String> {
         Ok(Ok(Some(b))) => b
             .checks
             .iter()
-            .find(|c| !c.value.is_finite() || c.step >= shape.steps || c.index >= shape.checks.len())
+            .find(|c| {
+                c.values.is_empty()
+                    || c.values.iter().any(|v| !v.1.is_finite() || v.0 >= shape.steps)
+                    || c.values.windows(2).any(|w| w[0].0 >= w[1].0)
+                    || c.index >= shape.checks.len()
+            })
             .map(|c| format!("accepted an entry off its case: {c:?}")),
     }
 }

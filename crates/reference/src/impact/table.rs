@@ -45,12 +45,9 @@ pub fn header() -> String {
         .join(",")
 }
 
-/// A number as a cell: empty unless finite, else its shortest round-trip form.
-pub fn cell(value: Option<f64>) -> String {
-    value
-        .filter(|v| v.is_finite())
-        .map_or_else(String::new, |v| Short(v).to_string())
-}
+/// A number as a cell: empty unless finite, else its shortest round-trip form
+/// ([`spherecontact_model::number::cell`], as every results file).
+pub use spherecontact_model::number::cell;
 
 /// The row of one sweep point (without its newline): `sweep` names the swept variable ("none"
 /// when the case does not sweep); `outcome` is `None` for a point without one.

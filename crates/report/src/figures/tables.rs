@@ -298,6 +298,7 @@ mod tests {
             error: Some(0.001),
             worst_step: None,
             message: None,
+            judged: Vec::new(),
             drift: None,
         };
         let run = CaseRun {

@@ -1,11 +1,10 @@
-//! An impact case's checks under non-regression baselines, as a path case's: each check's value at its worst sweep point (the baseline's `step` is the point's
+//! An impact case's checks under non-regression baselines, as a path case's: each check's value at every sweep point (a value's step is the point's
 //! index), each solver's version, resolution (steps and springs) and wall time over its variants.
 
 use std::collections::BTreeMap;
 
 use crate::{baseline::two_digits, baseline::Baselined, baseline::Judgement, baseline::SolverRecord};
 use spherecontact_check::{Drift, Verdict};
-use spherecontact_impact::judge::value_at;
 use spherecontact_impact::ImpactRun;
 use spherecontact_reference::impact::problem::REFERENCE;
 
@@ -55,17 +54,15 @@ impl Baselined for ImpactRun {
                     index: self.case.checks.iter().position(|c| *c == o.check)?,
                     key: o.check.key(),
                     solvers: o.check.solvers().cloned().collect(),
-                    step: o.worst.map(|w| w.index),
-                    value: o.worst.map(|w| w.value),
-                    reference: o.worst.map(|w| w.reference),
+                    values: o.judged.clone(),
                     verdict: o.verdict,
                 })
             })
             .collect()
     }
 
-    fn value_at(&self, check: usize, step: usize) -> Option<f64> {
-        value_at(&self.runs, &self.outcomes.get(check)?.check, step)
+    fn unit(&self) -> &'static str {
+        "sweep point"
     }
 
     fn mark(&mut self, check: usize, drift: Drift, verdict: Verdict) {

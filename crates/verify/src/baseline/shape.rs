@@ -57,8 +57,8 @@ impl Shape {
 
     /// Checks every entry of `baseline` against this case: its name, the solvers it runs (a
     /// finite wall time each), and for each check the index of a check of the case with the same
-    /// words, a step (or sweep point) of the case, a finite value and a solver entry for each
-    /// solver the check needs. The entry at fault and why, else.
+    /// words, values at increasing steps (or sweep points) of the case, each finite, and a solver
+    /// entry for each solver the check needs. The entry at fault and why, else.
     pub fn admits(&self, baseline: &Baseline) -> Result<(), (String, String)> {
         if baseline.case != self.name {
             return Err((
@@ -95,25 +95,43 @@ impl Shape {
                     ),
                 ));
             };
-            if record.step >= self.steps {
-                return Err((
-                    entry(),
-                    format!(
-                        "step {} is past the case's {} {} (allowed: 0 to {})",
-                        record.step,
-                        self.steps,
-                        self.unit,
-                        self.steps.saturating_sub(1)
-                    ),
-                ));
-            }
-            if !record.value.is_finite() {
-                return Err((entry(), "value is not a finite number".into()));
+            if let Some(problem) = self.values_problem(&record.values) {
+                return Err((entry(), problem));
             }
             if let Some(solver) = solvers.iter().find(|s| !baseline.solvers.contains_key(*s)) {
                 return Err((entry(), format!("its solver `{solver}` has no [solvers] entry")));
             }
         }
         Ok(())
+    }
+
+    /// What is wrong with a check's recorded `values`, if anything: none, a step not after the
+    /// one before or past the case's, a value that is not finite.
+    fn values_problem(&self, values: &[(usize, f64)]) -> Option<String> {
+        if values.is_empty() {
+            return Some("values is empty (allowed: the [step, value] pairs the check judged)".into());
+        }
+        let mut previous = None;
+        for (k, &(step, value)) in values.iter().enumerate() {
+            if step >= self.steps {
+                return Some(format!(
+                    "values[{k}]: step {step} is past the case's {} {} (allowed: 0 to {})",
+                    self.steps,
+                    self.unit,
+                    self.steps.saturating_sub(1)
+                ));
+            }
+            if previous.is_some_and(|p| step <= p) {
+                return Some(format!(
+                    "values[{k}]: step {step} does not follow step {} (allowed: increasing steps)",
+                    previous.unwrap_or_default()
+                ));
+            }
+            if !value.is_finite() {
+                return Some(format!("values[{k}]: the value is not a finite number"));
+            }
+            previous = Some(step);
+        }
+        None
     }
 }

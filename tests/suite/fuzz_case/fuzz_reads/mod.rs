@@ -254,7 +254,7 @@ fn verified(case: Case, report: bool) -> Option<String> {
     let mut shown = vec![
         ("verify", table::case_block(&run)),
         ("the summary", summary::screen(&run)),
-        ("JUnit", junit::document(&[table::suite(&run)])),
+        ("JUnit", junit::document(&[table::suite(&run)], false)),
     ];
     if report {
         match compare::document(&run) {
