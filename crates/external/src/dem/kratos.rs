@@ -17,15 +17,11 @@
 
 use std::time::Duration;
 
-use serde_json::json;
-
-use crate::command;
-use crate::exchange::scene_file;
 use crate::program;
-use spherecontact_model::history::{History, Metadata};
+use spherecontact_model::history::History;
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::{Kind, SolveError, Solver};
-use spherecontact_system::process::{Environment, Job};
+use spherecontact_system::process::Job;
 use spherecontact_system::toolchain::{Tool, Toolchain};
 
 /// The script template.
@@ -128,31 +124,11 @@ impl Solver for Kratos {
                 env: vec![("OMP_NUM_THREADS".into(), "1".into())],
                 timeout: program::time_limit(START_UP, PER_STEP, scene.steps().len()),
             };
-            let (steps, told, wall_s) =
-                command::run_exchange(scene, dir, &job, "Kratos", &Environment::Inherited)?;
-            let mut metadata = Metadata {
-                version: told.version.unwrap_or_default(),
-                model: format!(
-                    "{}; two spheres driven kinematically (overlap by position, slip by spin), every velocity fixed",
-                    self.description()
-                ),
-                resolution: format!(
-                    "one Kratos step per path increment ({} increments)",
-                    steps.len().saturating_sub(1)
-                ),
-                warnings: told.warnings,
-                ..Metadata::default()
-            };
-            metadata.extra.insert("law".into(), json!(self.law.class()));
-            metadata.extra.insert("kratos_wall_s".into(), json!(wall_s));
-            metadata
-                .extra
-                .insert("scene_file".into(), json!(scene_file::FILE_NAME));
-            Ok(History {
-                metadata,
-                steps,
-                fields: Vec::new(),
-            })
+            let model = format!(
+                "{}; two spheres driven kinematically (overlap by position, slip by spin), every velocity fixed",
+                self.description()
+            );
+            super::scripted::run(scene, dir, &job, "Kratos", model, self.law.class())
         })
     }
 }

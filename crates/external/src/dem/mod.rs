@@ -24,6 +24,7 @@ pub mod kratos;
 pub mod lammps;
 pub mod liggghts;
 pub mod path_rows;
+pub mod scripted;
 pub mod yade;
 
 use kratos::{Kratos, KratosLaw};

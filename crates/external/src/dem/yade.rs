@@ -15,15 +15,11 @@
 use std::path::Path;
 use std::time::Duration;
 
-use serde_json::json;
-
-use crate::command;
-use crate::exchange::scene_file;
 use crate::program;
-use spherecontact_model::history::{History, Metadata};
+use spherecontact_model::history::History;
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::{Kind, SolveError, Solver};
-use spherecontact_system::process::{Environment, Job};
+use spherecontact_system::process::Job;
 use spherecontact_system::toolchain::{Tool, Toolchain};
 
 /// The script template.
@@ -153,35 +149,19 @@ impl Solver for Yade {
             let timeout = program::time_limit(START_UP, PER_STEP, scene.steps().len());
             let job = job(&self.toolchain.yade, dir, SCRIPT, &self.script(), timeout)
                 .map_err(|e| SolveError::Failed(format!("writing the YADE script: {e}")))?;
-            let (steps, told, wall_s) =
-                command::run_exchange(scene, dir, &job, "YADE", &Environment::Inherited)?;
-            let mut metadata = Metadata {
-                version: told.version.unwrap_or_default(),
-                model: format!(
-                    "{}; two spheres driven kinematically (overlap by position, slip by spin), non-dynamic bodies",
-                    self.description()
-                ),
-                resolution: format!("one YADE step per path increment ({} increments)", steps.len().saturating_sub(1)),
-                warnings: told.warnings,
-                ..Metadata::default()
-            };
+            let model = format!(
+                "{}; two spheres driven kinematically (overlap by position, slip by spin), non-dynamic bodies",
+                self.description()
+            );
+            let mut history = super::scripted::run(scene, dir, &job, "YADE", model, self.law.class())?;
             if !scene.pair.body1.material.eq(&scene.pair.body2.material) {
-                metadata.warnings.push(
+                history.metadata.warnings.push(
                     "YADE's Ip2_FrictMat_FrictMat_MindlinPhys averages the two materials' G and ν: \
                      its tangential stiffness is not Mindlin's 8G*c for different materials"
                         .into(),
                 );
             }
-            metadata.extra.insert("law".into(), json!(self.law.class()));
-            metadata.extra.insert("yade_wall_s".into(), json!(wall_s));
-            metadata
-                .extra
-                .insert("scene_file".into(), json!(scene_file::FILE_NAME));
-            Ok(History {
-                metadata,
-                steps,
-                fields: Vec::new(),
-            })
+            Ok(history)
         })
     }
 }
