@@ -158,7 +158,10 @@ mod tests {
         );
         let spheres = placement("cases/impact/chung-ooi-1.toml");
         let text = input(&[spheres], WALL_STIFFNESS_FACTOR);
-        assert!(!text.contains('@') && !text.contains("fix             wall all"), "{text}");
+        assert!(
+            !text.contains('@') && !text.contains("fix             wall all"),
+            "{text}"
+        );
     }
 
     #[test]
