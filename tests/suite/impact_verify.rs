@@ -45,8 +45,9 @@ fn junit_lists_each_impact_check_as_a_test_case() {
         .unwrap()
         .checks
         .len();
-    // Four closed-form checks for each of the five laws and the five DEM-code solvers.
-    assert_eq!(checks, 40);
+    // Four closed-form checks for each of the five laws and the seven DEM-code solvers (LAMMPS'
+    // four models, YADE, LIGGGHTS, Kratos).
+    assert_eq!(checks, 48);
     // One test case a check, and one `baseline` (skipped: the folder holds no baseline of it).
     let impact_cases = xml.matches("<testcase classname=\"chung-ooi-2\"").count();
     assert_eq!(impact_cases, checks + 1, "{xml}");
