@@ -391,7 +391,9 @@ mod tests {
                 "lammps-mindlin-force",
                 "lammps-mindlin-rescale-force",
                 "yade-mindlin",
-                "mdr-yade"
+                "mdr-yade",
+                "liggghts-hertz-history",
+                "mdr-liggghts"
             ]
         );
         assert!(plan.runs.iter().all(|r| r.cores == 1));
