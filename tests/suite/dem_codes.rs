@@ -362,7 +362,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
         .retain(|c| wanted(&c.solver) && matches!(&c.reference, Reference::Solver(r) if r == "mdr"));
     let run = spherecontact::verify::run_case(case);
     let scores = dem_scoreboard::scores(&run);
-    assert_eq!(scores.len(), 11, "five built-in laws and six code solvers");
+    assert_eq!(scores.len(), 13, "six built-in laws and seven code solvers");
     for outcome in &run.outcomes {
         let score = scores.iter().find(|s| s.solver == outcome.spec.solver).unwrap();
         match (&score.distances, outcome.error) {
@@ -377,7 +377,7 @@ fn the_scoreboard_measures_what_the_informational_checks_measure() {
     }
     let section = dem_scoreboard::section(&run);
     assert_eq!(section.title, dem_scoreboard::TITLE);
-    assert_eq!(section.tables[0].rows.len(), 11);
+    assert_eq!(section.tables[0].rows.len(), 13);
     // The spring law is far from MDR (no micro-slip): the board must show it, not hide it.
     let spring = scores
         .iter()

@@ -231,11 +231,13 @@ fn an_impact_value_that_drifts_from_its_baseline_fails_verify() {
                 .contains("check = \"mdr contact_duration (prescribed) vs hertz closed form (relative)\""),
         "{stored}"
     );
-    // A baseline holds the checks that have a value: the laws' 20, and the DEM codes' 20 where
-    // LAMMPS and YADE are installed (N/A checks have none).
-    let codes =
-        common::decks::these_tools_present("the DEM codes' baseline values", &[Tool::Lammps, Tool::Yade]);
-    let with_value = if codes { 40 } else { 20 };
+    // A baseline holds the checks that have a value: the laws' 20, and the DEM codes' 28 where
+    // LAMMPS, YADE, LIGGGHTS and Kratos are installed (N/A checks have none).
+    let codes = common::decks::these_tools_present(
+        "the DEM codes' baseline values",
+        &[Tool::Lammps, Tool::Yade, Tool::Liggghts, Tool::KratosDem],
+    );
+    let with_value = if codes { 48 } else { 20 };
     assert_eq!(stored.matches("[[checks]]").count(), with_value, "{stored}");
     let (code, stdout, _) = verify();
     assert_eq!(code, 0, "{stdout}");
