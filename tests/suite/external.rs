@@ -327,7 +327,8 @@ fn doctor_lists_every_tool_with_path_and_version() {
             "{tool} missing in:\n{text}"
         );
     }
-    let all_found = text.lines().filter(|l| l.contains(" found ")).count() == spherecontact::toolchain::Tool::ALL.len();
+    let all_found =
+        text.lines().filter(|l| l.contains(" found ")).count() == spherecontact::toolchain::Tool::ALL.len();
     assert_eq!(run.status.success(), all_found, "{text}");
 }
 
