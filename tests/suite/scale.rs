@@ -132,8 +132,9 @@ fn three_shards_merged_equal_the_unsharded_run() {
     let whole_file: serde_json::Value = serde_json::from_str(&text(&d("whole").join("run.json"))).unwrap();
     assert_eq!(runs_in_shards, whole_file["runs"].as_array().unwrap().len());
     // Every impact run in exactly one shard: the whole run's, which are each case's five laws and
-    // the DEM-code solvers its checks name (chung-ooi-2: 4 LAMMPS models and YADE; chung-ooi-3,
-    // damped: those and the references under LAMMPS's and YADE's rules), 10 + 12.
+    // the DEM-code solvers its checks name (chung-ooi-2: 4 LAMMPS models, YADE, LIGGGHTS and
+    // Kratos DEM; chung-ooi-3, damped: those and the references under LAMMPS's, YADE's and
+    // LIGGGHTS' rules — Kratos damps by YADE's rule, so mdr-yade serves both), 12 + 15.
     let whole_impact_runs = whole_file["runs"]
         .as_array()
         .unwrap()
@@ -141,7 +142,7 @@ fn three_shards_merged_equal_the_unsharded_run() {
         .filter(|r| r["result"].get("impact").is_some())
         .count();
     assert_eq!(impact_runs, whole_impact_runs);
-    assert_eq!(impact_runs, 22);
+    assert_eq!(impact_runs, 27);
     let shards: Vec<String> = (1..=3)
         .map(|k| d(&format!("shard-{k}")).to_str().unwrap().to_owned())
         .collect();
