@@ -393,7 +393,8 @@ mod tests {
                 "yade-mindlin",
                 "mdr-yade",
                 "liggghts-hertz-history",
-                "mdr-liggghts"
+                "mdr-liggghts",
+                "kratos-hertz-coulomb"
             ]
         );
         assert!(plan.runs.iter().all(|r| r.cores == 1));
