@@ -9,12 +9,15 @@
 //! formatting characters (U+200B–U+200F, U+202A–U+202E, U+2060–U+2069, U+FEFF): each is written
 //! `\u{…}` (a newline `\n`, a tab `\t`). [`one_line`] escapes newlines too (a table row, a cell, an
 //! attribute); [`lines`] keeps them (a paragraph, a multi-line error message). [`markdown`] adds
-//! Markdown's own rule on top (`report.md`: no HTML, link or table cell from the text).
+//! Markdown's own rule on top (`report.md`: no HTML, link or table cell from the text). [`nearest`]
+//! is the "did you mean" of a message that refuses a name.
 
 use std::borrow::Cow;
 
 mod markdown;
+mod nearest;
 pub use markdown::markdown;
+pub use nearest::nearest;
 
 /// `text` with every control character escaped, newlines included: for text that must stay on
 /// its line.
