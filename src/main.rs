@@ -396,9 +396,8 @@ fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::
         .iter()
         .map(|name| {
             case.solver(name).ok_or_else(|| {
-                InputError(format!(
-                    "--solver: unknown solver `{name}` (see `spherecontact list`)"
-                ))
+                let unknown = spherecontact::case::registry::unknown(name, &case.solver_names());
+                InputError(format!("--solver: {unknown} (see `spherecontact list`)"))
             })
         })
         .collect()

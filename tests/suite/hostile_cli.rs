@@ -105,6 +105,10 @@ fn bad_command_lines_are_bad_input_and_write_nothing() {
             &["--solver", "unknown solver `ansys`"],
         ),
         (
+            &["run", "case.toml", "--solver", "hretz"],
+            &["--solver", "unknown solver `hretz`; did you mean `hertz`?"],
+        ),
+        (
             &["run", "case.toml", "--solver", ""],
             &["--solver", "unknown solver ``"],
         ),
