@@ -7,6 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+#[macro_use]
+mod stdout;
 mod cli;
 
 use clap::{Parser, Subcommand};
@@ -396,9 +398,8 @@ fn planned_solvers(case: &Case, names: &[String]) -> Result<Vec<Box<dyn solver::
         .iter()
         .map(|name| {
             case.solver(name).ok_or_else(|| {
-                InputError(format!(
-                    "--solver: unknown solver `{name}` (see `spherecontact list`)"
-                ))
+                let unknown = spherecontact::case::registry::unknown(name, &case.solver_names());
+                InputError(format!("--solver: {unknown} (see `spherecontact list`)"))
             })
         })
         .collect()
@@ -457,7 +458,7 @@ fn run(
                 for warning in &history.metadata.warnings {
                     eprintln!("warning: {}: {warning}", solver.name());
                 }
-                println!(
+                outln!(
                     "{:<22} {:>9.3} ms  -> {}",
                     solver.name(),
                     history.metadata.wall_time_s * 1e3,
@@ -492,7 +493,7 @@ fn mesh(
     let folder = claim(out, force)?;
     match geo::mesh_into(&case.scene, resolution, folder.path(), &Toolchain::default()) {
         Ok(files) => {
-            println!(
+            outln!(
                 "{}: pole element {:.3} µm, {} triangles, gmsh {:.2} s",
                 case.name(),
                 resolution * 1e6,
@@ -500,7 +501,7 @@ fn mesh(
                 files.wall_s
             );
             for file in [&files.geo, &files.msh41, &files.msh22_mm] {
-                println!("  {}", file.display());
+                outln!("  {}", file.display());
             }
             Ok(ExitCode::SUCCESS)
         }
@@ -514,30 +515,30 @@ fn mesh(
 fn doctor() -> ExitCode {
     let probes = Toolchain::default().doctor();
     for probe in &probes {
-        println!("{}", probe.line());
+        outln!("{}", probe.line());
     }
     // The programs the cases under cases/ would run, as SPHERECONTACT_ALLOW_COMMANDS leaves them.
     let permission = CommandPermission::from_options(false, &[]);
-    println!(
+    outln!(
         "command solvers: {}",
         permission.as_ref().map_or_else(|e| e.to_string(), |p| p.state())
     );
     for file in spherecontact::case::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
         if let Ok(mut case) = Case::load(&file) {
             case.permit_commands(permission.as_ref().unwrap_or(&CommandPermission::refused()));
-            case.command_lines().iter().for_each(|line| println!("  {line}"));
+            case.command_lines().iter().for_each(|line| outln!("  {line}"));
         }
     }
     if probes.iter().all(|p| p.available()) {
         ExitCode::SUCCESS
     } else {
-        println!("some external tools are missing: run scripts/setup.sh");
+        outln!("some external tools are missing: run scripts/setup.sh");
         ExitCode::FAILURE
     }
 }
 
 fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
-    println!("solvers:");
+    outln!("solvers:");
     let solvers = registry::registry();
     let width = solvers
         .iter()
@@ -546,35 +547,33 @@ fn list(roots: &ReadRoots) -> Result<ExitCode, InputError> {
         .unwrap_or(0);
     for solver in solvers {
         let kind = solver.kind().to_string();
-        println!("  {:<width$} {kind:<17} {}", solver.name(), solver.description());
+        outln!("  {:<width$} {kind:<17} {}", solver.name(), solver.description());
     }
-    println!("cases:");
+    outln!("cases:");
     for file in spherecontact::case::case_files(&[PathBuf::from("cases")]).unwrap_or_default() {
         if impact::is_impact_file(&file) {
             match spherecontact::case::load_impact(&file) {
-                Ok(case) => println!(
+                Ok(case) => outln!(
                     "  {:<22} {}  (impact) {}",
                     text::one_line(&case.name),
                     text::one_line(&file.display().to_string()),
                     text::one_line(case.description.lines().next().unwrap_or(""))
                 ),
-                Err(e) => println!("  (invalid) {}", text::one_line(&e.to_string())),
+                Err(e) => outln!("  (invalid) {}", text::one_line(&e.to_string())),
             }
             continue;
         }
         match Case::load_with(&file, roots) {
             Ok(case) => {
-                println!(
+                outln!(
                     "  {:<22} {}  {}",
                     case.name(),
                     text::one_line(&file.display().to_string()),
                     text::one_line(case.description.lines().next().unwrap_or(""))
                 );
-                case.command_lines()
-                    .iter()
-                    .for_each(|line| println!("    {line}"));
+                case.command_lines().iter().for_each(|line| outln!("    {line}"));
             }
-            Err(e) => println!("  (invalid) {}", text::one_line(&e.to_string())),
+            Err(e) => outln!("  (invalid) {}", text::one_line(&e.to_string())),
         }
     }
     Ok(ExitCode::SUCCESS)

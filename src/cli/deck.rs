@@ -153,18 +153,18 @@ fn write(plan: &Plan, force: bool) -> Result<ExitCode, InputError> {
     let name = &plan.manifest.solver;
     match split::write_folder(plan.deck()?, &plan.case.scene, &plan.manifest, folder.path()) {
         Ok(files) => {
-            println!(
+            outln!(
                 "{name} deck of case {} written to {}: {}",
                 plan.case.name(),
                 dir.display(),
                 files.join(", ")
             );
-            println!(
+            outln!(
                 "run it there: sh {} (README.txt), which runs",
                 dir.join(split::RUN_SCRIPT).display()
             );
-            println!("  {}", plan.manifest.command);
-            println!(
+            outln!("  {}", plan.manifest.command);
+            outln!(
                 "then: spherecontact deck read {} --solver {name} {}",
                 plan.manifest.case_file,
                 dir.display()
@@ -198,7 +198,7 @@ fn read(plan: &Plan, out: &Path, force: bool) -> Result<ExitCode, InputError> {
     for warning in &history.metadata.warnings {
         eprintln!("warning: {name}: {}", text::lines(warning));
     }
-    println!(
+    outln!(
         "{name}: {} steps read back from {} into {}",
         history.steps.len(),
         dir.display(),

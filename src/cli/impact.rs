@@ -84,7 +84,7 @@ impl RunPlan {
                     );
                 }
             }
-            println!(
+            outln!(
                 "{:<22} {:<10} {:>9.3} ms  -> {}",
                 run.solver,
                 run.variant.name(),
@@ -128,14 +128,14 @@ pub fn report(
         let dir = out.join(&run.case.name);
         io::create_folder(&dir).map_err(|e| format!("--out {}: {e}", dir.display()))?;
         files::write(&dir, &run.case, &run.runs).map_err(|e| format!("--out {}: {e}", dir.display()))?;
-        print!("{}", run.block());
+        out!("{}", run.block());
     }
     let document = spherecontact::report::impact::document(&runs, true)
         .map_err(|e| format!("building the report: {e}"))?;
     document
         .write(out)
         .map_err(|e| format!("--out {}: {e}", out.display()))?;
-    println!("report: {}", out.join("report.html").display());
+    outln!("report: {}", out.join("report.html").display());
     Ok(runs.iter().all(ImpactRun::passed))
 }
 

@@ -45,14 +45,14 @@ pub(crate) fn bench(
         .write(folder.path())
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     for line in spherecontact::report::bench::machine() {
-        println!("{line}");
+        outln!("{line}");
     }
-    println!(
+    outln!(
         "{}: {increments} increments, {repeat} timed runs per rung, interleaved; medians",
         case.name()
     );
     let table = &document.sections[0].tables[0];
-    println!(
+    outln!(
         "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12} {:>12} {:>14} {:>12}",
         "solver",
         "resolution",
@@ -66,7 +66,7 @@ pub(crate) fn bench(
     );
     for row in &table.rows {
         let cell = |k: usize| row.get(k).map_or("", |c| c.text.as_str());
-        println!(
+        outln!(
             "  {:<22} {:<40} {:>12} {:>12} {:>12} {:>12} {:>12} {:>14} {:>12}",
             cell(0),
             cell(1),
@@ -79,7 +79,7 @@ pub(crate) fn bench(
             cell(8)
         );
     }
-    println!("report: {}", out.join("report.html").display());
+    outln!("report: {}", out.join("report.html").display());
     let failed = rungs
         .iter()
         .any(|r| matches!(r, Err((_, e)) if !matches!(e, solver::SolveError::Unavailable(_))));
@@ -328,11 +328,11 @@ pub(crate) fn report(
         })
         .and_then(|()| document.write(folder.path()))
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
-    print!("{}", summary::screen(&run));
+    out!("{}", summary::screen(&run));
     if let Ok(d) = &discretisation {
-        print!("{}", summary::screen(d));
+        out!("{}", summary::screen(d));
     }
-    println!("report: {}", out.join("report.html").display());
+    outln!("report: {}", out.join("report.html").display());
     Ok(
         if run.passed() && discretisation.as_ref().map_or(true, CaseRun::passed) {
             ExitCode::SUCCESS

@@ -175,7 +175,7 @@ impl Outputs {
             require_baselines: self.require.require_baselines,
         };
         let text = conclusion.text();
-        print!("{text}");
+        out!("{text}");
         if let Some((file, canonical)) = &self.junit {
             io::write_atomically(canonical, conclusion.junit().as_bytes())
                 .map_err(|e| InputError(format!("--junit {}: {e}", file.display())))?;
@@ -261,9 +261,9 @@ fn verify_plan(
             plan::Member::Impact(case) => spherecontact::impact::own_run::command_lines(case),
         })
         .collect();
-    commands.iter().for_each(|line| println!("{line}"));
+    commands.iter().for_each(|line| outln!("{line}"));
     if !commands.is_empty() && !options.permission.is_allowed() {
-        println!(
+        outln!(
             "verify: the programs cases name will not run: {}",
             permission::how_to_allow()
         );
@@ -389,7 +389,7 @@ pub(crate) fn update_baselines(
             baseline.to_toml().as_bytes(),
         )
         .map_err(|e| InputError(format!("--baselines {}: {e}", file.display())))?;
-        println!(
+        outln!(
             "baseline: {} ({} checks with a value, {} solvers ran)",
             file.display(),
             baseline.checks.len(),
@@ -457,7 +457,7 @@ pub(crate) fn slurm(args: SlurmArgs, roots: &ReadRoots) -> Result<ExitCode, Inpu
     job.out = folder.path().to_path_buf();
     job.write()
         .map_err(|e| InputError(format!("--out {}: {e}", args.out.display())))?;
-    println!(
+    outln!(
         "slurm: scripts in {}: run {}",
         args.out.display(),
         job.out.join("submit.sh").display()

@@ -170,7 +170,14 @@ fn solvers_must_be_known() {
         "solvers = [\"hertz\", \"mdr\"]",
         "solvers = [\"hertz\", \"ansys\"]",
         "solvers",
-        "unknown solver `ansys`",
+        "unknown solver `ansys` (allowed: ",
+    );
+    // A misspelling names what was meant.
+    assert_rejected(
+        "solvers = [\"hertz\", \"mdr\"]",
+        "solvers = [\"hertz\", \"mdr-domian\"]",
+        "solvers",
+        "unknown solver `mdr-domian`; did you mean `mdr-domain`? (allowed: ",
     );
     assert_rejected(
         "solvers = [\"hertz\", \"mdr\"]",

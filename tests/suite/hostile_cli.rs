@@ -105,6 +105,10 @@ fn bad_command_lines_are_bad_input_and_write_nothing() {
             &["--solver", "unknown solver `ansys`"],
         ),
         (
+            &["run", "case.toml", "--solver", "hretz"],
+            &["--solver", "unknown solver `hretz`; did you mean `hertz`?"],
+        ),
+        (
             &["run", "case.toml", "--solver", ""],
             &["--solver", "unknown solver ``"],
         ),
@@ -207,4 +211,51 @@ fn a_case_folder_with_no_case_files_is_bad_input() {
         .unwrap();
     assert_eq!(output.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&output.stderr).contains("no case files"));
+}
+
+/// The write end of a pipe whose reader has gone: every write to it fails with EPIPE, as
+/// `spherecontact list | head -1` once `head` has its line.
+fn closed_pipe() -> std::process::Stdio {
+    use std::os::fd::{FromRawFd, OwnedFd};
+    let mut ends = [0; 2];
+    assert_eq!(unsafe { libc::pipe(ends.as_mut_ptr()) }, 0);
+    assert_eq!(unsafe { libc::close(ends[0]) }, 0);
+    // The write end is this process's own, fresh from pipe(2), owned once.
+    std::process::Stdio::from(unsafe { OwnedFd::from_raw_fd(ends[1]) })
+}
+
+/// Requirement: a command whose standard output is a closed pipe (`spherecontact list | head
+/// -1`; `verify`'s table, `compare`'s summary piped into a pager quit early) does not panic
+/// ("failed printing to stdout") and says nothing: it ends with its own exit code, what it writes
+/// to files whole. Reference: ripgrep's behaviour on a broken pipe.
+#[test]
+fn a_closed_standard_output_ends_the_printing_quietly() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), common::SMALL_CASE).unwrap();
+    let junit = dir.path().join("junit.xml");
+    let runs: [(&[&str], &Path); 3] = [
+        (&["list"], &common::root()),
+        (
+            &["verify", "case.toml", "--junit", junit.to_str().unwrap()],
+            dir.path(),
+        ),
+        (&["compare", "case.toml", "--out", "compared"], dir.path()),
+    ];
+    for (args, cwd) in runs {
+        let output = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
+            .args(args)
+            .current_dir(cwd)
+            .stdout(closed_pipe())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(0), "{args:?}: {stderr}");
+        assert!(
+            !stderr.contains("panicked") && !stderr.contains("Broken pipe") && !stderr.contains("error"),
+            "{args:?}: {stderr}"
+        );
+    }
+    let junit = std::fs::read_to_string(&junit).unwrap();
+    assert!(junit.trim_end().ends_with("</testsuites>"), "{junit}");
+    assert!(dir.path().join("compared/report.html").is_file());
 }

@@ -231,6 +231,13 @@ impl Case {
         self.unresolved_solver(name).map(|s| self.resolved(s))
     }
 
+    /// The names of the solvers a case may name: this build's and the case's own.
+    pub fn solver_names(&self) -> Vec<String> {
+        let mut names = registry::names();
+        names.extend(self.own_solvers.iter().map(|s| s.name().to_owned()));
+        names
+    }
+
     /// The solver called `name` on the case's ranks, at its default resolution.
     fn unresolved_solver(&self, name: &str) -> Option<Box<dyn Solver>> {
         let solver = self
@@ -438,14 +445,7 @@ impl Validator<'_> {
         }
         let mut known = registry::names();
         known.extend(self.own.iter().cloned());
-        Err(self.error(
-            name,
-            field,
-            format!(
-                "unknown solver `{}` (allowed: {})",
-                name.get_ref(),
-                known.join(", ")
-            ),
-        ))
+        let unknown = registry::unknown(name.get_ref(), &known);
+        Err(self.error(name, field, format!("{unknown} (allowed: {})", known.join(", "))))
     }
 }

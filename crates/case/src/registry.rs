@@ -49,3 +49,12 @@ pub fn by_name(name: &str) -> Option<Box<dyn Solver>> {
 pub fn names() -> Vec<String> {
     registry().iter().map(|s| s.name().to_owned()).collect()
 }
+
+/// "unknown solver `NAME`" with "did you mean" the nearest of `known` where one is near enough to
+/// be what was meant ([`spherecontact_system::text::nearest`]).
+pub fn unknown(name: &str, known: &[String]) -> String {
+    match spherecontact_system::text::nearest(name, known.iter().map(String::as_str)) {
+        Some(meant) => format!("unknown solver `{name}`; did you mean `{meant}`?"),
+        None => format!("unknown solver `{name}`"),
+    }
+}

@@ -21,6 +21,7 @@
 pub mod judged;
 
 pub mod drift;
+mod lookup;
 mod measure;
 pub mod row;
 
@@ -28,6 +29,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 
 pub use drift::{Change, Drift, JudgedValue};
+use lookup::{lookup, unread};
 use measure::zeroed;
 pub use measure::{relative_error, ErrorMeasure, ABS_ZERO};
 
@@ -251,11 +253,18 @@ impl CheckSpec {
         };
         let reference_history = match &self.reference {
             Reference::Solver(name) => match lookup(histories, name) {
-                Ok(history) => Some(history),
+                Ok(history) => Some((name.as_str(), history)),
                 Err((verdict, message)) => return self.outcome_without_error(verdict, message),
             },
             Reference::Value { .. } => None,
         };
+        // A quantity either solver did not read from its results file fails this check alone.
+        let unread = unread(&self.solver, subject, self.quantity)
+            .or_else(|| reference_history.and_then(|(name, h)| unread(name, h, self.quantity)));
+        if let Some(message) = unread {
+            return self.outcome_without_error(Verdict::Nook, message);
+        }
+        let reference_history = reference_history.map(|(_, h)| h);
         if let (Some(field), Some(reference), Where::Position(position)) = (
             spherecontact_solvers::profile::Field::of(self.quantity),
             reference_history,
@@ -401,24 +410,12 @@ impl CheckSpec {
     }
 }
 
-/// The history of `name`, or the verdict and message of its absence.
-fn lookup<'a>(histories: &'a Histories, name: &str) -> Result<&'a History, (Verdict, String)> {
-    match histories.get(name) {
-        Some(Ok(history)) => Ok(history),
-        Some(Err(error @ SolveError::Unavailable(_))) => {
-            Err((Verdict::Unavailable, format!("{name}: {error}")))
-        }
-        Some(Err(error)) => Err((Verdict::Nook, format!("{name}: {error}"))),
-        None => Err((Verdict::Nook, format!("{name} was not run"))),
-    }
-}
-
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use spherecontact_model::history::{Layout, Metadata, SurfaceField};
 
-    fn history(values: &[Option<f64>]) -> History {
+    pub(crate) fn history(values: &[Option<f64>]) -> History {
         History {
             metadata: Metadata::default(),
             fields: Vec::new(),
@@ -435,7 +432,7 @@ mod tests {
         }
     }
 
-    fn spec(measure: ErrorMeasure, tolerance: Option<f64>) -> CheckSpec {
+    pub(crate) fn spec(measure: ErrorMeasure, tolerance: Option<f64>) -> CheckSpec {
         CheckSpec {
             solver: "a".into(),
             quantity: Quantity::NormalForce,
@@ -449,7 +446,7 @@ mod tests {
         }
     }
 
-    fn histories(a: &[Option<f64>], b: &[Option<f64>]) -> Histories {
+    pub(crate) fn histories(a: &[Option<f64>], b: &[Option<f64>]) -> Histories {
         [
             ("a".to_string(), Ok(history(a))),
             ("b".to_string(), Ok(history(b))),

@@ -11,7 +11,8 @@
 //! ([`crate::exchange::results_csv`]); optionally `metadata.json` (the same checks, at most
 //! [`MAX_METADATA_BYTES`]) read for the version, model, resolution and warnings the program
 //! wants shown, each masked and bounded as its output is ([`spherecontact_system::mask`], [`spherecontact_system::excerpt`]).
-//! On any failure the folder is kept and named in the message; on success it is removed.
+//! On any failure the folder is kept and named in the message, and so it is when a column of the
+//! results is refused for a bad cell (that quantity alone: `results_csv`); otherwise it is removed.
 //!
 //! Placeholders in the command: `{case_dir}` (the case file's folder), `{scene}` and `{history}`
 //! (the absolute paths of the two files), filled under the rule of [`super::placeholder`]. A
@@ -29,8 +30,9 @@ use serde::Deserialize;
 use super::permission::{how_to_allow, CommandPermission};
 use super::placeholder::{self, Values};
 use super::program;
-use crate::exchange::{results_csv, scene_file};
-use spherecontact_model::history::{History, Metadata, StepResult};
+use crate::exchange::results_csv::{self, Results};
+use crate::exchange::scene_file;
+use spherecontact_model::history::{History, Metadata};
 use spherecontact_model::limits::{MAX_HISTORY_BYTES, MAX_METADATA_BYTES, MAX_SHOWN_LINES};
 use spherecontact_model::scene::Scene;
 use spherecontact_model::solver::{Kind, SolveError, Solver};
@@ -111,11 +113,16 @@ impl Solver for CommandSolver {
                 how_to_allow()
             )));
         }
-        program::in_run_folder(&self.name, |dir| {
+        program::in_run_folder_kept_if(&self.name, |dir| {
             let job = self.job(dir)?;
             let label = job.program.display().to_string();
             let environment = self.permission.environment();
-            let (steps, told, wall_s) = run_exchange(scene, dir, &job, &label, &environment)?;
+            let (mut results, told, wall_s) = run_exchange(scene, dir, &job, &label, &environment)?;
+            // A column refused for a bad cell keeps the folder, and says so.
+            let keep = !results.refused.is_empty();
+            for why in results.refused.values_mut() {
+                *why = format!("{why} {}", program::kept_in(dir));
+            }
             let mut metadata = Metadata {
                 version: told.version.unwrap_or_else(|| "command".into()),
                 model: told
@@ -123,6 +130,7 @@ impl Solver for CommandSolver {
                     .unwrap_or_else(|| format!("command: {}", self.command.join(" "))),
                 resolution: told.resolution.unwrap_or_default(),
                 warnings: told.warnings,
+                unread: results.unread(),
                 ..Metadata::default()
             };
             metadata
@@ -131,11 +139,12 @@ impl Solver for CommandSolver {
             metadata
                 .extra
                 .insert("command_wall_s".into(), serde_json::json!(wall_s));
-            Ok(History {
+            let history = History {
                 metadata,
-                steps,
+                steps: results.steps,
                 fields: Vec::new(),
-            })
+            };
+            Ok((history, keep))
         })
     }
 }
@@ -230,15 +239,16 @@ pub fn lines(case: &str, commands: &[&CommandSolver]) -> Vec<String> {
 }
 
 /// Writes the scene file into `dir`, runs `job` there in `environment` and reads back the History
-/// CSV it wrote (validated against the path) and its optional [`METADATA_FILE`] (masked and
-/// bounded: `CommandMetadata::shown`); also its wall time [s].
+/// CSV it wrote (validated against the path; a quantity refused alone, [`Results`]) and its
+/// optional [`METADATA_FILE`] (masked and bounded: `CommandMetadata::shown`); also its wall time
+/// [s].
 pub fn run_exchange(
     scene: &Scene,
     dir: &Path,
     job: &Job,
     program: &str,
     environment: &Environment,
-) -> Result<(Vec<StepResult>, CommandMetadata, f64), SolveError> {
+) -> Result<(Results, CommandMetadata, f64), SolveError> {
     let failed = |what: &str, e: &dyn std::fmt::Display| SolveError::Failed(format!("{what}: {e}"));
     std::fs::write(
         dir.join(scene_file::FILE_NAME),
@@ -256,10 +266,10 @@ pub fn run_exchange(
     let history = dir.join(scene_file::HISTORY_FILE);
     let file = input::open_regular(&history, MAX_HISTORY_BYTES, Links::Refuse)
         .map_err(|e| failed(&format!("its results: {}: cannot read", history.display()), &e))?;
-    let steps =
+    let results =
         results_csv::read_from(file, &history, &scene.steps()).map_err(|e| failed("its results", &e))?;
     let told = read_metadata(&dir.join(METADATA_FILE))?.shown(&environment.mask());
-    Ok((steps, told, run.wall_s))
+    Ok((results, told, run.wall_s))
 }
 
 /// The command's own description of itself, if it wrote one.

@@ -19,7 +19,8 @@
 //! - [`deck`]: filling a template, interpreting a tool's exit; [`freefem`], [`fenicsx`]: the decks;
 //! - [`plan`]: what a scene asks of a deck (steps, modes, grip, candidate zone, penalty);
 //! - [`axisym`]: the shared run (mesh → deck → read back), [`record`]: the History it gives;
-//! - [`readback`]: the decks' per-step CSV, each result file read as foreign input;
+//! - [`readback`]: the decks' per-step CSV, each result file read as foreign input ([`csv_lines`]:
+//!   the line a message names);
 //!   [`field_files`]: the field files, checked, then read through meshio;
 //! - [`surface`]: the contact line's nodal state at every step, and what is measured from it;
 //! - [`fenicsx3d`]: the 3D deck under MPI (heavy), [`surface3d`]: its contact surface read back;
@@ -35,6 +36,7 @@ pub mod exchange;
 
 pub mod axisym;
 pub mod command;
+pub mod csv_lines;
 pub mod deck;
 pub mod fenicsx;
 pub mod fenicsx3d;

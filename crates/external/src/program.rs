@@ -17,15 +17,34 @@ pub fn in_run_folder<T>(
     solver: &str,
     work: impl FnOnce(&Path) -> Result<T, SolveError>,
 ) -> Result<T, SolveError> {
+    in_run_folder_kept_if(solver, |dir| work(dir).map(|value| (value, false)))
+}
+
+/// [`in_run_folder`], the folder also kept on success when `work` says so (its second value: an
+/// output refused in part, whose reasons name the folder, [`kept_in`]).
+pub fn in_run_folder_kept_if<T>(
+    solver: &str,
+    work: impl FnOnce(&Path) -> Result<(T, bool), SolveError>,
+) -> Result<T, SolveError> {
     let mut dir = RunDir::new(&format!("spherecontact-{solver}-"))
         .map_err(|e| SolveError::Failed(format!("no temporary directory: {e}")))?;
     match work(dir.path()) {
-        Err(SolveError::Failed(message)) => Err(SolveError::Failed(format!(
-            "{message} (input, stdout and stderr kept in {})",
-            dir.keep().display()
-        ))),
-        other => other,
+        Err(SolveError::Failed(message)) => {
+            Err(SolveError::Failed(format!("{message} {}", kept_in(&dir.keep()))))
+        }
+        Ok((value, keep)) => {
+            if keep {
+                dir.keep();
+            }
+            Ok(value)
+        }
+        Err(other) => Err(other),
     }
+}
+
+/// What a message adds of a run folder kept for inspection.
+pub fn kept_in(dir: &Path) -> String {
+    format!("(input, stdout and stderr kept in {})", dir.display())
 }
 
 /// Runs `job` in `dir` in `environment` (stdout and stderr in `<stem>.stdout`, `<stem>.stderr`)

@@ -17,6 +17,7 @@
 use std::fmt::Display;
 use std::path::Path;
 
+use super::csv_lines;
 use super::deck::{path_file, ComputedStep, PATH_FILE};
 use spherecontact_model::solver::SolveError;
 use spherecontact_system::input::foreign;
@@ -100,11 +101,11 @@ pub fn parse_steps(text: &str, expected: &[ComputedStep]) -> Result<Vec<DeckRow>
 /// The records of a deck's CSV `file` (text `text`), whose header must be `columns`: every
 /// record well-formed and with one cell per column, else an error naming the line.
 pub fn records<'a>(text: &str, file: &'a str, columns: &'a [&'a str]) -> Result<Vec<Row<'a>>, String> {
+    let (input, lines) = csv_lines::counted(text.as_bytes());
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
-        .from_reader(text.as_bytes());
-    let mut lines = Lines { text, at: 0, line: 1 };
+        .from_reader(input);
     let not_csv =
         |line: u64| format!("{file}:{line}: not a CSV record (allowed: comma-separated UTF-8 text)");
     check_header(reader.headers().map_err(|_| not_csv(1))?, file, columns)?;
@@ -127,31 +128,6 @@ pub fn records<'a>(text: &str, file: &'a str, columns: &'a [&'a str]) -> Result<
         rows.push(row);
     }
     Ok(rows)
-}
-
-/// The lines of a CSV text, counted forward as its records are read. The csv reader's own line
-/// is one short in a file of CRLF line ends (Python's csv writes them: the dolfinx decks), as it
-/// ends a record at the CR and starts the next at the LF; here a record's line is counted past
-/// any line break at its first byte.
-struct Lines<'t> {
-    text: &'t str,
-    /// A byte offset, at or before the next record's start.
-    at: usize,
-    /// The line at `at` (1-based).
-    line: u64,
-}
-
-impl Lines<'_> {
-    /// The line where the record at `position` starts (positions come in order).
-    fn of(&mut self, position: Option<&csv::Position>) -> u64 {
-        let byte = position.map_or(self.at, |p| usize::try_from(p.byte()).unwrap_or(usize::MAX));
-        let byte = byte.clamp(self.at, self.text.len());
-        let rest = &self.text[byte..];
-        let start = byte + rest.len() - rest.trim_start_matches(['\r', '\n']).len();
-        self.line += self.text[self.at..start].matches('\n').count() as u64;
-        self.at = start;
-        self.line
-    }
 }
 
 /// Checks that `header` is `columns`: the first column that is not, by its position, with the

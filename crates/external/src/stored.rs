@@ -38,14 +38,16 @@ impl Solver for StoredResults {
         &self.description
     }
 
-    /// The stored rows, if they follow `scene`'s path (a refined path of `bench` does not).
+    /// The stored rows, if they follow `scene`'s path (a refined path of `bench` does not), with
+    /// why a quantity is not in them (`Metadata::unread`).
     fn solve(&self, scene: &Scene) -> Result<History, SolveError> {
-        let steps = results_csv::read(&self.file, &scene.steps())
+        let results = results_csv::read(&self.file, &scene.steps())
             .map_err(|e| SolveError::NotApplicable(format!("stored results do not follow this path: {e}")))?;
         let mut metadata = Metadata {
             version: "stored".into(),
             model: format!("stored results: {}", self.description),
             resolution: "as stored".into(),
+            unread: results.unread(),
             ..Metadata::default()
         };
         metadata
@@ -53,7 +55,7 @@ impl Solver for StoredResults {
             .insert("file".into(), json!(self.file.display().to_string()));
         Ok(History {
             metadata,
-            steps,
+            steps: results.steps,
             fields: Vec::new(),
         })
     }

@@ -212,14 +212,20 @@ pub fn outcome_row(case: &str, outcome: &CheckOutcome) -> String {
             if check.relative { "relative" } else { "absolute" }
         );
     }
+    // A message over lines (a program's last output): its first line in the row, the rest below.
+    let (message, more) = outcome
+        .message
+        .as_deref()
+        .map(spherecontact_system::text::row_lines)
+        .unzip();
     spherecontact_check::row::push_judgement(
         &mut row,
         check.tolerance,
         outcome.drift.as_ref(),
-        outcome.message.as_deref(),
+        message.as_deref(),
     );
     let _ = write!(row, " | {}", check.reason);
-    spherecontact_system::text::one_line(&row).into_owned()
+    spherecontact_system::text::one_line(&row).into_owned() + more.as_deref().unwrap_or("")
 }
 
 /// An outcome per sweep point of a solver's run, for tests and reports.

@@ -115,12 +115,12 @@ impl ImpactRun {
             }
             for (at, result) in &run.points {
                 if let Err(e) = result {
+                    let (first, more) = spherecontact_system::text::row_lines(e);
                     text.push_str(&format!(
-                        "SOLVER {} ({}) at {}: {}\n",
+                        "SOLVER {} ({}) at {}: {first}{more}\n",
                         run.solver,
                         run.variant.name(),
                         spherecontact_model::number::format_value(*at),
-                        spherecontact_system::text::one_line(e)
                     ));
                 }
             }

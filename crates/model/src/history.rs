@@ -191,6 +191,12 @@ pub struct Metadata {
     pub warnings: Vec<String>,
     /// Solver-specific facts (DOFs, iterations, ...).
     pub extra: BTreeMap<String, serde_json::Value>,
+    /// Why a quantity is missing from the rows of a history read from a results file (a stored
+    /// file, a program's output): the column is not in its header, or a cell of it is not a
+    /// number (the file, line and column). That quantity's alone: its checks are NOOK with the
+    /// reason, the other quantities are read and judged.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub unread: BTreeMap<Quantity, String>,
 }
 
 /// Which in-plane components of the tangential traction and slip a solver resolves.

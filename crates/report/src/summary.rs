@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use super::glance::{seconds, verdict_counts, weight, worst_text};
 use spherecontact_check::Outcome;
-use spherecontact_system::text::one_line;
+use spherecontact_system::text::row_lines;
 use spherecontact_verify::CaseRun;
 
 /// How many checks and solvers each list of the screen shows: the screen stays one screen
@@ -57,7 +57,11 @@ pub fn screen(run: &CaseRun) -> String {
     for name in &names {
         let _ = match run.histories.get(name) {
             Some(Ok(_)) => Ok(()),
-            Some(Err(e)) => writeln!(text, "  {name:<width$} missing: {}", one_line(&e.to_string())),
+            Some(Err(e)) => {
+                let e = e.to_string();
+                let (first, more) = row_lines(&e);
+                writeln!(text, "  {name:<width$} missing: {first}{more}")
+            }
             None => writeln!(text, "  {name:<width$} not run"),
         };
     }

@@ -24,7 +24,9 @@ pub fn run(
     model: String,
     law: &str,
 ) -> Result<History, SolveError> {
-    let (steps, told, wall_s) = command::run_exchange(scene, dir, job, code, &Environment::Inherited)?;
+    let (results, told, wall_s) = command::run_exchange(scene, dir, job, code, &Environment::Inherited)?;
+    let unread = results.unread();
+    let steps = results.steps;
     let mut metadata = Metadata {
         version: told.version.unwrap_or_default(),
         model,
@@ -33,6 +35,7 @@ pub fn run(
             steps.len().saturating_sub(1)
         ),
         warnings: told.warnings,
+        unread,
         ..Metadata::default()
     };
     metadata.extra.insert("law".into(), json!(law));
