@@ -48,21 +48,33 @@ mod tests {
     /// field and the allowed set (no tolerance: exact values and messages).
     #[test]
     fn the_table_sets_the_kratos_deck_and_bad_values_list_the_allowed_set() {
-        let c = case("[kratos]\ncontact = \"penalty\"\nelement = \"tet4\"\nalm_factor = 10.0\npenalty = 100.0\n")
-            .unwrap();
+        let c =
+            case("[kratos]\ncontact = \"penalty\"\nelement = \"tet4\"\nalm_factor = 10.0\npenalty = 100.0\n")
+                .unwrap();
         assert_eq!(c.kratos.formulation, Formulation::Penalty);
         assert_eq!(c.kratos.element, Element::Tet4);
         assert_eq!((c.kratos.alm_factor, c.kratos.penalty), (10.0, 100.0));
         assert_eq!(case("").unwrap().kratos, Default::default());
         let bad = [
-            ("contact = \"mortar\"", "kratos.contact", "allowed: alm-frictional, alm-frictionless, penalty"),
+            (
+                "contact = \"mortar\"",
+                "kratos.contact",
+                "allowed: alm-frictional, alm-frictionless, penalty",
+            ),
             ("element = \"hex20\"", "kratos.element", "allowed: tet4"),
-            ("alm_factor = 1e9", "kratos.alm_factor", "0.01 ≤ alm_factor ≤ 10000"),
+            (
+                "alm_factor = 1e9",
+                "kratos.alm_factor",
+                "0.01 ≤ alm_factor ≤ 10000",
+            ),
             ("penalty = 0.1", "kratos.penalty", "1 ≤ penalty ≤ 1000000"),
         ];
         for (line, field, allowed) in bad {
             let e = case(&format!("[kratos]\n{line}\n")).unwrap_err().to_string();
-            assert!(e.contains("c.toml") && e.contains(field) && e.contains(allowed), "{e}");
+            assert!(
+                e.contains("c.toml") && e.contains(field) && e.contains(allowed),
+                "{e}"
+            );
         }
         let e = case("[kratos]\nsolver = \"x\"\n").unwrap_err().to_string();
         assert!(e.contains("solver"), "{e}");

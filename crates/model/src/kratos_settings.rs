@@ -230,7 +230,10 @@ mod tests {
         }
         assert_eq!(Settings::element("tet4"), Ok(Element::Tet4));
         let e = Settings::formulation("mortar").unwrap_err().to_string();
-        assert!(e.contains("allowed: alm-frictional, alm-frictionless, penalty"), "{e}");
+        assert!(
+            e.contains("allowed: alm-frictional, alm-frictionless, penalty"),
+            "{e}"
+        );
         let e = Settings::element("hex20").unwrap_err().to_string();
         assert!(e.contains("allowed: tet4"), "{e}");
         assert_eq!(Settings::alm_factor(1.0), Ok(1.0));
@@ -251,8 +254,14 @@ mod tests {
         assert_eq!(f.mortar_type(true), "PenaltyContactFrictional");
         assert_eq!(f.mortar_type(false), "PenaltyContactFrictionless");
         assert_eq!(f.process(), "penalty_contact_process");
-        assert_eq!(Formulation::AlmFrictional.mortar_type(false), "ALMContactFrictional");
-        assert_eq!(Formulation::AlmFrictionless.mortar_type(true), "ALMContactFrictionless");
+        assert_eq!(
+            Formulation::AlmFrictional.mortar_type(false),
+            "ALMContactFrictional"
+        );
+        assert_eq!(
+            Formulation::AlmFrictionless.mortar_type(true),
+            "ALMContactFrictionless"
+        );
         let s = Settings {
             formulation: f,
             ..Settings::default()

@@ -40,9 +40,16 @@ impl LinearBody {
             .map(|t| [t[0], t[1], t[2], t[3]].map(&mut renumber))
             .collect();
         let corners = |faces: &[[usize; 6]]| -> Vec<[usize; 3]> {
-            faces.iter().map(|f| [f[0], f[1], f[2]].map(|n| index[&n])).collect()
+            faces
+                .iter()
+                .map(|f| [f[0], f[1], f[2]].map(|n| index[&n]))
+                .collect()
         };
-        let (contact, far, symmetry) = (corners(&mesh.contact), corners(&mesh.far), corners(&mesh.symmetry));
+        let (contact, far, symmetry) = (
+            corners(&mesh.contact),
+            corners(&mesh.far),
+            corners(&mesh.symmetry),
+        );
         let mut body = Self {
             nodes,
             tetrahedra,
@@ -74,7 +81,11 @@ impl LinearBody {
                     .ok_or_else(|| format!("contact face {:?} is the face of no tetrahedron", [a, b, c]))?;
                 let [pa, pb, pc, po] = [a, b, c, inner].map(|n| self.nodes[n]);
                 let normal = cross(sub(pb, pa), sub(pc, pa));
-                Ok(if dot(normal, sub(pa, po)) > 0.0 { [a, b, c] } else { [a, c, b] })
+                Ok(if dot(normal, sub(pa, po)) > 0.0 {
+                    [a, b, c]
+                } else {
+                    [a, c, b]
+                })
             })
             .collect()
     }
@@ -83,7 +94,10 @@ impl LinearBody {
     pub fn candidate_faces(&self, radius: f64) -> Vec<[usize; 3]> {
         self.contact
             .iter()
-            .filter(|f| f.iter().all(|&n| self.nodes[n][0].hypot(self.nodes[n][1]) <= radius))
+            .filter(|f| {
+                f.iter()
+                    .all(|&n| self.nodes[n][0].hypot(self.nodes[n][1]) <= radius)
+            })
             .copied()
             .collect()
     }
@@ -124,7 +138,12 @@ mod tests {
 
     /// One 10-node tetrahedron whose face on z = 0 is the contact face, listed inward.
     fn tetrahedron() -> SolidMesh {
-        let corners = [[0.0, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [0.0, 0.0, 1e-3]];
+        let corners = [
+            [0.0, 0.0, 0.0],
+            [1e-3, 0.0, 0.0],
+            [0.0, 1e-3, 0.0],
+            [0.0, 0.0, 1e-3],
+        ];
         let mut nodes = corners.to_vec();
         for [a, b] in [[0, 1], [1, 2], [2, 0], [3, 0], [3, 2], [3, 1]] {
             nodes.push([0, 1, 2].map(|k| 0.5 * (corners[a][k] + corners[b][k])));
@@ -146,7 +165,10 @@ mod tests {
         assert_eq!(body.nodes.len(), 4);
         assert_eq!(body.tetrahedra, vec![[0, 1, 2, 3]]);
         assert_eq!(body.contact, vec![[0, 2, 1]]);
-        assert_eq!((body.far.clone(), body.symmetry.clone()), (vec![1, 2, 3], vec![0, 1, 3]));
+        assert_eq!(
+            (body.far.clone(), body.symmetry.clone()),
+            (vec![1, 2, 3], vec![0, 1, 3])
+        );
         assert_eq!(body.candidate_faces(1.1e-3).len(), 1);
         assert!(body.candidate_faces(0.9e-3).is_empty());
     }

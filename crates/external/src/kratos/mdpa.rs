@@ -58,7 +58,14 @@ impl MdpaSpec<'_> {
         );
         for (offset, sign) in [(0, 1.0), (n, -1.0)] {
             for (i, [x, y, z]) in self.body.nodes.iter().enumerate() {
-                let _ = writeln!(text, "{} {:e} {:e} {:e}", offset + i + 1, x * 1e3, y * 1e3, sign * z * 1e3 + 0.0);
+                let _ = writeln!(
+                    text,
+                    "{} {:e} {:e} {:e}",
+                    offset + i + 1,
+                    x * 1e3,
+                    y * 1e3,
+                    sign * z * 1e3 + 0.0
+                );
             }
         }
         let _ = write!(text, "End Nodes\n\nBegin Elements {}\n", self.element.keyword());
@@ -70,7 +77,11 @@ impl MdpaSpec<'_> {
                 let _ = writeln!(text, "{} 1 {a} {b} {cc} {d}", (body - 1) * e + k + 1);
             }
         }
-        let _ = write!(text, "End Elements\n\nBegin Conditions {}\n", self.element.face_keyword());
+        let _ = write!(
+            text,
+            "End Elements\n\nBegin Conditions {}\n",
+            self.element.face_keyword()
+        );
         for (body, offset) in [(1, 0), (2, n)] {
             for (k, f) in self.slave_faces.iter().enumerate() {
                 // The mirror image of an outward face is inward: reversed.
@@ -87,7 +98,13 @@ impl MdpaSpec<'_> {
         let slave: Vec<usize> = skin.iter().map(|v| v + 1).collect();
         let master: Vec<usize> = skin.iter().map(|v| v + n + 1).collect();
         sub_model_part(&mut text, SLAVE, &slave, &[], &(1..=c).collect::<Vec<_>>());
-        sub_model_part(&mut text, MASTER, &master, &[], &(c + 1..=2 * c).collect::<Vec<_>>());
+        sub_model_part(
+            &mut text,
+            MASTER,
+            &master,
+            &[],
+            &(c + 1..=2 * c).collect::<Vec<_>>(),
+        );
         for (name, offset) in FAR.into_iter().zip([0, n]) {
             let far: Vec<usize> = self.body.far.iter().map(|v| v + offset + 1).collect();
             sub_model_part(&mut text, name, &far, &[], &[]);
@@ -115,7 +132,11 @@ impl MdpaSpec<'_> {
 /// Appends a sub-model-part of `nodes`, `elements` and `conditions` (1-based ids).
 fn sub_model_part(text: &mut String, name: &str, nodes: &[usize], elements: &[usize], conditions: &[usize]) {
     let _ = writeln!(text, "Begin SubModelPart {name}");
-    for (block, ids) in [("Nodes", nodes), ("Elements", elements), ("Conditions", conditions)] {
+    for (block, ids) in [
+        ("Nodes", nodes),
+        ("Elements", elements),
+        ("Conditions", conditions),
+    ] {
         let _ = writeln!(text, "  Begin SubModelPart{block}");
         for id in ids {
             let _ = writeln!(text, "    {id}");
@@ -131,7 +152,12 @@ mod tests {
 
     fn body() -> LinearBody {
         LinearBody {
-            nodes: vec![[0.0, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [0.0, 0.0, 1e-3]],
+            nodes: vec![
+                [0.0, 0.0, 0.0],
+                [1e-3, 0.0, 0.0],
+                [0.0, 1e-3, 0.0],
+                [0.0, 0.0, 1e-3],
+            ],
             tetrahedra: vec![[0, 1, 2, 3]],
             contact: vec![[0, 2, 1]],
             far: vec![1, 2, 3],
@@ -152,15 +178,30 @@ mod tests {
         };
         let text = spec.text();
         assert!(text.contains("8 0e0 0e0 -1e0\n"), "{text}");
-        assert!(text.contains("Begin Elements SmallDisplacementElement3D4N\n1 1 1 2 3 4\n2 1 5 7 6 8\n"), "{text}");
-        assert!(text.contains("Begin Conditions SurfaceCondition3D3N\n1 0 1 3 2\n2 0 5 6 7\n"), "{text}");
-        let part = |name: &str| text.split(&format!("Begin SubModelPart {name}\n")).nth(1).unwrap().to_owned();
+        assert!(
+            text.contains("Begin Elements SmallDisplacementElement3D4N\n1 1 1 2 3 4\n2 1 5 7 6 8\n"),
+            "{text}"
+        );
+        assert!(
+            text.contains("Begin Conditions SurfaceCondition3D3N\n1 0 1 3 2\n2 0 5 6 7\n"),
+            "{text}"
+        );
+        let part = |name: &str| {
+            text.split(&format!("Begin SubModelPart {name}\n"))
+                .nth(1)
+                .unwrap()
+                .to_owned()
+        };
         assert!(part(SLAVE).starts_with("  Begin SubModelPartNodes\n    1\n    2\n    3\n"));
         assert!(part(MASTER).contains("Begin SubModelPartConditions\n    2\n"));
         // The plane's nodes 1, 2, 4 of sphere 1 and of sphere 2 (5, 6, 8), less the master's
         // candidate nodes 5 and 6 (node 4's image 8 is not a candidate).
         assert!(part(SYMMETRY).starts_with("  Begin SubModelPartNodes\n    1\n    2\n    4\n    8\n  End"));
-        let held = MdpaSpec { free_master_plane: false, ..spec }.text();
+        let held = MdpaSpec {
+            free_master_plane: false,
+            ..spec
+        }
+        .text();
         assert!(held.contains("    4\n    5\n    6\n    8\n  End SubModelPartNodes"));
     }
 }

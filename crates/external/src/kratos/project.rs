@@ -153,7 +153,10 @@ mod tests {
         };
         let p = spec.project();
         assert_eq!(p["problem_data"]["end_time"], 3.5);
-        assert_eq!(p["solver_settings"]["contact_settings"]["mortar_type"], "ALMContactFrictional");
+        assert_eq!(
+            p["solver_settings"]["contact_settings"]["mortar_type"],
+            "ALMContactFrictional"
+        );
         let c = &p["processes"]["contact_process_list"][0];
         assert_eq!(c["python_module"], "alm_contact_process");
         assert_eq!(c["Parameters"]["friction_coefficients"]["0"], 0.2);
@@ -164,6 +167,9 @@ mod tests {
         assert_eq!(c["process_name"], "PenaltyContactProcess");
         assert_eq!(c["Parameters"]["contact_type"], "Frictionless");
         assert_eq!(c["Parameters"]["advance_ALM_parameters"]["stiffness_factor"], 1e3);
-        assert_eq!(spec.materials()["properties"][0]["Material"]["Variables"]["YOUNG_MODULUS"], 7e4);
+        assert_eq!(
+            spec.materials()["properties"][0]["Material"]["Variables"]["YOUNG_MODULUS"],
+            7e4
+        );
     }
 }

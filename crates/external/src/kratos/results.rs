@@ -72,7 +72,10 @@ pub fn parse_steps(text: &str, expected: &[usize]) -> Result<Vec<KratosStep>, St
             expected.len()
         ));
     }
-    rows.iter().zip(expected).map(|(row, &step)| parse_step(row, step)).collect()
+    rows.iter()
+        .zip(expected)
+        .map(|(row, &step)| parse_step(row, step))
+        .collect()
 }
 
 fn parse_step(row: &Row, expected: usize) -> Result<KratosStep, String> {
@@ -188,7 +191,10 @@ mod tests {
         assert!(steps[0].converged && !steps[1].converged);
         assert_eq!((steps[1].iterations, steps[1].forces), (30, [393.4, 1.5]));
         let e = parse_steps(&text, &[0, 2]).unwrap_err();
-        assert!(e.contains("steps.csv:3") && e.contains("path.txt has step 2"), "{e}");
+        assert!(
+            e.contains("steps.csv:3") && e.contains("path.txt has step 2"),
+            "{e}"
+        );
         let e = parse_steps(&format!("{HEADER}0,yes,5,0,0,0,0,0,1\n"), &[0]).unwrap_err();
         assert!(e.contains("steps.csv:2") && e.contains("converged"), "{e}");
         let e = parse_steps(&format!("{HEADER}0,1,5,0,393.4,0,393.0,0,1\n"), &[0]).unwrap_err();
@@ -215,6 +221,8 @@ mod tests {
         assert_eq!(s[0][1].pressure, 0.0);
         assert!((s[0][0].gap + 1e-9).abs() < 1e-24);
         let bad = text.replace("3,9,", "3,7,");
-        assert!(parse_surface(&bad, &[3], &slaves).unwrap_err().contains("not a slave node"));
+        assert!(parse_surface(&bad, &[3], &slaves)
+            .unwrap_err()
+            .contains("not a slave node"));
     }
 }

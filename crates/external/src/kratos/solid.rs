@@ -147,7 +147,13 @@ impl KratosSolid {
 
     /// Meshes the body into `dir` and writes every file of the deck there (the driver under its
     /// file name, `path.txt`): the body and gmsh's wall time.
-    fn prepare(&self, scene: &Scene, plan: &Plan, h: f64, dir: &Path) -> Result<(LinearBody, f64), SolveError> {
+    fn prepare(
+        &self,
+        scene: &Scene,
+        plan: &Plan,
+        h: f64,
+        dir: &Path,
+    ) -> Result<(LinearBody, f64), SolveError> {
         let zones = Zones::new(scene.max_contact_radius(), h);
         let r = scene.pair.body1.radius;
         let geometry = solid_geo::geometry(r, scene.domain.height(r), h, zones);
@@ -156,7 +162,9 @@ impl KratosSolid {
         let project = self.project(scene, plan);
         let slave_faces = body.candidate_faces(plan.candidate_radius);
         if slave_faces.is_empty() {
-            return Err(SolveError::Failed("no contact face lies within the candidate radius".into()));
+            return Err(SolveError::Failed(
+                "no contact face lies within the candidate radius".into(),
+            ));
         }
         let mdpa = MdpaSpec {
             body: &body,
@@ -187,12 +195,21 @@ impl KratosSolid {
     }
 
     /// Reads the run's output in `dir` back.
-    fn read(&self, plan: &Plan, body: &LinearBody, dir: &Path, [mesh_s, solve_s]: [f64; 2]) -> Result<Run, SolveError> {
+    fn read(
+        &self,
+        plan: &Plan,
+        body: &LinearBody,
+        dir: &Path,
+        [mesh_s, solve_s]: [f64; 2],
+    ) -> Result<Run, SolveError> {
         let start = Instant::now();
         let indices: Vec<usize> = plan.steps.iter().map(|s| s.step).collect();
         let failed = SolveError::Failed;
-        let steps = results::parse_steps(&read_output(dir, "steps.csv", MAX_DECK_TABLE_BYTES).map_err(failed)?, &indices)
-            .map_err(failed)?;
+        let steps = results::parse_steps(
+            &read_output(dir, "steps.csv", MAX_DECK_TABLE_BYTES).map_err(failed)?,
+            &indices,
+        )
+        .map_err(failed)?;
         let faces = body.candidate_faces(plan.candidate_radius);
         let (slaves, triangles) = slave_nodes(body, &faces);
         let text = read_output(dir, "surface.csv", MAX_DECK_TABLE_BYTES).map_err(failed)?;
@@ -238,9 +255,11 @@ impl KratosSolid {
     /// friction), the fields at the converged positions, the metadata.
     fn history(&self, scene: &Scene, version: &str, plan: &Plan, h: f64, run: &Run) -> History {
         let forces: Vec<[f64; 2]> = run.steps.iter().map(|s| s.forces).collect();
-        let (mut steps, mut fields) =
-            surface3d::step_results(scene, plan.tangential, &forces, &run.surfaces, &run.triangles);
+        // Frictionless contact on a tangential path answers the normal problem only: no Q, no stick.
         let frictional = self.settings.formulation.frictional(plan.tangential);
+        let tangential = plan.tangential && frictional;
+        let (mut steps, mut fields) =
+            surface3d::step_results(scene, tangential, &forces, &run.surfaces, &run.triangles);
         let mut lost = false;
         for (row, step) in steps.iter_mut().zip(&run.steps) {
             lost = !step.converged || (lost && frictional);
@@ -296,12 +315,21 @@ impl KratosSolid {
             warnings: vec![FINITE_BODY.to_owned()],
             ..Metadata::default()
         };
-        let not_converged: Vec<usize> = run.steps.iter().filter(|s| !s.converged).map(|s| s.step).collect();
+        let not_converged: Vec<usize> = run
+            .steps
+            .iter()
+            .filter(|s| !s.converged)
+            .map(|s| s.step)
+            .collect();
         if !not_converged.is_empty() {
             metadata.warnings.push(format!(
                 "Kratos did not converge at steps {not_converged:?} (within {MAX_ITERATIONS} Newton \
                  iterations): no values there{}",
-                if frictional { " nor after the first (its state carries over)" } else { "" }
+                if frictional {
+                    " nor after the first (its state carries over)"
+                } else {
+                    ""
+                }
             ));
         }
         let extra = &mut metadata.extra;
@@ -315,6 +343,11 @@ impl KratosSolid {
                 .collect::<Vec<_>>()),
         );
         extra.insert("steps_not_converged".into(), json!(not_converged));
+        // What Kratos left at every step, converged or not: evidence, never values.
+        extra.insert(
+            "forces_as_left_by_step".into(),
+            json!(run.steps.iter().map(|s| s.forces).collect::<Vec<_>>()),
+        );
         extra.insert(
             "forces_other_far_face_by_step".into(),
             json!(run.steps.iter().map(|s| s.forces_other).collect::<Vec<_>>()),
@@ -348,7 +381,11 @@ fn slave_nodes(body: &LinearBody, faces: &[[usize; 3]]) -> (SlaveNodes, Vec<[usi
         let [a, b, c] = face.map(|n| body.nodes[n]);
         let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
         let area = 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         for &j in triangle {
             weights[j] += area / 3.0;
@@ -374,7 +411,8 @@ fn applicable(scene: &Scene) -> Result<(), SolveError> {
     }
     if scene.domain.grip != Grip::Rigid {
         return Err(SolveError::NotApplicable(
-            "kratos-3d holds the far faces rigidly (all three components); the axial grip is not modelled".into(),
+            "kratos-3d holds the far faces rigidly (all three components); the axial grip is not modelled"
+                .into(),
         ));
     }
     Ok(())
@@ -419,7 +457,9 @@ impl Solver for KratosSolid {
             .require(Tool::KratosContact)
             .map_err(SolveError::Unavailable)?;
         let (h, plan) = self.plan(scene);
-        let run = deck::in_run_dir("spherecontact-kratos-3d-", |dir| self.run_in(scene, &plan, h, dir))?;
+        let run = deck::in_run_dir("spherecontact-kratos-3d-", |dir| {
+            self.run_in(scene, &plan, h, dir)
+        })?;
         Ok(self.history(scene, &version, &plan, h, &run))
     }
 }
@@ -469,8 +509,15 @@ mod tests {
     #[test]
     fn the_driver_is_fixed_and_runs_on_one_thread() {
         assert!(!TEMPLATE.contains('@'), "a placeholder in the driver");
-        let job = KratosSolidDeck.job(&Toolchain::default(), Path::new("kratos_3d.py"), Duration::from_secs(1));
-        assert_eq!(job.program, Path::new(spherecontact_system::toolchain::KRATOS_PYTHON));
+        let job = KratosSolidDeck.job(
+            &Toolchain::default(),
+            Path::new("kratos_3d.py"),
+            Duration::from_secs(1),
+        );
+        assert_eq!(
+            job.program,
+            Path::new(spherecontact_system::toolchain::KRATOS_PYTHON)
+        );
         assert!(job.env.contains(&("OMP_NUM_THREADS".into(), "1".into())));
     }
 }
