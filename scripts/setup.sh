@@ -9,7 +9,8 @@
 #   CalculiX ccx 2.20 (calculix-ccx, SPOOLES; the ccx-axisym solver), about 5 MB;
 #   Kratos 10.4.4 with its DEMApplication (PyPI wheels, not a Debian package) in the project's own
 #   virtual environment /opt/spherecontact/venv, made with Debian's /usr/bin/python3 (3.11):
-#   the kratos-* solvers; about 40 MB, 20-30 s.
+#   the kratos-* solvers; with its Structural, ContactStructural and LinearSolvers applications (the
+#   kratos-3d deck); about 70 MB, 20-30 s.
 # Measured: ~245 packages, ~200 MB download, 2-3 minutes on a fresh machine (docs/toolchain.md);
 # LAMMPS and YADE add 115 packages, 192 MB, about 2 minutes (docs/toolchain.md).
 # Afterwards prints the versions found (the same facts as `spherecontact doctor`).
@@ -49,7 +50,9 @@ fi
 # Kratos: pinned wheels in the project's environment (the path is KRATOS_PYTHON's in
 # crates/system/src/toolchain.rs); pip leaves an environment that already has them as it is.
 KRATOS_VENV=/opt/spherecontact/venv
-KRATOS_WHEELS=("KratosMultiphysics==10.4.4" "KratosDEMApplication==10.4.4")
+KRATOS_WHEELS=("KratosMultiphysics==10.4.4" "KratosDEMApplication==10.4.4"
+  "KratosStructuralMechanicsApplication==10.4.4" "KratosContactStructuralMechanicsApplication==10.4.4"
+  "KratosLinearSolversApplication==10.4.4")
 [ -x "$KRATOS_VENV/bin/python" ] || /usr/bin/python3 -m venv "$KRATOS_VENV"
 "$KRATOS_VENV/bin/pip" install -q --disable-pip-version-check "${KRATOS_WHEELS[@]}"
 
@@ -75,3 +78,6 @@ echo "CalculiX  $(command -v ccx): $(echo "$ccxout" | sed -n 's/.*Version *//p' 
 kratosout=$(OMP_NUM_THREADS=1 "$KRATOS_VENV/bin/python" -c "import importlib.metadata as m, KratosMultiphysics.DEMApplication; print('kratosversion', m.version('KratosDEMApplication'))" 2>&1) \
   || { echo "$kratosout" | tail -n 5; exit 1; }
 echo "Kratos    $KRATOS_VENV/bin/python: DEMApplication $(echo "$kratosout" | sed -n 's/^kratosversion //p')"
+kratosout=$(OMP_NUM_THREADS=1 "$KRATOS_VENV/bin/python" -c "import importlib.metadata as m, KratosMultiphysics.StructuralMechanicsApplication, KratosMultiphysics.ContactStructuralMechanicsApplication, KratosMultiphysics.LinearSolversApplication; print('kratosversion', m.version('KratosContactStructuralMechanicsApplication'))" 2>&1) \
+  || { echo "$kratosout" | tail -n 5; exit 1; }
+echo "Kratos    $KRATOS_VENV/bin/python: ContactStructuralMechanicsApplication $(echo "$kratosout" | sed -n 's/^kratosversion //p') (with StructuralMechanics, LinearSolvers)"

@@ -12,7 +12,7 @@ pub use spherecontact_check::judged;
 pub use spherecontact_contact as contact;
 pub use spherecontact_contact::driver;
 pub use spherecontact_external as external;
-pub use spherecontact_external::{calculix, dem, exchange};
+pub use spherecontact_external::{calculix, dem, exchange, kratos};
 pub use spherecontact_impact as impact;
 pub use spherecontact_model::*;
 pub use spherecontact_reference as analytic;

@@ -321,6 +321,7 @@ fn doctor_lists_every_tool_with_path_and_version() {
         "LIGGGHTS",
         "CalculiX",
         "Kratos DEM",
+        "Kratos contact",
     ] {
         assert!(
             text.lines().any(|l| l.starts_with(tool)),

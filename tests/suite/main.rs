@@ -22,6 +22,7 @@ mod external_3d;
 mod external_calculix;
 mod external_ccx3d;
 mod external_friction;
+mod external_kratos3d;
 mod fem3d_element;
 mod fem3d_friction;
 mod fem3d_hertz;

@@ -49,6 +49,12 @@
 //! penalty = 1e3                         # K = penalty · E / h, 1 ≤ penalty ≤ 1e6
 //! element = "tet10"                     # the 3D decks' element: tet10, hex20, hex20r
 //!
+//! [kratos]                              # optional: the kratos-3d deck's settings
+//! contact = "alm-frictional"            # alm-frictional, alm-frictionless, penalty
+//! element = "tet4"                      # tet4
+//! alm_factor = 1.0                      # ALM penalty and scale factor · E / h, 1e-2 to 1e4
+//! penalty = 1e3                         # penalty: K = penalty · E / h, 1 ≤ penalty ≤ 1e6
+//!
 //! [resolution]                          # optional: per solver, over its default (see
 //! bem = 128                             # `resolution`); `--resolution SOLVER=VALUE` overrides
 //! fem-axisym = "c/80"                   # c/N or a length ("10um")
@@ -110,6 +116,7 @@ mod impact_own;
 mod impact_raw;
 mod impact_rules;
 mod impact_solvers;
+mod kratos;
 pub mod labels;
 mod listing;
 mod raw;
@@ -164,6 +171,8 @@ pub struct Case {
     pub tree: CaseTree,
     /// The CalculiX solvers' settings (`[calculix]`; the defaults when absent).
     pub calculix: spherecontact_model::calculix_settings::Settings,
+    /// The Kratos FEM deck's settings (`[kratos]`; the defaults when absent).
+    pub kratos: spherecontact_model::kratos_settings::Settings,
     /// fem-3d's regularised stick (`[fem-3d] stick_slope`); `None`: exact Coulomb friction.
     pub stick_slope: Option<StickSlope>,
     /// What kind of work the case is ([`labels::LABELS`]), in its order.
@@ -248,6 +257,7 @@ impl Case {
             .or_else(|| registry::by_name(name))?;
         let solver = solver.with_ranks(self.ranks).unwrap_or(solver);
         let solver = solver.with_calculix(&self.calculix).unwrap_or(solver);
+        let solver = solver.with_kratos(&self.kratos).unwrap_or(solver);
         match self.stick_slope {
             Some(slope) => Some(solver.with_stick_slope(slope).unwrap_or(solver)),
             None => Some(solver),
@@ -389,6 +399,10 @@ impl Validator<'_> {
             tree: self.tree.clone(),
             calculix: match &raw.calculix {
                 Some(table) => self.calculix(table)?,
+                None => Default::default(),
+            },
+            kratos: match &raw.kratos {
+                Some(table) => self.kratos(table)?,
                 None => Default::default(),
             },
             stick_slope: match &raw.fem3d {

@@ -25,6 +25,7 @@ pub struct RawCase {
     pub domain: Option<RawDomain>,
     pub resolution: Option<std::collections::BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
     pub calculix: Option<RawCalculix>,
+    pub kratos: Option<RawKratos>,
     #[serde(rename = "fem-3d")]
     pub fem3d: Option<RawFem3d>,
     #[serde(default)]
@@ -73,6 +74,16 @@ pub struct RawCalculix {
     pub contact: Option<Spanned<String>>,
     pub penalty: Option<Spanned<f64>>,
     pub element: Option<Spanned<String>>,
+}
+
+/// The `[kratos]` table as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawKratos {
+    pub contact: Option<Spanned<String>>,
+    pub element: Option<Spanned<String>>,
+    pub alm_factor: Option<Spanned<f64>>,
+    pub penalty: Option<Spanned<f64>>,
 }
 
 /// The `[fem-3d]` table as written.

@@ -20,6 +20,7 @@ pub fn registry() -> Vec<Box<dyn Solver>> {
     solvers.extend(external::solvers());
     solvers.push(Box::new(spherecontact_external::calculix::CcxAxisym::default()));
     solvers.push(Box::new(spherecontact_external::calculix::CcxSolid::default()));
+    solvers.push(Box::new(spherecontact_external::kratos::KratosSolid::default()));
     solvers.extend(dem::solvers());
     solvers
 }

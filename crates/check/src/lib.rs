@@ -281,8 +281,10 @@ impl CheckSpec {
             };
             let Some(reference) = reference else { continue };
             let Some(value) = self.value(subject, row) else {
+                // A run that left a step without a value (an unconverged step) may be a known defect.
                 let message = format!("{} gives no {} at step {}", self.solver, self.quantity, row.step);
-                return self.outcome_without_error(Verdict::Nook, message);
+                let verdict = Verdict::marked(Verdict::Nook, self.known_failure.as_deref());
+                return self.outcome_without_error(verdict, message);
             };
             pairs.push(JudgedValue {
                 step: row.step,
@@ -574,10 +576,13 @@ pub(crate) mod tests {
         let passing = marked(0.1).evaluate(&h);
         assert_eq!(passing.verdict, Verdict::Fixed);
         assert!(passing.verdict.fails_run() && passing.verdict.label() == "FIXED?");
-        // A failed solver stays NOOK under the mark: the mark is for a measured defect.
+        // A failed solver stays NOOK under the mark: the mark is for a defect of a run.
         let mut broken = histories(&[Some(1.05)], &[Some(1.0)]);
         broken.insert("a".into(), Err(SolveError::Failed("boom".into())));
         assert_eq!(marked(0.01).evaluate(&broken).verdict, Verdict::Nook);
+        // A run that left the step without a value (an unconverged step): KNOWN under the mark.
+        let known = marked(0.01).evaluate(&histories(&[None], &[Some(1.0)]));
+        assert_eq!((known.verdict, known.error), (Verdict::Known, None));
     }
 
     #[test]

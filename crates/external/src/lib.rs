@@ -25,7 +25,8 @@
 //! - [`surface`]: the contact line's nodal state at every step, and what is measured from it;
 //! - [`fenicsx3d`]: the 3D deck under MPI (heavy), [`surface3d`]: its contact surface read back;
 //! - [`split`]: a deck's folder for a run elsewhere (`deck write|read`: manifest, README, script);
-//! - [`calculix`]: the CalculiX deck `ccx-axisym` (its `.inp` writer, `.dat`/`.frd` reader, settings).
+//! - [`calculix`]: the CalculiX deck `ccx-axisym` (its `.inp` writer, `.dat`/`.frd` reader, settings);
+//! - [`kratos`]: the Kratos FEM deck `kratos-3d` (MDPA, ProjectParameters, the driver, its convergence record).
 //!
 //! Install the tools with `scripts/setup.sh`. A missing tool makes the solver
 //! [`Unavailable`](spherecontact_model::solver::SolveError::Unavailable), never a pass.
@@ -33,6 +34,7 @@
 pub mod calculix;
 pub mod dem;
 pub mod exchange;
+pub mod kratos;
 
 pub mod axisym;
 pub mod command;

@@ -27,6 +27,7 @@ pub mod domain;
 pub mod fixtures;
 pub mod hertz;
 pub mod history;
+pub mod kratos_settings;
 pub mod limits;
 pub mod memory;
 pub mod mirror;

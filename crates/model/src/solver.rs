@@ -82,6 +82,12 @@ pub trait Solver: Send + Sync {
         None
     }
 
+    /// The same solver with the case's Kratos settings (`[kratos]`: contact formulation, element,
+    /// ALM and penalty factors), for `kratos-3d`; `None` for the others.
+    fn with_kratos(&self, _settings: &crate::kratos_settings::Settings) -> Option<Box<dyn Solver>> {
+        None
+    }
+
     /// The same solver with its stick regularised by `slope` (`[fem-3d] stick_slope`), for
     /// fem-3d; `None` for the others.
     fn with_stick_slope(&self, _slope: crate::stick_slope::StickSlope) -> Option<Box<dyn Solver>> {
@@ -267,6 +273,11 @@ impl Solver for Resolved {
     /// The same resolution with other CalculiX settings (a formulation sweep).
     fn with_calculix(&self, settings: &crate::calculix_settings::Settings) -> Option<Box<dyn Solver>> {
         self.inner.with_calculix(settings).map(|inner| self.around(inner))
+    }
+
+    /// The same resolution with other Kratos settings (a formulation sweep).
+    fn with_kratos(&self, settings: &crate::kratos_settings::Settings) -> Option<Box<dyn Solver>> {
+        self.inner.with_kratos(settings).map(|inner| self.around(inner))
     }
 
     fn with_stick_slope(&self, slope: crate::stick_slope::StickSlope) -> Option<Box<dyn Solver>> {

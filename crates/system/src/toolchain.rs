@@ -4,7 +4,8 @@
 //! FreeFem++ 4.11 with its plugins in `/usr/lib/freefem++`, and dolfinx 0.5.2, meshio and h5py
 //! for Debian's own `/usr/bin/python3` (not whichever `python3` is first on PATH).
 //! Kratos (DEMApplication) is not a Debian package: `scripts/setup.sh` installs its PyPI wheels
-//! into the project's own virtual environment, [`KRATOS_PYTHON`]'s, with Debian's Python 3.11.
+//! into the project's own virtual environment, [`KRATOS_PYTHON`]'s, with Debian's Python 3.11
+//! (the DEMApplication, and the structural and contact applications of the `kratos-3d` deck).
 //! `scripts/setup.sh` installs them all.
 
 use std::path::{Path, PathBuf};
@@ -46,11 +47,14 @@ pub enum Tool {
     Ccx,
     /// Kratos' DEMApplication, for [`KRATOS_PYTHON`]: the `kratos-*` DEM solvers.
     KratosDem,
+    /// Kratos' StructuralMechanics, ContactStructuralMechanics and LinearSolvers applications,
+    /// for [`KRATOS_PYTHON`]: the `kratos-3d` FEM deck (mortar augmented-Lagrangian contact).
+    KratosContact,
 }
 
 impl Tool {
     /// Every tool, in the order `doctor` lists them.
-    pub const ALL: [Tool; 9] = [
+    pub const ALL: [Tool; 10] = [
         Tool::Gmsh,
         Tool::FreeFem,
         Tool::Dolfinx,
@@ -60,6 +64,7 @@ impl Tool {
         Tool::Liggghts,
         Tool::Ccx,
         Tool::KratosDem,
+        Tool::KratosContact,
     ];
 
     /// The tool's name in messages.
@@ -74,6 +79,7 @@ impl Tool {
             Tool::Liggghts => "LIGGGHTS",
             Tool::Ccx => "CalculiX",
             Tool::KratosDem => "Kratos DEM",
+            Tool::KratosContact => "Kratos contact",
         }
     }
 
@@ -91,6 +97,11 @@ impl Tool {
             Tool::KratosDem => {
                 "python3 -m venv /opt/spherecontact/venv && /opt/spherecontact/venv/bin/pip install \
                  KratosMultiphysics==10.4.4 KratosDEMApplication==10.4.4"
+            }
+            Tool::KratosContact => {
+                "python3 -m venv /opt/spherecontact/venv && /opt/spherecontact/venv/bin/pip install \
+                 KratosMultiphysics==10.4.4 KratosStructuralMechanicsApplication==10.4.4 \
+                 KratosContactStructuralMechanicsApplication==10.4.4 KratosLinearSolversApplication==10.4.4"
             }
         }
     }
@@ -179,7 +190,7 @@ impl Toolchain {
             Tool::Yade => &self.yade,
             Tool::Liggghts => &self.liggghts,
             Tool::Ccx => &self.ccx,
-            Tool::KratosDem => &self.kratos_python,
+            Tool::KratosDem | Tool::KratosContact => &self.kratos_python,
         }
     }
 
@@ -313,6 +324,18 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
             ],
             vec![("OMP_NUM_THREADS".into(), "1".into())],
         ),
+        // The three applications the kratos-3d deck imports, and the direct solver it names.
+        Tool::KratosContact => (
+            vec![
+                "-c".into(),
+                "import importlib.metadata as m, KratosMultiphysics.StructuralMechanicsApplication, \
+                 KratosMultiphysics.ContactStructuralMechanicsApplication, \
+                 KratosMultiphysics.LinearSolversApplication; \
+                 print('kratosversion', m.version('KratosContactStructuralMechanicsApplication'))"
+                    .into(),
+            ],
+            vec![("OMP_NUM_THREADS".into(), "1".into())],
+        ),
     };
     let job = Job {
         program: path.to_path_buf(),
@@ -347,7 +370,7 @@ fn version_of(tool: Tool, path: &Path) -> Result<String, String> {
             .lines()
             .find_map(|l| l.trim().strip_prefix("This is Version"))
             .map(|v| v.trim().to_owned()),
-        Tool::KratosDem => text
+        Tool::KratosDem | Tool::KratosContact => text
             .lines()
             .find_map(|l| l.trim().strip_prefix("kratosversion "))
             .map(|v| v.trim().to_owned()),

@@ -1,0 +1,23 @@
+//! The Kratos FEM deck `kratos-3d`: the frictional path in 3D with Kratos'
+//! ContactStructuralMechanicsApplication (10.4.4), the paper's kind of contact — mortar
+//! augmented Lagrangian with Coulomb friction (`ALMContactFrictional`) — and its frictionless and
+//! penalty variants (`[kratos] contact`). Both spheres' halves (y ≥ 0) on fem-3d's gmsh geometry
+//! of the case's `[domain]` body, in first-order tetrahedra (the corners of its quadratic mesh:
+//! Kratos' mortar conditions are linear only), sphere 2 the mirror image of sphere 1, one Kratos
+//! step per path step.
+//!
+//! The files are readable and run by hand (`spherecontact deck write`): `spheres.mdpa`
+//! ([`mdpa`]), `ProjectParameters.json` and `materials.json` ([`project`]), the driver
+//! `kratos_3d.py` (`templates/kratos_3d.py`, a fixed file that reads `path.txt`) which keeps what
+//! Kratos' `AnalysisStage` discards: each step's converged flag, iterations and residual
+//! ([`results`]). A step Kratos did not converge is never a value ([`solid`]).
+//!
+//! Model and findings: docs/external-decks.md, "Kratos 3D".
+
+pub mod linear;
+pub mod mdpa;
+pub mod project;
+pub mod results;
+pub mod solid;
+
+pub use solid::KratosSolid;
