@@ -17,6 +17,10 @@
 //! quadratic triangles ([`AXISYMMETRIC_ELEMENT`]); `element` chooses the 3D decks'.
 
 /// How CalculiX enforces contact between the sphere (slave) and the plane (master).
+use crate::choice::{self, choices};
+
+choices!(Formulation, Element);
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Formulation {
     /// `TYPE=NODE TO SURFACE`: a penalty spring at each slave node.
@@ -174,18 +178,14 @@ impl Default for Settings {
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SettingError {
     /// An unknown formulation.
-    #[error("unknown contact formulation `{0}` (allowed: {allowed})", allowed = names(&Formulation::ALL.map(Formulation::name)))]
+    #[error("unknown contact formulation `{0}` (allowed: {allowed})", allowed = choice::allowed::<Formulation>())]
     Formulation(String),
     /// An unknown element.
-    #[error("unknown element `{0}` (allowed: {allowed})", allowed = names(&Element::ALL.map(Element::name)))]
+    #[error("unknown element `{0}` (allowed: {allowed})", allowed = choice::allowed::<Element>())]
     Element(String),
     /// A penalty factor out of range.
     #[error("penalty factor {0} is out of range (allowed: {low} ≤ penalty ≤ {high}: K = penalty · E / h)", low = PENALTY_RANGE[0], high = PENALTY_RANGE[1])]
     Penalty(f64),
-}
-
-fn names(all: &[&str]) -> String {
-    all.join(", ")
 }
 
 impl Settings {
@@ -197,27 +197,17 @@ impl Settings {
 
     /// The formulation called `name`.
     pub fn formulation(name: &str) -> Result<Formulation, SettingError> {
-        Formulation::ALL
-            .into_iter()
-            .find(|f| f.name() == name)
-            .ok_or_else(|| SettingError::Formulation(name.to_owned()))
+        choice::by_name(name).ok_or_else(|| SettingError::Formulation(name.to_owned()))
     }
 
     /// The element called `name`.
     pub fn element(name: &str) -> Result<Element, SettingError> {
-        Element::ALL
-            .into_iter()
-            .find(|e| e.name() == name)
-            .ok_or_else(|| SettingError::Element(name.to_owned()))
+        choice::by_name(name).ok_or_else(|| SettingError::Element(name.to_owned()))
     }
 
     /// The penalty factor `value`, within [`PENALTY_RANGE`].
     pub fn penalty(value: f64) -> Result<f64, SettingError> {
-        if (PENALTY_RANGE[0]..=PENALTY_RANGE[1]).contains(&value) {
-            Ok(value)
-        } else {
-            Err(SettingError::Penalty(value))
-        }
+        choice::within(value, PENALTY_RANGE).ok_or(SettingError::Penalty(value))
     }
 
     /// The facts every history records: formulation, penalty factor and element.

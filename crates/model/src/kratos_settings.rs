@@ -18,6 +18,10 @@
 //! element is first order.
 
 /// How Kratos enforces contact between sphere 1 (slave) and sphere 2 (master).
+use crate::choice::{self, choices};
+
+choices!(Formulation, Element);
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Formulation {
     /// Mortar augmented Lagrangian with Coulomb friction (the paper's kind of contact).
@@ -147,10 +151,10 @@ impl Default for Settings {
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SettingError {
     /// An unknown formulation.
-    #[error("unknown contact formulation `{0}` (allowed: {allowed})", allowed = Formulation::ALL.map(Formulation::name).join(", "))]
+    #[error("unknown contact formulation `{0}` (allowed: {allowed})", allowed = choice::allowed::<Formulation>())]
     Formulation(String),
     /// An unknown element.
-    #[error("unknown element `{0}` (allowed: {allowed})", allowed = Element::ALL.map(Element::name).join(", "))]
+    #[error("unknown element `{0}` (allowed: {allowed})", allowed = choice::allowed::<Element>())]
     Element(String),
     /// An ALM factor out of range.
     #[error("ALM factor {0} is out of range (allowed: {low} ≤ alm_factor ≤ {high}: penalty and scale factor = alm_factor · E / h)", low = ALM_FACTOR_RANGE[0], high = ALM_FACTOR_RANGE[1])]
@@ -160,40 +164,25 @@ pub enum SettingError {
     Penalty(f64),
 }
 
-/// `value` if it lies within `range`.
-fn within(value: f64, range: [f64; 2], error: fn(f64) -> SettingError) -> Result<f64, SettingError> {
-    if (range[0]..=range[1]).contains(&value) {
-        Ok(value)
-    } else {
-        Err(error(value))
-    }
-}
-
 impl Settings {
     /// The formulation called `name`.
     pub fn formulation(name: &str) -> Result<Formulation, SettingError> {
-        Formulation::ALL
-            .into_iter()
-            .find(|f| f.name() == name)
-            .ok_or_else(|| SettingError::Formulation(name.to_owned()))
+        choice::by_name(name).ok_or_else(|| SettingError::Formulation(name.to_owned()))
     }
 
     /// The element called `name`.
     pub fn element(name: &str) -> Result<Element, SettingError> {
-        Element::ALL
-            .into_iter()
-            .find(|e| e.name() == name)
-            .ok_or_else(|| SettingError::Element(name.to_owned()))
+        choice::by_name(name).ok_or_else(|| SettingError::Element(name.to_owned()))
     }
 
     /// The ALM factor `value`, within [`ALM_FACTOR_RANGE`].
     pub fn alm_factor(value: f64) -> Result<f64, SettingError> {
-        within(value, ALM_FACTOR_RANGE, SettingError::AlmFactor)
+        choice::within(value, ALM_FACTOR_RANGE).ok_or(SettingError::AlmFactor(value))
     }
 
     /// The penalty factor `value`, within [`PENALTY_RANGE`].
     pub fn penalty(value: f64) -> Result<f64, SettingError> {
-        within(value, PENALTY_RANGE, SettingError::Penalty)
+        choice::within(value, PENALTY_RANGE).ok_or(SettingError::Penalty(value))
     }
 
     /// Kratos' stiffness factor of the formulation: the ALM factor or the penalty.

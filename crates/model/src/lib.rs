@@ -21,6 +21,7 @@
 //! Units are SI throughout (m, N, Pa).
 
 pub mod calculix_settings;
+pub mod choice;
 pub mod cores;
 pub mod cost;
 pub mod domain;
