@@ -3,42 +3,39 @@
 
 use super::raw::RawCalculix;
 use crate::{CaseError, Validator};
-use spherecontact_model::calculix_settings::{SettingError, Settings};
+use spherecontact_model::calculix_settings::Settings;
 
 impl Validator<'_> {
     /// The `[calculix]` table over the defaults.
     pub(super) fn calculix(&self, raw: &RawCalculix) -> Result<Settings, CaseError> {
-        let mut settings = Settings::default();
-        let located =
-            |at, field: &str, e: SettingError| self.error(at, format!("calculix.{field}"), e.to_string());
-        if let Some(name) = &raw.contact {
-            settings.formulation =
-                Settings::formulation(name.get_ref()).map_err(|e| located(name, "contact", e))?;
-        }
-        if let Some(value) = &raw.penalty {
-            settings.penalty = Settings::penalty(*value.get_ref())
-                .map_err(|e| self.error(value, "calculix.penalty", e.to_string()))?;
-        }
-        if let Some(name) = &raw.element {
-            settings.element = Settings::element(name.get_ref()).map_err(|e| located(name, "element", e))?;
-        }
-        Ok(settings)
+        let default = Settings::default();
+        Ok(Settings {
+            formulation: self.setting(
+                raw.contact.as_ref(),
+                "calculix.contact",
+                default.formulation,
+                |name| Settings::formulation(name),
+            )?,
+            penalty: self.setting(
+                raw.penalty.as_ref(),
+                "calculix.penalty",
+                default.penalty,
+                |value| Settings::penalty(*value),
+            )?,
+            element: self.setting(
+                raw.element.as_ref(),
+                "calculix.element",
+                default.element,
+                |name| Settings::element(name),
+            )?,
+        })
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::Case;
+    use crate::test_case::paper_case as case;
     use spherecontact_model::calculix_settings::{Element, Formulation};
-    use std::path::Path;
-
-    fn case(table: &str) -> Result<Case, crate::CaseError> {
-        let text = format!(
-            "friction = 0.2\nsolvers = [\"hertz\"]\n[body1]\nradius = 0.1\nyoung = 70e9\npoisson = 0.3\n\
-             [path]\nunit = \"um\"\ndelta_n = [0, 10]\ndelta_t = [0, 0]\nsubsteps = 1\n{table}"
-        );
-        Case::parse(Path::new("c.toml"), &text)
-    }
 
     #[test]
     fn the_table_sets_the_calculix_solvers_and_bad_values_list_the_allowed_set() {

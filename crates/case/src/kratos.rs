@@ -3,46 +3,39 @@
 
 use super::raw::RawKratos;
 use crate::{CaseError, Validator};
-use spherecontact_model::kratos_settings::{SettingError, Settings};
+use spherecontact_model::kratos_settings::Settings;
 
 impl Validator<'_> {
     /// The `[kratos]` table over the defaults.
     pub(super) fn kratos(&self, raw: &RawKratos) -> Result<Settings, CaseError> {
-        let mut settings = Settings::default();
-        let located =
-            |at, field: &str, e: SettingError| self.error(at, format!("kratos.{field}"), e.to_string());
-        if let Some(name) = &raw.contact {
-            settings.formulation =
-                Settings::formulation(name.get_ref()).map_err(|e| located(name, "contact", e))?;
-        }
-        if let Some(name) = &raw.element {
-            settings.element = Settings::element(name.get_ref()).map_err(|e| located(name, "element", e))?;
-        }
-        if let Some(value) = &raw.alm_factor {
-            settings.alm_factor = Settings::alm_factor(*value.get_ref())
-                .map_err(|e| self.error(value, "kratos.alm_factor", e.to_string()))?;
-        }
-        if let Some(value) = &raw.penalty {
-            settings.penalty = Settings::penalty(*value.get_ref())
-                .map_err(|e| self.error(value, "kratos.penalty", e.to_string()))?;
-        }
-        Ok(settings)
+        let default = Settings::default();
+        Ok(Settings {
+            formulation: self.setting(
+                raw.contact.as_ref(),
+                "kratos.contact",
+                default.formulation,
+                |name| Settings::formulation(name),
+            )?,
+            element: self.setting(raw.element.as_ref(), "kratos.element", default.element, |name| {
+                Settings::element(name)
+            })?,
+            alm_factor: self.setting(
+                raw.alm_factor.as_ref(),
+                "kratos.alm_factor",
+                default.alm_factor,
+                |value| Settings::alm_factor(*value),
+            )?,
+            penalty: self.setting(raw.penalty.as_ref(), "kratos.penalty", default.penalty, |value| {
+                Settings::penalty(*value)
+            })?,
+        })
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::Case;
+    use crate::test_case::paper_case as case;
     use spherecontact_model::kratos_settings::{Element, Formulation};
-    use std::path::Path;
-
-    fn case(table: &str) -> Result<Case, crate::CaseError> {
-        let text = format!(
-            "friction = 0.2\nsolvers = [\"hertz\"]\n[body1]\nradius = 0.1\nyoung = 70e9\npoisson = 0.3\n\
-             [path]\nunit = \"um\"\ndelta_n = [0, 10]\ndelta_t = [0, 0]\nsubsteps = 1\n{table}"
-        );
-        Case::parse(Path::new("c.toml"), &text)
-    }
 
     /// Requirement: every field of `[kratos]` sets the deck, and a bad value names the file, the
     /// field and the allowed set (no tolerance: exact values and messages).

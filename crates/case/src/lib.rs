@@ -124,6 +124,8 @@ pub mod reads;
 pub mod reference;
 mod resolution;
 mod scene_rules;
+#[cfg(test)]
+mod test_case;
 
 pub use case_solvers::CaseSolver;
 pub use error::CaseError;
@@ -296,6 +298,21 @@ impl Validator<'_> {
         message: impl Into<String>,
     ) -> CaseError {
         CaseError::new(self.file, Some((self.text, spanned.span())), field, message)
+    }
+
+    /// A deck table's setting (`[calculix]`, `[kratos]`, …): `default` if the case leaves it out,
+    /// else `parse` of its value, whose error is located at the value under `field`.
+    fn setting<T, V, E: std::fmt::Display>(
+        &self,
+        raw: Option<&Spanned<T>>,
+        field: &str,
+        default: V,
+        parse: impl FnOnce(&T) -> Result<V, E>,
+    ) -> Result<V, CaseError> {
+        match raw {
+            None => Ok(default),
+            Some(value) => parse(value.get_ref()).map_err(|e| self.error(value, field, e.to_string())),
+        }
     }
 
     /// A number in the range the predicate describes (`allowed`, in words).
