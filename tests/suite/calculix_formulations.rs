@@ -14,6 +14,7 @@ use spherecontact::case::Case;
 use spherecontact::solver::{self, SolveError};
 
 use crate::common::decks::{ccx_present, force_error_against_mdr_domain, scene_17um};
+use crate::common::refused::assert_refused;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -33,25 +34,8 @@ fn a_bad_setting_exits_2_naming_the_file_the_field_and_the_allowed_set() {
             "allowed: face-to-face, node-to-face, mortar, linmortar, pglinmortar",
         ),
     ] {
-        let out = tempfile::tempdir().unwrap();
         let path = root().join("tests/hostile/calculix").join(file);
-        let output = std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
-            .arg("run")
-            .arg(&path)
-            .arg("--out")
-            .arg(out.path().join("o"))
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert_eq!(output.status.code(), Some(2), "{file}: {stderr}");
-        assert!(
-            stderr.contains(file)
-                && stderr.contains(":15:")
-                && stderr.contains(field)
-                && stderr.contains(allowed),
-            "{file}: {stderr}"
-        );
-        assert!(!out.path().join("o").exists(), "{file}: output written");
+        assert_refused(&["run"], &path, &[file, ":15:", field, allowed]);
     }
 }
 

@@ -7,6 +7,7 @@
 //!
 //! Run: `cargo test --test suite calculix_hex20::` (the run: `-- --ignored --nocapture`).
 
+use crate::common::refused::assert_refused;
 use spherecontact::calculix::body::Body;
 use spherecontact::calculix::hex20;
 use spherecontact::calculix::hex_mesh::HexMesh;
@@ -133,23 +134,12 @@ fn root() -> &'static std::path::Path {
 
 #[test]
 fn a_bad_discretisation_case_exits_2_before_anything_runs_or_is_written() {
-    let out = tempfile::tempdir().unwrap();
     let bad = root().join("tests/hostile/calculix/bad-element.toml");
-    let output = std::process::Command::new(env!("CARGO_BIN_EXE_spherecontact"))
-        .current_dir(root())
-        .args(["reproduce-paper", "--discretisation"])
-        .arg(&bad)
-        .arg("--out")
-        .arg(out.path().join("o"))
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains("bad-element.toml") && stderr.contains("calculix.element"),
-        "{stderr}"
+    assert_refused(
+        &["reproduce-paper", "--discretisation"],
+        &bad,
+        &["bad-element.toml", "calculix.element"],
     );
-    assert!(!out.path().join("o").exists(), "output written");
 }
 
 #[test]

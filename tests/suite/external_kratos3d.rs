@@ -15,6 +15,7 @@ use spherecontact::solver::{self, split::SplitDeck, SolveError};
 use spherecontact::toolchain::{Tool, Toolchain};
 
 use crate::common::decks::these_tools_present;
+use crate::common::refused::assert_refused;
 
 fn normal_case() -> Case {
     Case::load(Path::new("cases/kratos-3d-normal.toml")).unwrap()
@@ -65,32 +66,14 @@ fn a_bad_kratos_setting_exits_2_naming_the_file_the_field_and_the_allowed_set() 
         .replace("contact = \"alm-frictionless\"", "contact = \"lagrange\"");
     let case = dir.path().join("bad.toml");
     std::fs::write(&case, text).unwrap();
-    let out = dir.path().join("out");
-    let run = Command::new(env!("CARGO_BIN_EXE_spherecontact"))
-        .args([
-            "verify",
-            &case.display().to_string(),
-            "--out",
-            &out.display().to_string(),
-        ])
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert_eq!(run.status.code(), Some(2), "{stderr}");
-    for part in [
-        "bad.toml",
-        "kratos.contact",
-        "allowed: alm-frictional, alm-frictionless, penalty",
-    ] {
-        assert!(stderr.contains(part), "{part} missing in: {stderr}");
-    }
-    // No result is written: at most the folder claimed as the output (its marker, hidden).
-    let written: Vec<_> = std::fs::read_dir(&out)
-        .map(|d| d.flatten().map(|e| e.file_name()).collect())
-        .unwrap_or_default();
-    assert!(
-        written.iter().all(|n| n.to_string_lossy().starts_with('.')),
-        "{written:?}"
+    assert_refused(
+        &["verify"],
+        &case,
+        &[
+            "bad.toml",
+            "kratos.contact",
+            "allowed: alm-frictional, alm-frictionless, penalty",
+        ],
     );
 }
 

@@ -153,7 +153,7 @@ fn hdf5_files(text: &str) -> Result<Vec<(usize, String)>, (usize, String)> {
         if tag.ends_with('/') {
             continue; // empty: no data
         }
-        let format = attribute(tag, "Format").map_err(|why| bad(why))?;
+        let format = attribute(tag, "Format").map_err(&bad)?;
         let data = &body[..body.find('<').unwrap_or(body.len())];
         if !body[data.len()..].starts_with("</DataItem") || data.contains('&') {
             return Err(bad(

@@ -6,6 +6,7 @@ pub mod friction;
 pub mod leftovers;
 pub mod peak;
 pub mod reads;
+pub mod refused;
 
 use spherecontact::case::Case;
 use spherecontact::check::Reference;
