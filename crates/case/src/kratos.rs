@@ -28,6 +28,16 @@ impl Validator<'_> {
             penalty: self.setting(raw.penalty.as_ref(), "kratos.penalty", default.penalty, |value| {
                 Settings::penalty(*value)
             })?,
+            operator_threshold: self.setting(
+                raw.operator_threshold.as_ref(),
+                "kratos.operator_threshold",
+                default.operator_threshold,
+                |value| Settings::operator_threshold(*value),
+            )?,
+            mixed_ulm_solver: raw
+                .mixed_ulm_solver
+                .as_ref()
+                .map_or(default.mixed_ulm_solver, |value| *value.get_ref()),
         })
     }
 }
@@ -42,11 +52,13 @@ mod tests {
     #[test]
     fn the_table_sets_the_kratos_deck_and_bad_values_list_the_allowed_set() {
         let c =
-            case("[kratos]\ncontact = \"penalty\"\nelement = \"tet4\"\nalm_factor = 10.0\npenalty = 100.0\n")
+            case("[kratos]\ncontact = \"penalty\"\nelement = \"tet4\"\nalm_factor = 10.0\npenalty = 100.0\noperator_threshold = 1e-3\nmixed_ulm_solver = true\n")
                 .unwrap();
         assert_eq!(c.kratos.formulation, Formulation::Penalty);
         assert_eq!(c.kratos.element, Element::Tet4);
         assert_eq!((c.kratos.alm_factor, c.kratos.penalty), (10.0, 100.0));
+        assert_eq!(c.kratos.operator_threshold, 1e-3);
+        assert!(c.kratos.mixed_ulm_solver);
         assert_eq!(case("").unwrap().kratos, Default::default());
         let bad = [
             (
@@ -61,6 +73,11 @@ mod tests {
                 "0.01 ≤ alm_factor ≤ 10000",
             ),
             ("penalty = 0.1", "kratos.penalty", "1 ≤ penalty ≤ 1000000"),
+            (
+                "operator_threshold = -1.0",
+                "kratos.operator_threshold",
+                "0 ≤ operator_threshold ≤ 1000",
+            ),
         ];
         for (line, field, allowed) in bad {
             let e = case(&format!("[kratos]\n{line}\n")).unwrap_err().to_string();
@@ -69,6 +86,11 @@ mod tests {
                 "{e}"
             );
         }
+        let e = case("[kratos]\nmixed_ulm_solver = 1\n").unwrap_err().to_string();
+        assert!(
+            e.contains("c.toml") && e.contains("mixed_ulm_solver") && e.contains("bool"),
+            "{e}"
+        );
         let e = case("[kratos]\nsolver = \"x\"\n").unwrap_err().to_string();
         assert!(e.contains("solver"), "{e}");
     }

@@ -84,6 +84,8 @@ pub struct RawKratos {
     pub element: Option<Spanned<String>>,
     pub alm_factor: Option<Spanned<f64>>,
     pub penalty: Option<Spanned<f64>>,
+    pub operator_threshold: Option<Spanned<f64>>,
+    pub mixed_ulm_solver: Option<Spanned<bool>>,
 }
 
 /// The `[fem-3d]` table as written.

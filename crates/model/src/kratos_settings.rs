@@ -9,7 +9,18 @@
 //! element = "tet4"             # SmallDisplacementElement3D4N on fem-3d's tetrahedra's corners
 //! alm_factor = 1.0             # ALM: penalty and scale factor = alm_factor · E / h (Kratos' default 1)
 //! penalty = 1e3                # penalty: K = penalty · E / h
+//! operator_threshold = 1e-6   # the objective slip's switch [mm²] (Kratos' default 1e-3), 0 to 1e3
+//! mixed_ulm_solver = false     # Kratos' MixedULMLinearSolver around the direct solve (its default true)
 //! ```
+//!
+//! The last two are Kratos' own options (`alm_contact_process`'s `operator_threshold`,
+//! `contact_settings.use_mixed_ulm_solver`), set by default to the values with which
+//! `ALMContactFrictional` converges on the two spheres: with Kratos' defaults its Newton cycles on
+//! the normal approach and at the stick/slip transitions (measured, one option at a time:
+//! docs/external-decks.md, "Kratos 3D: the frictional options tried"). `operator_threshold` is
+//! the mortar operators' change (Frobenius norm) above which a frictional condition takes the
+//! objective slip (D − D_old) x₁ − (M − M_old) x₂ rather than D (x₁ − x₁,old) − M (x₂ − x₂,old);
+//! `mixed_ulm_solver` condenses the dual multipliers before the direct solve.
 //!
 //! The formulations are Kratos 10.4.4's mortar contact conditions: the augmented Lagrangian
 //! (`ALMContactFrictional`, `ALMContactFrictionless`, process `alm_contact_process`) and the
@@ -121,6 +132,12 @@ pub const ALM_FACTOR_RANGE: [f64; 2] = [1e-2, 1e4];
 /// ([`crate::calculix_settings::PENALTY_RANGE`], the same reasons).
 pub const PENALTY_RANGE: [f64; 2] = crate::calculix_settings::PENALTY_RANGE;
 
+/// The allowed operator thresholds [mm²]. Reason: 0 takes the objective slip at every condition
+/// and iteration; the mortar operators of the paper's meshes are of order the faces' areas
+/// (1e-2 to 1 mm²), so above 1e3 no condition ever takes it (measured: at 1e3 the run repeats
+/// Kratos' default's to the last digit) and a larger value means nothing more.
+pub const OPERATOR_THRESHOLD_RANGE: [f64; 2] = [0.0, 1e3];
+
 /// The settings of `kratos-3d`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -132,17 +149,26 @@ pub struct Settings {
     pub alm_factor: f64,
     /// The penalty formulation's stiffness factor (the same Kratos parameter).
     pub penalty: f64,
+    /// Kratos' `operator_threshold` [mm²]: where the frictional conditions' mortar operators
+    /// change by more, the slip is the objective one.
+    pub operator_threshold: f64,
+    /// Kratos' `use_mixed_ulm_solver`: condense the dual multipliers before the direct solve.
+    pub mixed_ulm_solver: bool,
 }
 
 impl Default for Settings {
     /// The augmented Lagrangian with friction (the paper's), tet4, Kratos' default ALM factor 1,
-    /// penalty 1e3 (CalculiX's default: its penetration leaves 3e-5 of P).
+    /// penalty 1e3 (CalculiX's default: its penetration leaves 3e-5 of P), the objective slip
+    /// wherever the operators move by 1e-6 mm² and the full system solved (with these two,
+    /// every step of the Figure 7 path converges at c_max/2 and /3: module docs).
     fn default() -> Self {
         Self {
             formulation: Formulation::AlmFrictional,
             element: Element::Tet4,
             alm_factor: 1.0,
             penalty: 1e3,
+            operator_threshold: 1e-6,
+            mixed_ulm_solver: false,
         }
     }
 }
@@ -162,6 +188,9 @@ pub enum SettingError {
     /// A penalty factor out of range.
     #[error("penalty factor {0} is out of range (allowed: {low} ≤ penalty ≤ {high}: K = penalty · E / h)", low = PENALTY_RANGE[0], high = PENALTY_RANGE[1])]
     Penalty(f64),
+    /// An operator threshold out of range.
+    #[error("operator threshold {0} is out of range (allowed: {low} ≤ operator_threshold ≤ {high}, in mm²)", low = OPERATOR_THRESHOLD_RANGE[0], high = OPERATOR_THRESHOLD_RANGE[1])]
+    OperatorThreshold(f64),
 }
 
 impl Settings {
@@ -185,6 +214,11 @@ impl Settings {
         choice::within(value, PENALTY_RANGE).ok_or(SettingError::Penalty(value))
     }
 
+    /// The operator threshold `value` [mm²], within [`OPERATOR_THRESHOLD_RANGE`].
+    pub fn operator_threshold(value: f64) -> Result<f64, SettingError> {
+        choice::within(value, OPERATOR_THRESHOLD_RANGE).ok_or(SettingError::OperatorThreshold(value))
+    }
+
     /// Kratos' stiffness factor of the formulation: the ALM factor or the penalty.
     pub fn stiffness_factor(&self) -> f64 {
         match self.formulation {
@@ -204,6 +238,8 @@ impl Settings {
             "alm_factor": self.alm_factor,
             "penalty_factor": self.penalty,
             "stiffness_factor": self.stiffness_factor(),
+            "operator_threshold_mm2": self.operator_threshold,
+            "mixed_ulm_solver": self.mixed_ulm_solver,
         })
     }
 }
@@ -231,6 +267,11 @@ mod tests {
             assert!(e.contains("0.01 ≤ alm_factor ≤ 10000"), "{e}");
         }
         assert_eq!(Settings::penalty(1e3), Ok(1e3));
+        assert_eq!(Settings::operator_threshold(0.0), Ok(0.0));
+        for bad in [-1e-9, 1e4, f64::NAN] {
+            let e = Settings::operator_threshold(bad).unwrap_err().to_string();
+            assert!(e.contains("0 ≤ operator_threshold ≤ 1000"), "{e}");
+        }
         for bad in [0.5, 2e6, f64::NAN] {
             let e = Settings::penalty(bad).unwrap_err().to_string();
             assert!(e.contains("1 ≤ penalty ≤ 1000000"), "{e}");

@@ -77,7 +77,10 @@ impl ProjectSpec {
                 "max_iteration": MAX_ITERATIONS,
                 "compute_reactions": true,
                 "linear_solver_settings": {"solver_type": "LinearSolversApplication.sparse_lu"},
-                "contact_settings": {"mortar_type": formulation.mortar_type(self.tangential)}
+                "contact_settings": {
+                    "mortar_type": formulation.mortar_type(self.tangential),
+                    "use_mixed_ulm_solver": self.settings.mixed_ulm_solver
+                }
             },
             "processes": {
                 "constraints_process_list": [],
@@ -111,7 +114,8 @@ impl ProjectSpec {
                 "friction_coefficients": {"0": mu},
                 "contact_type": contact_type,
                 // Kratos computes the penalty and the scale factor as this factor · E / h.
-                "advance_ALM_parameters": {"stiffness_factor": self.settings.stiffness_factor()}
+                "advance_ALM_parameters": {"stiffness_factor": self.settings.stiffness_factor()},
+                "operator_threshold": self.settings.operator_threshold
             }
         })
     }
@@ -161,6 +165,11 @@ mod tests {
         assert_eq!(c["python_module"], "alm_contact_process");
         assert_eq!(c["Parameters"]["friction_coefficients"]["0"], 0.2);
         assert_eq!(c["Parameters"]["contact_type"], "Frictional");
+        assert_eq!(c["Parameters"]["operator_threshold"], 1e-6);
+        assert_eq!(
+            p["solver_settings"]["contact_settings"]["use_mixed_ulm_solver"],
+            false
+        );
         spec.settings.formulation = Formulation::Penalty;
         spec.tangential = false;
         let c = spec.project()["processes"]["contact_process_list"][0].clone();
