@@ -163,12 +163,54 @@ fn columns(mdr: &History, positions: usize) -> Vec<(String, Reader, usize)> {
     columns
 }
 
-/// A value and its error against the reference; `n.c.` where the row has none.
-fn cell(value: Option<f64>, reference: Option<f64>) -> String {
+/// A value and its error against the reference; where the row has none, `n.c.` if `lost` (its
+/// step not converged, or after one under friction), else `—` (no Q under frictionless contact).
+fn cell(value: Option<f64>, reference: Option<f64>, lost: bool) -> String {
     match (value, reference) {
         (Some(v), Some(r)) if r != 0.0 => format!("{v:.2} ({:+.1} %)", (v / r - 1.0) * 1e2),
         (Some(v), _) => format!("{v:.2}"),
-        (None, _) => "n.c.".into(),
+        (None, _) if lost => "n.c.".into(),
+        (None, _) => "—".into(),
+    }
+}
+
+/// Whether Kratos' values at position `k` are lost: its step did not converge, or under
+/// friction a step before it did not (the history keeps none after the first).
+fn lost(history: &History, k: usize, frictional: bool) -> bool {
+    let Some(step) = history.at_position(k).map(|r| r.step) else {
+        return true;
+    };
+    let failed: Vec<u64> = history.metadata.extra["steps_not_converged"]
+        .as_array()
+        .map(|a| a.iter().filter_map(serde_json::Value::as_u64).collect())
+        .unwrap_or_default();
+    failed
+        .iter()
+        .any(|&s| s as usize == step || (frictional && (s as usize) < step))
+}
+
+/// A failed run's reason on one line: the error's first line (its "last output" cut) and the
+/// first error Kratos wrote to its stderr (a thread's exception, else Python's) in the run directory the failure kept, if it did.
+fn reason(error: &str) -> String {
+    let first = error.lines().next().unwrap_or_default();
+    let first = first.split("; last output").next().unwrap_or(first);
+    let kept = error
+        .rsplit("kept in ")
+        .next()
+        .and_then(|s| s.strip_suffix(')'))
+        .map(|dir| Path::new(dir).join("deck.stderr"));
+    let kratos = kept
+        .and_then(|file| std::fs::read_to_string(file).ok())
+        .and_then(|log| {
+            let lines = || log.lines();
+            lines()
+                .find(|l| l.contains("caught exception"))
+                .or_else(|| lines().find(|l| l.starts_with("RuntimeError")))
+                .map(|l| l.trim().to_owned())
+        });
+    match kratos {
+        Some(kratos) => format!("{first}: {kratos}"),
+        None => first.to_owned(),
     }
 }
 
@@ -215,9 +257,13 @@ fn row(solver: &dyn Solver, settings: &Settings, scene: &spherecontact::scene::S
     match solver::run(solver, scene) {
         Ok(history) => {
             let wall = start.elapsed().as_secs_f64();
+            let frictional = settings.formulation.frictional(!scene.path.is_normal_only());
             let cells: Vec<String> = columns(mdr, scene.path.positions().len())
                 .iter()
-                .map(|(_, read, k)| cell(read(&history, *k), read(mdr, *k)))
+                .map(|(_, read, k)| {
+                    let lost = lost(&history, *k, frictional);
+                    cell(read(&history, *k), read(mdr, *k), lost)
+                })
                 .collect();
             let (failed, iterations) = record(&history);
             println!(
@@ -228,9 +274,8 @@ fn row(solver: &dyn Solver, settings: &Settings, scene: &spherecontact::scene::S
             );
         }
         Err(e) => {
-            let reason = e.to_string();
-            let first = reason.lines().next().unwrap_or_default();
-            println!("{label} failed: {first} |");
+            eprintln!("{label} {e}");
+            println!("{label} {} |", reason(&e.to_string()));
         }
     }
 }
@@ -251,7 +296,7 @@ fn main() {
     let columns = columns(&mdr, positions);
     println!(
         "{}: {} steps, kratos-3d at c_max/{}; P and Q (error against mdr-domain), n.c. where Kratos \
-         did not converge (or after it, under friction); iterations per step (* not converged); \
+         did not converge (or after it, under friction), — no value (Q under frictionless contact); iterations per step (* not converged); \
          Kratos' median step time after the first; the run's wall time\n",
         case.name(),
         scene.steps().len(),
