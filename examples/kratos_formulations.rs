@@ -140,8 +140,11 @@ fn short_path(increments: usize) -> LoadingPath {
         delta_n: n * 1e-6,
         delta_t: t * 1e-6,
     };
-    LoadingPath::try_new(vec![at(0.0, 0.0), at(10.0, 0.0), at(10.0, 1.0)], vec![increments, 1])
-        .expect("a valid path")
+    LoadingPath::try_new(
+        vec![at(0.0, 0.0), at(10.0, 0.0), at(10.0, 1.0)],
+        vec![increments, 1],
+    )
+    .expect("a valid path")
 }
 
 /// A quantity of a history at a position: P or Q.

@@ -34,7 +34,11 @@ const PATH_KEYS: [&str; 2] = ["solving_s", "contact_s"];
 
 /// A number of the metadata.
 fn extra(history: &History, key: &str) -> Option<f64> {
-    history.metadata.extra.get(key).and_then(serde_json::Value::as_f64)
+    history
+        .metadata
+        .extra
+        .get(key)
+        .and_then(serde_json::Value::as_f64)
 }
 
 /// The path's wall time of a run [s], NaN if the solver clocks none.
@@ -48,10 +52,19 @@ fn path_seconds(history: &History) -> f64 {
 /// The median of the solver's own per-increment clock [s]: Kratos' steps after the unloaded
 /// first, fem-3d's increment median; NaN for a solver without one.
 fn own_increment_seconds(history: &History) -> f64 {
-    if let Some(steps) = history.metadata.extra.get("kratos_step_s").and_then(|v| v.as_array()) {
+    if let Some(steps) = history
+        .metadata
+        .extra
+        .get("kratos_step_s")
+        .and_then(|v| v.as_array())
+    {
         let mut times: Vec<f64> = steps.iter().skip(1).filter_map(|v| v.as_f64()).collect();
         times.sort_by(f64::total_cmp);
-        return if times.is_empty() { f64::NAN } else { median(&times) };
+        return if times.is_empty() {
+            f64::NAN
+        } else {
+            median(&times)
+        };
     }
     extra(history, "increment_median_s").unwrap_or(f64::NAN)
 }
@@ -110,8 +123,7 @@ fn main() {
             .unwrap_or(default)
     };
     let (repeats, n, increments) = (number(3), number(3), number(4));
-    let mut case =
-        Case::load(Path::new("cases/kratos-3d-normal.toml")).expect("run from the crate root");
+    let mut case = Case::load(Path::new("cases/kratos-3d-normal.toml")).expect("run from the crate root");
     case.scene.path = approach(increments);
     let solvers: Vec<Box<dyn Solver>> = SOLVERS
         .iter()
