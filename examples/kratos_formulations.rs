@@ -15,7 +15,8 @@
 //!   `kratos_step_s`), and the whole run's wall time (gmsh, Kratos' start-up, the reading back).
 //!
 //! Run: `cargo run --release --example kratos_formulations -- [OPTIONS]` (needs gmsh and Kratos:
-//! scripts/setup.sh; about 10–30 s a row at c_max/2, an unconverged step costing 30 iterations):
+//! scripts/setup.sh; 5–100 s a row at c_max/2 on the shared machine, an unconverged step costing
+//! 30 iterations):
 //!
 //! - `--case FILE` (default `cases/kratos-3d.toml`); `--case-path` keeps the case's own path
 //!   (e.g. the Figure 7 path of a case that has it) instead of the short one;
