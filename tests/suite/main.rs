@@ -53,6 +53,7 @@ mod impact;
 mod impact_codes;
 mod impact_own;
 mod impact_verify;
+mod kratos3d_mesh_rate;
 mod mdr_reference;
 mod own_law_journey;
 mod path_walker;
