@@ -165,6 +165,7 @@ fn the_command_line_overrides_the_case_table_and_refuses_bad_values() {
         ("bem=15", "even number 4 ≤ n ≤ 512"),
         ("bem", "not SOLVER=VALUE"),
         ("nosuch=3", "unknown solver"),
+        ("bme=16", "unknown solver `bme`; did you mean `bem`?"),
         ("hertz=3", "no resolution"),
     ] {
         let output = run(&["--resolution", bad]);

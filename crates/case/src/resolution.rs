@@ -57,12 +57,17 @@ impl Case {
 
     /// The solver `name` at `value`, or why not.
     fn at_resolution(&self, name: &str, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
-        let solver = self
-            .unresolved_solver(name)
-            .ok_or_else(|| ResolutionError::UnknownSolver {
+        let solver = self.unresolved_solver(name).ok_or_else(|| {
+            let known = registry::names();
+            let did_you_mean = spherecontact_system::text::nearest(name, known.iter().map(String::as_str))
+                .map(|meant| format!("; did you mean `{meant}`?"))
+                .unwrap_or_default();
+            ResolutionError::UnknownSolver {
                 solver: name.to_owned(),
-                known: registry::names().join(", "),
-            })?;
+                did_you_mean,
+                known: known.join(", "),
+            }
+        })?;
         solver.at_resolution(&self.scene, value).map_err(|e| match e {
             ResolutionError::NotResolvable { solver, .. } => ResolutionError::NotResolvable {
                 solver,

@@ -22,10 +22,13 @@ pub enum ResolutionError {
         with: String,
     },
     /// No solver of that name.
-    #[error("unknown solver `{solver}` (allowed: {known})")]
+    #[error("unknown solver `{solver}`{did_you_mean} (allowed: {known})")]
     UnknownSolver {
         /// The name given.
         solver: String,
+        /// "; did you mean `NAME`?" where a known name is near enough to be what was meant, else
+        /// empty.
+        did_you_mean: String,
         /// The solvers of this build, in words.
         known: String,
     },
