@@ -14,7 +14,7 @@ use spherecontact::case::Case;
 use spherecontact::solver::{self, SolveError};
 
 use crate::common::decks::{ccx_present, force_error_against_mdr_domain, scene_17um};
-use crate::common::refused::assert_refused;
+use crate::common::refused::{assert_refused, Left};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -35,7 +35,7 @@ fn a_bad_setting_exits_2_naming_the_file_the_field_and_the_allowed_set() {
         ),
     ] {
         let path = root().join("tests/hostile/calculix").join(file);
-        assert_refused(&["run"], &path, &[file, ":15:", field, allowed]);
+        assert_refused(&["run"], &path, &[file, ":15:", field, allowed], Left::Nothing);
     }
 }
 

@@ -7,7 +7,7 @@
 //!
 //! Run: `cargo test --test suite calculix_hex20::` (the run: `-- --ignored --nocapture`).
 
-use crate::common::refused::assert_refused;
+use crate::common::refused::{assert_refused, Left};
 use spherecontact::calculix::body::Body;
 use spherecontact::calculix::hex20;
 use spherecontact::calculix::hex_mesh::HexMesh;
@@ -139,6 +139,7 @@ fn a_bad_discretisation_case_exits_2_before_anything_runs_or_is_written() {
         &["reproduce-paper", "--discretisation"],
         &bad,
         &["bad-element.toml", "calculix.element"],
+        Left::Nothing,
     );
 }
 

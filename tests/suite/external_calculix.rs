@@ -15,7 +15,7 @@ use spherecontact::solver::{self, SolveError};
 
 use crate::common;
 use common::decks::{any_force_check, ccx_present, force_error_against_mdr_domain, scene_17um};
-use common::refused::assert_refused;
+use common::refused::{assert_refused, Left};
 
 /// A stand-in `ccx` (a shell script in `dir`) that answers `-v` as ccx 2.20 does and runs `body`
 /// for a job.
@@ -152,6 +152,7 @@ fn a_bad_calculix_setting_exits_2_naming_the_field_and_the_allowed_set() {
             &["run"],
             &root.join("tests/hostile/calculix").join(file),
             &[field, allowed],
+            Left::Nothing,
         );
     }
 }

@@ -15,7 +15,7 @@ use spherecontact::solver::{self, split::SplitDeck, SolveError};
 use spherecontact::toolchain::{Tool, Toolchain};
 
 use crate::common::decks::these_tools_present;
-use crate::common::refused::assert_refused;
+use crate::common::refused::{assert_refused, Left};
 
 fn normal_case() -> Case {
     Case::load(Path::new("cases/kratos-3d-normal.toml")).unwrap()
@@ -74,6 +74,7 @@ fn a_bad_kratos_setting_exits_2_naming_the_file_the_field_and_the_allowed_set() 
             "kratos.contact",
             "allowed: alm-frictional, alm-frictionless, penalty",
         ],
+        Left::Marker,
     );
 }
 

@@ -51,11 +51,15 @@ pub fn names() -> Vec<String> {
     registry().iter().map(|s| s.name().to_owned()).collect()
 }
 
-/// "unknown solver `NAME`" with "did you mean" the nearest of `known` where one is near enough to
-/// be what was meant ([`spherecontact_system::text::nearest`]).
+/// "unknown solver `NAME`" with [`did_you_mean`] of `known`.
 pub fn unknown(name: &str, known: &[String]) -> String {
-    match spherecontact_system::text::nearest(name, known.iter().map(String::as_str)) {
-        Some(meant) => format!("unknown solver `{name}`; did you mean `{meant}`?"),
-        None => format!("unknown solver `{name}`"),
-    }
+    format!("unknown solver `{name}`{}", did_you_mean(name, known))
+}
+
+/// "; did you mean `KNOWN`?" with the nearest of `known` where one is near enough to be what was
+/// meant ([`spherecontact_system::text::nearest`]), else nothing.
+pub fn did_you_mean(name: &str, known: &[String]) -> String {
+    spherecontact_system::text::nearest(name, known.iter().map(String::as_str))
+        .map(|meant| format!("; did you mean `{meant}`?"))
+        .unwrap_or_default()
 }

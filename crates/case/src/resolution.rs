@@ -59,12 +59,9 @@ impl Case {
     fn at_resolution(&self, name: &str, value: &str) -> Result<Box<dyn Solver>, ResolutionError> {
         let solver = self.unresolved_solver(name).ok_or_else(|| {
             let known = registry::names();
-            let did_you_mean = spherecontact_system::text::nearest(name, known.iter().map(String::as_str))
-                .map(|meant| format!("; did you mean `{meant}`?"))
-                .unwrap_or_default();
             ResolutionError::UnknownSolver {
                 solver: name.to_owned(),
-                did_you_mean,
+                did_you_mean: registry::did_you_mean(name, &known),
                 known: known.join(", "),
             }
         })?;

@@ -16,11 +16,11 @@
 //! table has all five). The axisymmetric deck has one element, CAX6 on the shared mesh's
 //! quadratic triangles ([`AXISYMMETRIC_ELEMENT`]); `element` chooses the 3D decks'.
 
-/// How CalculiX enforces contact between the sphere (slave) and the plane (master).
 use crate::choice::{self, choices};
 
 choices!(Formulation, Element);
 
+/// How CalculiX enforces contact between the sphere (slave) and the plane (master).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Formulation {
     /// `TYPE=NODE TO SURFACE`: a penalty spring at each slave node.

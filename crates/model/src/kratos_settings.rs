@@ -28,11 +28,11 @@
 //! mortar conditions exist for linear faces only (3-node triangles, 4-node quadrilaterals), so the
 //! element is first order.
 
-/// How Kratos enforces contact between sphere 1 (slave) and sphere 2 (master).
 use crate::choice::{self, choices};
 
 choices!(Formulation, Element);
 
+/// How Kratos enforces contact between sphere 1 (slave) and sphere 2 (master).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Formulation {
     /// Mortar augmented Lagrangian with Coulomb friction (the paper's kind of contact).
