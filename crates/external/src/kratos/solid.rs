@@ -224,7 +224,7 @@ impl KratosSolid {
         let faces = body.candidate_faces(plan.candidate_radius);
         let (slaves, triangles) = slave_nodes(body, &faces);
         let text = read_output(dir, "surface.csv", MAX_DECK_TABLE_BYTES).map_err(failed)?;
-        let surfaces = results::parse_surface(&text, &indices, &slaves)
+        let surfaces = results::parse_surface(&text, &steps, &slaves)
             .map_err(failed)?
             .into_iter()
             .zip(&indices)
