@@ -52,10 +52,10 @@ mod tests {
     #[test]
     fn the_table_sets_the_kratos_deck_and_bad_values_list_the_allowed_set() {
         let c =
-            case("[kratos]\ncontact = \"penalty\"\nelement = \"tet4\"\nalm_factor = 10.0\npenalty = 100.0\noperator_threshold = 1e-3\nmixed_ulm_solver = true\n")
+            case("[kratos]\ncontact = \"penalty\"\nelement = \"hex8\"\nalm_factor = 10.0\npenalty = 100.0\noperator_threshold = 1e-3\nmixed_ulm_solver = true\n")
                 .unwrap();
         assert_eq!(c.kratos.formulation, Formulation::Penalty);
-        assert_eq!(c.kratos.element, Element::Tet4);
+        assert_eq!(c.kratos.element, Element::Hex8);
         assert_eq!((c.kratos.alm_factor, c.kratos.penalty), (10.0, 100.0));
         assert_eq!(c.kratos.operator_threshold, 1e-3);
         assert!(c.kratos.mixed_ulm_solver);
@@ -66,7 +66,7 @@ mod tests {
                 "kratos.contact",
                 "allowed: alm-frictional, alm-frictionless, penalty",
             ),
-            ("element = \"hex20\"", "kratos.element", "allowed: tet4"),
+            ("element = \"hex20\"", "kratos.element", "allowed: tet4, hex8"),
             (
                 "alm_factor = 1e9",
                 "kratos.alm_factor",

@@ -37,6 +37,7 @@ pub mod exchange;
 pub mod kratos;
 
 pub mod axisym;
+pub mod bricks;
 pub mod command;
 pub mod csv_lines;
 pub mod deck;

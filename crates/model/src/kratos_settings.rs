@@ -6,7 +6,8 @@
 //! ```toml
 //! [kratos]
 //! contact = "alm-frictional"   # alm-frictional, alm-frictionless, penalty
-//! element = "tet4"             # SmallDisplacementElement3D4N on fem-3d's tetrahedra's corners
+//! element = "tet4"             # tet4 (SmallDisplacementElement3D4N on fem-3d's tetrahedra's
+//!                              # corners) or hex8 (SmallDisplacementElement3D8N on gmsh's bricks)
 //! alm_factor = 1.0             # ALM: penalty and scale factor = alm_factor · E / h (Kratos' default 1)
 //! penalty = 1e3                # penalty: K = penalty · E / h
 //! operator_threshold = 1e-6   # the objective slip's switch [mm²] (Kratos' default 1e-3), 0 to 1e3
@@ -94,16 +95,21 @@ pub enum Element {
     /// `SmallDisplacementElement3D4N` on the corners of fem-3d's tetrahedra (the mortar
     /// conditions `SurfaceCondition3D3N` on their faces).
     Tet4,
+    /// `SmallDisplacementElement3D8N` on gmsh's 8-node bricks of the same body (fem-3d's
+    /// tetrahedral geometry subdivided, graded as ccx-3d's bricks; `SurfaceCondition3D4N` on
+    /// their faces).
+    Hex8,
 }
 
 impl Element {
     /// Every element, in the order error messages list them.
-    pub const ALL: [Element; 1] = [Element::Tet4];
+    pub const ALL: [Element; 2] = [Element::Tet4, Element::Hex8];
 
     /// The name in case files and metadata.
     pub fn name(self) -> &'static str {
         match self {
             Element::Tet4 => "tet4",
+            Element::Hex8 => "hex8",
         }
     }
 
@@ -111,6 +117,7 @@ impl Element {
     pub fn keyword(self) -> &'static str {
         match self {
             Element::Tet4 => "SmallDisplacementElement3D4N",
+            Element::Hex8 => "SmallDisplacementElement3D8N",
         }
     }
 
@@ -118,6 +125,26 @@ impl Element {
     pub fn face_keyword(self) -> &'static str {
         match self {
             Element::Tet4 => "SurfaceCondition3D3N",
+            Element::Hex8 => "SurfaceCondition3D4N",
+        }
+    }
+
+    /// The mesh the element is laid on, in words (the metadata's model).
+    pub fn mesh(self) -> &'static str {
+        match self {
+            Element::Tet4 => "on the corners of gmsh's quadratic tetrahedra (fem-3d's mesh)",
+            Element::Hex8 => {
+                "on gmsh's 8-node bricks (fem-3d's geometry meshed in tetrahedra of twice the size, \
+                 each subdivided into four bricks; graded as ccx-3d's bricks)"
+            }
+        }
+    }
+
+    /// What the elements are called, plural (the metadata's resolution).
+    pub fn plural(self) -> &'static str {
+        match self {
+            Element::Tet4 => "tetrahedra",
+            Element::Hex8 => "bricks",
         }
     }
 }
@@ -253,14 +280,18 @@ mod tests {
         for f in Formulation::ALL {
             assert_eq!(Settings::formulation(f.name()), Ok(f));
         }
-        assert_eq!(Settings::element("tet4"), Ok(Element::Tet4));
+        for e in Element::ALL {
+            assert_eq!(Settings::element(e.name()), Ok(e));
+        }
+        assert_eq!(Element::Hex8.keyword(), "SmallDisplacementElement3D8N");
+        assert_eq!(Element::Hex8.face_keyword(), "SurfaceCondition3D4N");
         let e = Settings::formulation("mortar").unwrap_err().to_string();
         assert!(
             e.contains("allowed: alm-frictional, alm-frictionless, penalty"),
             "{e}"
         );
         let e = Settings::element("hex20").unwrap_err().to_string();
-        assert!(e.contains("allowed: tet4"), "{e}");
+        assert!(e.contains("allowed: tet4, hex8"), "{e}");
         assert_eq!(Settings::alm_factor(1.0), Ok(1.0));
         for bad in [1e-3, 1e5, f64::NAN, f64::INFINITY] {
             let e = Settings::alm_factor(bad).unwrap_err().to_string();

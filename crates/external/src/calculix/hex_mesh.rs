@@ -2,17 +2,9 @@
 //! counterpart of ANSYS's SOLID186) of the same half body as fem-3d's tetrahedra, graded towards
 //! the contact alike, read back in CalculiX's node order.
 //!
-//! How: the body, its physical groups and its size field are [`SolidGeometry::geo`]'s (the half
-//! hemisphere or cap y ≥ 0: surface 1 the contact candidate, 2 the gripped far face, 3 the
-//! symmetry plane y = 0, volume 10 the body), meshed with tetrahedra of twice the size and
-//! subdivided by gmsh into hexahedra (`Mesh.SubdivisionAlgorithm = 2`: each tetrahedron into four
-//! bricks through its edge midpoints, face centroids and centroid, so the bricks' edges are
-//! about the size asked for), quadratic serendipity (`Mesh.ElementOrder = 2`,
-//! `Mesh.SecondOrderIncomplete = 1`: 20-node bricks, 8-node faces, midside nodes on the sphere).
-//! Why not transfinite: the body is a boolean of a sphere and a box whose faces are not
-//! four-sided, so a transfinite (structured) hex mesh would need a hand-made block decomposition
-//! of the quarter ball, different for the cap and the hemisphere; the subdivision keeps the one
-//! geometry and the one grading of fem-3d's mesh.
+//! How: [`crate::bricks`] (the mesher `kratos-3d`'s 8-node bricks share), at
+//! [`Order::Serendipity`] (`Mesh.ElementOrder = 2`, `Mesh.SecondOrderIncomplete = 1`: 20-node
+//! bricks, 8-node faces, midside nodes on the sphere), graded by [`bricks::graded`].
 //!
 //! The faces of each group are 8-node quadrangles (gmsh's order is CalculiX's); the bricks are
 //! permuted to CalculiX's order ([`hex20::GMSH_TO_CCX`]) and turned round where inverted.
@@ -22,39 +14,12 @@ use std::path::Path;
 use mshio::mshfile::ElementType;
 
 use super::hex20;
+use crate::bricks::{self, Order};
 use spherecontact_model::solver::SolveError;
 use spherecontact_solvers::fem::mesh::groups;
 use spherecontact_solvers::fem::mesh::solid::{BODY, CONTACT, FAR, SYMMETRY};
-use spherecontact_solvers::fem::mesh::solid_geo::{self, SolidGeometry, SolidMeshFiles};
+use spherecontact_solvers::fem::mesh::solid_geo::{SolidGeometry, SolidMeshFiles};
 use spherecontact_system::toolchain::Toolchain;
-
-/// The options appended to the tetrahedral `.geo`: subdivision into hexahedra, 20-node bricks.
-const HEX_OPTIONS: &str = "// spherecontact: 20-node hexahedra by subdividing the tetrahedra (each into 4)
-Mesh.SubdivisionAlgorithm = 2;
-Mesh.ElementOrder = 2;
-Mesh.SecondOrderIncomplete = 1;
-";
-
-/// The bricks' grading for `ccx-3d`: the size grows from the fine zone at this rate (fem-3d's
-/// tetrahedra grow at [`solid_geo::GROWTH`] = 0.3) …
-pub const GROWTH: f64 = 1.0;
-/// … up to this size, in units of the sphere radius (fem-3d's: [`solid_geo::MAX_SIZE`] = 0.15).
-/// Measured on the paper's hemispheres at pole brick c_max/2 (δn = 17 µm then δt = 3 µm, C3D20R,
-/// penalty 1e3): fem-3d's grading gives 7 020 bricks and 32 654 nodes a body; this one 1 248
-/// bricks and 6 410 nodes, P within +3.0e-3 and Q −1.1 % of mdr-domain, 68 s of ccx CPU; growth
-/// 2 up to 0.5 R gives 316 bricks and 1 764 nodes (9 s) but coarsens the contact zone to 2
-/// candidate faces: P −4 %, Q −58 %.
-pub const MAX_SIZE: f64 = 0.3;
-
-/// `geometry` with the bricks' faster grading ([`GROWTH`], [`MAX_SIZE`]): the contact zone
-/// keeps its size and depth, the far body has fewer bricks.
-pub fn graded(geometry: &SolidGeometry) -> SolidGeometry {
-    SolidGeometry {
-        growth: GROWTH,
-        max_size: MAX_SIZE * geometry.radius,
-        ..*geometry
-    }
-}
 
 /// A half body of 20-node bricks with its boundary groups.
 #[derive(Clone, Debug, Default)]
@@ -83,17 +48,6 @@ pub struct Quality {
     pub volume: f64,
 }
 
-/// The `.geo` of the hexahedral mesh of `geometry` (whose pole size and largest size are the
-/// bricks'): the tetrahedral geometry at twice the sizes, subdivided.
-pub fn geo(geometry: &SolidGeometry) -> Result<String, String> {
-    let tetrahedra = SolidGeometry {
-        pole_size: 2.0 * geometry.pole_size,
-        max_size: 2.0 * geometry.max_size,
-        ..*geometry
-    };
-    Ok(tetrahedra.geo()? + HEX_OPTIONS)
-}
-
 /// Meshes `geometry` into `<dir>/<stem>.msh` and reads it back.
 pub fn mesh(
     geometry: &SolidGeometry,
@@ -101,8 +55,7 @@ pub fn mesh(
     stem: &str,
     toolchain: &Toolchain,
 ) -> Result<(HexMesh, SolidMeshFiles), SolveError> {
-    let text = geo(geometry).map_err(SolveError::NotApplicable)?;
-    let files = solid_geo::mesh_geo(&text, dir, stem, toolchain)?;
+    let files = bricks::mesh(geometry, Order::Serendipity, dir, stem, toolchain)?;
     let mesh = read(&files.msh).map_err(SolveError::Failed)?;
     Ok((mesh, files))
 }
@@ -247,24 +200,5 @@ mod tests {
     fn tetrahedra_are_refused_by_name() {
         let e = parse(msh(11).as_bytes()).unwrap_err();
         assert!(e.contains("Tet10") && e.contains("SubdivisionAlgorithm"), "{e}");
-    }
-
-    #[test]
-    fn the_geo_subdivides_tetrahedra_of_twice_the_size() {
-        let g = SolidGeometry {
-            radius: 0.1,
-            height: 0.1,
-            pole_size: 1e-4,
-            fine_radius: 1.2e-3,
-            fine_depth: 2e-4,
-            growth: 0.3,
-            max_size: 0.015,
-        };
-        let text = geo(&g).unwrap();
-        assert!(
-            text.contains("h = 2e-4;") && text.contains("hmax = 3e-2;"),
-            "{text}"
-        );
-        assert!(text.ends_with(HEX_OPTIONS));
     }
 }

@@ -31,6 +31,7 @@ use super::hex_mesh;
 use super::solid_inp::SolidDeckSpec;
 use super::solid_read::{self, SolidRun, STICK_MARGIN};
 use crate::axisym::Options;
+use crate::bricks;
 use crate::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
 use crate::plan::Plan;
 use crate::readback;
@@ -172,7 +173,7 @@ impl CcxSolid {
                 (self.read_mesh(dir)?, files)
             }
             MeshKind::Hex20 => {
-                let (mesh, files) = hex_mesh::mesh(&hex_mesh::graded(&geometry), dir, "body", toolchain)?;
+                let (mesh, files) = hex_mesh::mesh(&bricks::graded(&geometry), dir, "body", toolchain)?;
                 (Body::Hex20(mesh), files)
             }
         };

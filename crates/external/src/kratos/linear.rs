@@ -1,30 +1,84 @@
-//! The half body of `kratos-3d` in first-order elements: the corners of fem-3d's quadratic
-//! tetrahedra ([`SolidMesh`], gmsh's mesh of [`spherecontact_solvers::fem::mesh::solid_geo`]) as
-//! 4-node tetrahedra, their contact faces as 3-node triangles turned outward, the far face's and
-//! the symmetry plane's nodes. Kratos 10.4.4 has mortar contact conditions on linear faces only,
-//! so the body is the quadratic mesh's corners (the same geometry, the same nodes on the sphere).
+//! The half body of `kratos-3d` in first-order elements ([`Element`]): 4-node tetrahedra on the
+//! corners of fem-3d's quadratic tetrahedra ([`SolidMesh`], gmsh's mesh of
+//! [`spherecontact_solvers::fem::mesh::solid_geo`]), or gmsh's 8-node bricks of the same body
+//! ([`super::bricks8`]); their contact faces (3-node triangles or 4-node quadrangles) turned
+//! outward, the far face's and the symmetry plane's nodes. Kratos 10.4.4 has mortar contact
+//! conditions on linear faces only, so the body is first order (the tetrahedra: the quadratic
+//! mesh's corners, the same geometry, the same nodes on the sphere).
 
 use std::collections::HashMap;
 
+use super::vector::{area_vector, centroid, dot, sub};
+use spherecontact_model::kratos_settings::Element;
 use spherecontact_solvers::fem::mesh::solid::SolidMesh;
 
 /// The half body's first-order mesh [m].
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct LinearBody {
-    /// Node coordinates [m]: the quadratic mesh's corners, in their order there.
+    /// The element kind.
+    pub element: Element,
+    /// Node coordinates [m].
     pub nodes: Vec<[f64; 3]>,
-    /// 4-node tetrahedra, positively oriented (gmsh's corner order).
-    pub tetrahedra: Vec<[usize; 4]>,
-    /// The contact surface's triangles, each ordered so that its normal points out of the body.
-    pub contact: Vec<[usize; 3]>,
+    /// The elements' nodes (4 or 8, Kratos' order: gmsh's), positively oriented.
+    pub elements: Vec<Vec<usize>>,
+    /// The contact surface's faces (3 or 4 nodes), each ordered so that its normal points out of
+    /// the body.
+    pub contact: Vec<Vec<usize>>,
     /// The far face's nodes, sorted.
     pub far: Vec<usize>,
     /// The symmetry plane's (y = 0) nodes, sorted.
     pub symmetry: Vec<usize>,
 }
 
+/// The faces of a tetrahedron (the one opposite each corner) as its local nodes.
+const TET4_FACES: [&[usize]; 4] = [&[1, 2, 3], &[0, 2, 3], &[0, 1, 3], &[0, 1, 2]];
+/// The faces of an 8-node brick (corners 0–3 on ζ = −1, 4–7 above them) as its local nodes.
+const HEX8_FACES: [&[usize]; 6] = [
+    &[0, 1, 2, 3],
+    &[4, 5, 6, 7],
+    &[0, 1, 5, 4],
+    &[1, 2, 6, 5],
+    &[2, 3, 7, 6],
+    &[3, 0, 4, 7],
+];
+
+/// The local faces of `element`.
+fn local_faces(element: Element) -> &'static [&'static [usize]] {
+    match element {
+        Element::Tet4 => &TET4_FACES,
+        Element::Hex8 => &HEX8_FACES,
+    }
+}
+
+/// The local node order of `element`'s mirror image that keeps it positively oriented: a
+/// reflection turns an element inside out, and reversing one face's cycle (and the opposite
+/// one's, for the brick) turns it back.
+pub fn mirror_order(element: Element) -> &'static [usize] {
+    match element {
+        Element::Tet4 => &[0, 2, 1, 3],
+        Element::Hex8 => &[0, 3, 2, 1, 4, 7, 6, 5],
+    }
+}
+
+/// `face` with its cycle reversed (its normal turned round).
+pub fn reversed(face: &[usize]) -> Vec<usize> {
+    let mut f = face.to_vec();
+    f[1..].reverse();
+    f
+}
+
+/// The faces of a mesh's boundary groups, as read: contact, far, symmetry.
+pub struct Boundary {
+    /// The contact candidate surface's faces.
+    pub contact: Vec<Vec<usize>>,
+    /// The far face's faces.
+    pub far: Vec<Vec<usize>>,
+    /// The symmetry plane's faces.
+    pub symmetry: Vec<Vec<usize>>,
+}
+
 impl LinearBody {
-    /// The corners of `mesh`; fails when a contact face is no element's face.
+    /// The corners of `mesh` as 4-node tetrahedra; fails when a contact face is no element's face.
     pub fn of(mesh: &SolidMesh) -> Result<Self, String> {
         let mut index = HashMap::new();
         let mut nodes = Vec::new();
@@ -34,102 +88,98 @@ impl LinearBody {
                 nodes.len() - 1
             })
         };
-        let tetrahedra: Vec<[usize; 4]> = mesh
+        let elements: Vec<Vec<usize>> = mesh
             .tetrahedra
             .iter()
-            .map(|t| [t[0], t[1], t[2], t[3]].map(&mut renumber))
+            .map(|t| t[..4].iter().map(|&n| renumber(n)).collect())
             .collect();
-        let corners = |faces: &[[usize; 6]]| -> Vec<[usize; 3]> {
+        let corners = |faces: &[[usize; 6]]| -> Vec<Vec<usize>> {
             faces
                 .iter()
-                .map(|f| [f[0], f[1], f[2]].map(|n| index[&n]))
+                .map(|f| f[..3].iter().map(|n| index[n]).collect())
                 .collect()
         };
-        let (contact, far, symmetry) = (
-            corners(&mesh.contact),
-            corners(&mesh.far),
-            corners(&mesh.symmetry),
-        );
-        let mut body = Self {
-            nodes,
-            tetrahedra,
-            contact: Vec::new(),
-            far: distinct(&far),
-            symmetry: distinct(&symmetry),
+        let boundary = Boundary {
+            contact: corners(&mesh.contact),
+            far: corners(&mesh.far),
+            symmetry: corners(&mesh.symmetry),
         };
-        body.contact = body.outward(&contact)?;
+        Self::new(Element::Tet4, nodes, elements, &boundary)
+    }
+
+    /// The body of `element`s (positively oriented) and its `boundary`; fails when a contact face
+    /// is no element's face.
+    pub fn new(
+        element: Element,
+        nodes: Vec<[f64; 3]>,
+        elements: Vec<Vec<usize>>,
+        boundary: &Boundary,
+    ) -> Result<Self, String> {
+        let mut body = Self {
+            element,
+            nodes,
+            elements,
+            contact: Vec::new(),
+            far: distinct(&boundary.far),
+            symmetry: distinct(&boundary.symmetry),
+        };
+        body.contact = body.outward(&boundary.contact)?;
         Ok(body)
     }
 
     /// `faces` each ordered so that its normal points away from the element it bounds.
-    fn outward(&self, faces: &[[usize; 3]]) -> Result<Vec<[usize; 3]>, String> {
-        let mut opposite = HashMap::new();
-        for t in &self.tetrahedra {
-            for k in 0..4 {
-                let mut face: Vec<usize> = (0..4).filter(|&j| j != k).map(|j| t[j]).collect();
-                face.sort_unstable();
-                opposite.insert(face, t[k]);
+    fn outward(&self, faces: &[Vec<usize>]) -> Result<Vec<Vec<usize>>, String> {
+        let mut owner = HashMap::new();
+        for (e, nodes) in self.elements.iter().enumerate() {
+            for local in local_faces(self.element) {
+                let mut key: Vec<usize> = local.iter().map(|&k| nodes[k]).collect();
+                key.sort_unstable();
+                owner.insert(key, e);
             }
         }
         faces
             .iter()
-            .map(|&[a, b, c]| {
-                let mut key = vec![a, b, c];
+            .map(|face| {
+                let mut key = face.clone();
                 key.sort_unstable();
-                let inner = *opposite
-                    .get(&key)
-                    .ok_or_else(|| format!("contact face {:?} is the face of no tetrahedron", [a, b, c]))?;
-                let [pa, pb, pc, po] = [a, b, c, inner].map(|n| self.nodes[n]);
-                let normal = cross(sub(pb, pa), sub(pc, pa));
-                Ok(if dot(normal, sub(pa, po)) > 0.0 {
-                    [a, b, c]
-                } else {
-                    [a, c, b]
+                let e = *owner.get(&key).ok_or_else(|| {
+                    format!("contact face {face:?} is the face of no {}", self.element.name())
+                })?;
+                let points: Vec<[f64; 3]> = face.iter().map(|&n| self.nodes[n]).collect();
+                let inner = centroid(self.elements[e].iter().map(|&n| self.nodes[n]));
+                let out = sub(centroid(points.iter().copied()), inner);
+                Ok(match dot(area_vector(&points), out) > 0.0 {
+                    true => face.clone(),
+                    false => reversed(face),
                 })
             })
             .collect()
     }
 
     /// The contact faces wholly within `radius` of the axis (distance in the plane z = 0).
-    pub fn candidate_faces(&self, radius: f64) -> Vec<[usize; 3]> {
+    pub fn candidate_faces(&self, radius: f64) -> Vec<Vec<usize>> {
         self.contact
             .iter()
             .filter(|f| {
                 f.iter()
                     .all(|&n| self.nodes[n][0].hypot(self.nodes[n][1]) <= radius)
             })
-            .copied()
+            .cloned()
             .collect()
     }
 
     /// The distinct nodes of `faces`, sorted.
-    pub fn nodes_of(faces: &[[usize; 3]]) -> Vec<usize> {
+    pub fn nodes_of(faces: &[Vec<usize>]) -> Vec<usize> {
         distinct(faces)
     }
 }
 
 /// The distinct nodes of some faces, sorted.
-fn distinct(faces: &[[usize; 3]]) -> Vec<usize> {
+fn distinct(faces: &[Vec<usize>]) -> Vec<usize> {
     let mut nodes: Vec<usize> = faces.iter().flatten().copied().collect();
     nodes.sort_unstable();
     nodes.dedup();
     nodes
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[cfg(test)]
@@ -163,13 +213,42 @@ mod tests {
     fn the_corners_make_the_body_and_the_contact_face_points_out() {
         let body = LinearBody::of(&tetrahedron()).unwrap();
         assert_eq!(body.nodes.len(), 4);
-        assert_eq!(body.tetrahedra, vec![[0, 1, 2, 3]]);
-        assert_eq!(body.contact, vec![[0, 2, 1]]);
+        assert_eq!(body.elements, vec![vec![0, 1, 2, 3]]);
+        assert_eq!(body.contact, vec![vec![0, 2, 1]]);
         assert_eq!(
             (body.far.clone(), body.symmetry.clone()),
             (vec![1, 2, 3], vec![0, 1, 3])
         );
         assert_eq!(body.candidate_faces(1.1e-3).len(), 1);
         assert!(body.candidate_faces(0.9e-3).is_empty());
+    }
+
+    /// Requirement: a brick's bottom face (z = 0), listed with its normal up (into the brick), is
+    /// turned round to point down, out of it, and a face of no brick is refused by name; exact.
+    #[test]
+    fn a_bricks_contact_face_points_out_and_a_stray_face_is_refused() {
+        let nodes: Vec<[f64; 3]> = (0..8)
+            .map(|k| {
+                let [x, y] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][k % 4];
+                [x * 1e-3, y * 1e-3, (k / 4) as f64 * 1e-3]
+            })
+            .collect();
+        let boundary = |contact: Vec<usize>| Boundary {
+            contact: vec![contact],
+            far: vec![vec![4, 5, 6, 7]],
+            symmetry: vec![vec![0, 1, 5, 4]],
+        };
+        let bricks = vec![(0..8).collect::<Vec<usize>>()];
+        let body = LinearBody::new(
+            Element::Hex8,
+            nodes.clone(),
+            bricks.clone(),
+            &boundary(vec![0, 1, 2, 3]),
+        )
+        .unwrap();
+        assert_eq!(body.contact, vec![vec![0, 3, 2, 1]]);
+        assert_eq!(body.far, vec![4, 5, 6, 7]);
+        let e = LinearBody::new(Element::Hex8, nodes, bricks, &boundary(vec![0, 1, 6, 7])).unwrap_err();
+        assert!(e.contains("face of no hex8"), "{e}");
     }
 }

@@ -1,6 +1,7 @@
 //! Writing the MDPA (Kratos' model part file) of `kratos-3d`: both spheres' first-order
-//! tetrahedra ([`LinearBody`]; sphere 2 the mirror image of sphere 1 through the contact plane
-//! z = 0, numbered after it), the candidate contact faces as `SurfaceCondition3D3N` skins in the
+//! elements ([`LinearBody`], tetrahedra or bricks; sphere 2 the mirror image of sphere 1 through
+//! the contact plane z = 0, numbered after it, its elements in [`mirror_order`] to stay right
+//! side out), the candidate contact faces as `SurfaceCondition3D3N` or `…3D4N` skins in the
 //! sub-model-parts `Slave` (sphere 1) and `Master` (sphere 2), and the node sets the driver holds:
 //! `Far1`, `Far2` (the far faces) and `Symmetry` (the plane y = 0).
 //!
@@ -9,8 +10,7 @@
 
 use std::fmt::Write;
 
-use super::linear::LinearBody;
-use spherecontact_model::kratos_settings::Element;
+use super::linear::{mirror_order, reversed, LinearBody};
 
 /// The sub-model-part of every element (the materials file gives it its properties).
 pub const SOLID: &str = "Solid";
@@ -31,9 +31,7 @@ pub struct MdpaSpec<'a> {
     /// The half body [m].
     pub body: &'a LinearBody,
     /// Sphere 1's candidate faces (outward), from [`LinearBody::candidate_faces`].
-    pub slave_faces: &'a [[usize; 3]],
-    /// The element.
-    pub element: Element,
+    pub slave_faces: &'a [Vec<usize>],
     /// Whether the master's candidate nodes on the symmetry plane are left free in y (frictional
     /// contact: there the stick condition ties them to the slave's nodes, which are held; holding
     /// both would repeat one constraint and make Kratos' system singular).
@@ -49,7 +47,7 @@ impl MdpaSpec<'_> {
     /// The MDPA text.
     pub fn text(&self) -> String {
         let n = self.count();
-        let e = self.body.tetrahedra.len();
+        let e = self.body.elements.len();
         let c = self.slave_faces.len();
         let mut text = String::from(
             "// spherecontact kratos-3d: both spheres (sphere 2 mirrored through z = 0), mm\n\
@@ -68,26 +66,27 @@ impl MdpaSpec<'_> {
                 );
             }
         }
-        let _ = write!(text, "End Nodes\n\nBegin Elements {}\n", self.element.keyword());
+        let element = self.body.element;
+        let _ = write!(text, "End Nodes\n\nBegin Elements {}\n", element.keyword());
         for (body, offset) in [(1, 0), (2, n)] {
-            for (k, t) in self.body.tetrahedra.iter().enumerate() {
-                // Mirroring turns a tetrahedron inside out: corners 2 and 3 swapped.
-                let t = if body == 1 { *t } else { [t[0], t[2], t[1], t[3]] };
-                let [a, b, cc, d] = t.map(|v| v + offset + 1);
-                let _ = writeln!(text, "{} 1 {a} {b} {cc} {d}", (body - 1) * e + k + 1);
+            for (k, nodes) in self.body.elements.iter().enumerate() {
+                let nodes: Vec<usize> = match body {
+                    1 => nodes.clone(),
+                    _ => mirror_order(element).iter().map(|&j| nodes[j]).collect(),
+                };
+                let _ = writeln!(text, "{} 1 {}", (body - 1) * e + k + 1, ids(&nodes, offset));
             }
         }
         let _ = write!(
             text,
             "End Elements\n\nBegin Conditions {}\n",
-            self.element.face_keyword()
+            element.face_keyword()
         );
         for (body, offset) in [(1, 0), (2, n)] {
             for (k, f) in self.slave_faces.iter().enumerate() {
                 // The mirror image of an outward face is inward: reversed.
-                let f = if body == 1 { *f } else { [f[0], f[2], f[1]] };
-                let [a, b, cc] = f.map(|v| v + offset + 1);
-                let _ = writeln!(text, "{} 0 {a} {b} {cc}", (body - 1) * c + k + 1);
+                let f = if body == 1 { f.clone() } else { reversed(f) };
+                let _ = writeln!(text, "{} 0 {}", (body - 1) * c + k + 1, ids(&f, offset));
             }
         }
         text.push_str("End Conditions\n\n");
@@ -129,6 +128,12 @@ impl MdpaSpec<'_> {
     }
 }
 
+/// The 1-based MDPA ids of `nodes` of the sphere numbered from `offset`, space-separated.
+fn ids(nodes: &[usize], offset: usize) -> String {
+    let ids: Vec<String> = nodes.iter().map(|v| (v + offset + 1).to_string()).collect();
+    ids.join(" ")
+}
+
 /// Appends a sub-model-part of `nodes`, `elements` and `conditions` (1-based ids).
 fn sub_model_part(text: &mut String, name: &str, nodes: &[usize], elements: &[usize], conditions: &[usize]) {
     let _ = writeln!(text, "Begin SubModelPart {name}");
@@ -149,17 +154,21 @@ fn sub_model_part(text: &mut String, name: &str, nodes: &[usize], elements: &[us
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kratos::bricks8;
+    use crate::kratos::linear::Boundary;
+    use spherecontact_model::kratos_settings::Element;
 
     fn body() -> LinearBody {
         LinearBody {
+            element: Element::Tet4,
             nodes: vec![
                 [0.0, 0.0, 0.0],
                 [1e-3, 0.0, 0.0],
                 [0.0, 1e-3, 0.0],
                 [0.0, 0.0, 1e-3],
             ],
-            tetrahedra: vec![[0, 1, 2, 3]],
-            contact: vec![[0, 2, 1]],
+            elements: vec![vec![0, 1, 2, 3]],
+            contact: vec![vec![0, 2, 1]],
             far: vec![1, 2, 3],
             symmetry: vec![0, 1, 3],
         }
@@ -173,7 +182,6 @@ mod tests {
         let spec = MdpaSpec {
             body: &body,
             slave_faces: &body.contact,
-            element: Element::Tet4,
             free_master_plane: true,
         };
         let text = spec.text();
@@ -203,5 +211,72 @@ mod tests {
         }
         .text();
         assert!(held.contains("    4\n    5\n    6\n    8\n  End SubModelPartNodes"));
+    }
+
+    /// Two bricks of 1 mm side on the contact plane, side by side along x, their bottom faces the
+    /// contact candidates, in gmsh's order.
+    fn bricks() -> LinearBody {
+        let nodes: Vec<[f64; 3]> = (0..12)
+            .map(|k| {
+                [
+                    (k % 3) as f64 * 1e-3,
+                    ((k / 3) % 2) as f64 * 1e-3,
+                    (k / 6) as f64 * 1e-3,
+                ]
+            })
+            .collect();
+        let boundary = Boundary {
+            contact: vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]],
+            far: vec![vec![6, 7, 10, 9], vec![7, 8, 11, 10]],
+            symmetry: vec![vec![0, 1, 7, 6], vec![1, 2, 8, 7]],
+        };
+        let elements = vec![vec![0, 1, 4, 3, 6, 7, 10, 9], vec![1, 2, 5, 4, 7, 8, 11, 10]];
+        LinearBody::new(Element::Hex8, nodes, elements, &boundary).unwrap()
+    }
+
+    /// The rows of block `name` of the MDPA `text`, each as its numbers.
+    fn block(text: &str, name: &str) -> Vec<Vec<f64>> {
+        let body = text.split(&format!("Begin {name}")).nth(1).unwrap();
+        let body = body
+            .split(&format!("End {}", name.split(' ').next().unwrap()))
+            .next()
+            .unwrap();
+        body.lines()
+            .skip(1)
+            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+            .collect()
+    }
+
+    /// Requirement: on bricks, the MDPA has Kratos' 8-node element and 4-node skin condition,
+    /// both spheres' bricks (2 + 2) and skins (2 + 2), every brick of both spheres positively
+    /// oriented (the trilinear Jacobian at the 8 Gauss points of the written node order, sphere 2
+    /// the mirror image), the slave skin facing −z (out of sphere 1) and the master's +z (out of
+    /// sphere 2). Exact: counts and signs.
+    #[test]
+    fn bricks_are_written_right_side_out_with_their_quadrangle_skins() {
+        let body = bricks();
+        let spec = MdpaSpec {
+            body: &body,
+            slave_faces: &body.contact,
+            free_master_plane: false,
+        };
+        let text = spec.text();
+        let nodes: Vec<[f64; 3]> = block(&text, "Nodes").iter().map(|r| [r[1], r[2], r[3]]).collect();
+        assert_eq!(nodes.len(), 24);
+        let elements = block(&text, "Elements SmallDisplacementElement3D8N");
+        assert_eq!(elements.len(), 4);
+        for row in &elements {
+            assert_eq!(row.len(), 10, "{row:?}");
+            let coords: Vec<[f64; 3]> = row[2..].iter().map(|&id| nodes[id as usize - 1]).collect();
+            assert!(bricks8::jacobians(&coords).all(|j| j > 0.0), "{row:?}");
+        }
+        let conditions = block(&text, "Conditions SurfaceCondition3D4N");
+        assert_eq!(conditions.len(), 4);
+        for (k, row) in conditions.iter().enumerate() {
+            let points: Vec<[f64; 3]> = row[2..].iter().map(|&id| nodes[id as usize - 1]).collect();
+            let normal = crate::kratos::vector::area_vector(&points);
+            let sign = if k < 2 { -1.0 } else { 1.0 };
+            assert!(sign * normal[2] > 0.0 && normal[0] == 0.0, "{row:?}: {normal:?}");
+        }
     }
 }

@@ -123,7 +123,15 @@ pub struct SlaveNodes {
 /// Reads `surface.csv` from `text`: for each computed step of `steps` (in order) one row per node
 /// of `slaves`, any order. A node is in contact where Kratos flags it ACTIVE; its pressure is the
 /// augmented one there (0 elsewhere), and it sticks where ACTIVE and not SLIP.
-pub fn parse_surface(text: &str, steps: &[usize], slaves: &SlaveNodes) -> Result<Vec<Vec<Node3>>, String> {
+///
+/// At a step Kratos did not converge, whose surface the History never shows, a number that is not
+/// finite (Kratos leaves `nan` tractions in a diverged state) reads as 0, so that the run's
+/// convergence record is kept; anything that is no number fails there too.
+pub fn parse_surface(
+    text: &str,
+    steps: &[KratosStep],
+    slaves: &SlaveNodes,
+) -> Result<Vec<Vec<Node3>>, String> {
     let rows = readback::records(text, "surface.csv", &SURFACE_COLUMNS)?;
     let index: HashMap<usize, usize> = slaves.ids.iter().enumerate().map(|(j, &id)| (id, j)).collect();
     let n = slaves.ids.len();
@@ -137,7 +145,8 @@ pub fn parse_surface(text: &str, steps: &[usize], slaves: &SlaveNodes) -> Result
         ));
     }
     let mut surfaces = Vec::with_capacity(steps.len());
-    for (block, &step) in rows.chunks(n).zip(steps) {
+    for (block, computed) in rows.chunks(n).zip(steps) {
+        let step = computed.step;
         let mut nodes: Vec<Option<Node3>> = vec![None; n];
         for row in block {
             let found: usize = row.whole(0, "a step index")?;
@@ -151,16 +160,23 @@ pub fn parse_surface(text: &str, steps: &[usize], slaves: &SlaveNodes) -> Result
             if nodes[j].is_some() {
                 return Err(row.cell_error(1, format!("node {id} twice at step {step}")));
             }
-            nodes[j] = Some(node(row, slaves, j)?);
+            nodes[j] = Some(node(row, slaves, j, computed.converged)?);
         }
         surfaces.push(nodes.into_iter().flatten().collect());
     }
     Ok(surfaces)
 }
 
-/// The contact state of slave node `j` from its row.
-fn node(row: &Row, slaves: &SlaveNodes, j: usize) -> Result<Node3, String> {
-    let [p, qx, qy, uz, sx, sy] = [2, 3, 4, 7, 8, 9].map(|i| row.finite(i, 1.0));
+/// The contact state of slave node `j` from its row (`converged`: every number finite).
+fn node(row: &Row, slaves: &SlaveNodes, j: usize, converged: bool) -> Result<Node3, String> {
+    let number = |i: usize| {
+        row.finite(i, 1.0)
+            .or_else(|e| match !converged && row.text(i).parse::<f64>().is_ok() {
+                true => Ok(0.0),
+                false => Err(e),
+            })
+    };
+    let [p, qx, qy, uz, sx, sy] = [2, 3, 4, 7, 8, 9].map(number);
     let flag = |i| row.choice(i, &[("0", false), ("1", true)]);
     let (active, slip) = (flag(5)?, flag(6)?);
     let [x, y, z] = slaves.points[j];
@@ -205,7 +221,7 @@ mod tests {
     }
 
     /// Requirement: pressure only where ACTIVE, stick where ACTIVE and not SLIP, SI units; a node
-    /// not of the slave set fails.
+    /// not of the slave set fails; a `nan` is tolerated only at a step Kratos did not converge.
     #[test]
     fn the_surface_is_read_in_si_with_the_contact_flags() {
         let slaves = SlaveNodes {
@@ -215,14 +231,34 @@ mod tests {
         };
         let text = "step,node,p_MPa,qx_MPa,qy_MPa,active,slip,uz_mm,slip_x_mm,slip_y_mm\n\
                     3,9,-0.5,0,0,0,0,0,0,0\n3,4,400,10,0,1,0,-1e-6,0,0\n";
-        let s = parse_surface(text, &[3], &slaves).unwrap();
+        let step = |converged| KratosStep {
+            step: 3,
+            converged,
+            iterations: 5,
+            residual: 0.0,
+            forces: [0.0; 2],
+            forces_other: [0.0; 2],
+            wall_s: 1.0,
+        };
+        let s = parse_surface(text, &[step(true)], &slaves).unwrap();
         assert_eq!(s[0][0].pressure, 400e6);
         assert!(s[0][0].stick && !s[0][1].stick);
         assert_eq!(s[0][1].pressure, 0.0);
         assert!((s[0][0].gap + 1e-9).abs() < 1e-24);
         let bad = text.replace("3,9,", "3,7,");
-        assert!(parse_surface(&bad, &[3], &slaves)
+        assert!(parse_surface(&bad, &[step(true)], &slaves)
             .unwrap_err()
             .contains("not a slave node"));
+        // Kratos' nan at a step it did not converge reads as 0 (never shown); at a converged
+        // step, or a cell that is no number, it fails naming the column.
+        let diverged = text.replace("3,9,-0.5,0,", "3,9,-0.5,nan,");
+        assert_eq!(
+            parse_surface(&diverged, &[step(false)], &slaves).unwrap()[0][1].traction,
+            [0.0; 2]
+        );
+        let e = parse_surface(&diverged, &[step(true)], &slaves).unwrap_err();
+        assert!(e.contains("surface.csv:2") && e.contains("qx_MPa"), "{e}");
+        let garbage = text.replace("3,9,-0.5,0,", "3,9,-0.5,x,");
+        assert!(parse_surface(&garbage, &[step(false)], &slaves).is_err());
     }
 }

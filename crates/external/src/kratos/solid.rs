@@ -13,10 +13,12 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
+use super::bricks8;
 use super::linear::LinearBody;
 use super::mdpa::{MdpaSpec, STEM};
 use super::project::{ProjectSpec, MATERIALS, MAX_ITERATIONS, PROJECT};
-use super::results::{self, KratosStep, SlaveNodes};
+use super::results::{self, KratosStep};
+use super::slave::slave_nodes;
 use crate::axisym::Options;
 use crate::deck::{self, Deck, DeckKind, RunDir, TimeBudget};
 use crate::plan::Plan;
@@ -26,7 +28,7 @@ use crate::split;
 use crate::surface3d::{self, Surface3};
 use spherecontact_model::domain::Grip;
 use spherecontact_model::history::{History, Metadata};
-use spherecontact_model::kratos_settings::Settings;
+use spherecontact_model::kratos_settings::{Element, Settings};
 use spherecontact_model::limits::{MAX_DECK_TABLE_BYTES, SOLID_POLE};
 use spherecontact_model::resolution::{self, ResolutionError};
 use spherecontact_model::scene::Scene;
@@ -64,7 +66,7 @@ pub struct KratosSolidDeck;
 impl Deck for KratosSolidDeck {
     const KIND: DeckKind = DeckKind {
         name: NAME,
-        description: "Kratos ContactStructuralMechanicsApplication 3D FEM, SmallDisplacementElement3D4N on the corners of fem-3d's gmsh mesh of the half body, both spheres meshed (the second mirrored), mortar contact (augmented Lagrangian with Coulomb friction, frictionless, or penalty), every step's convergence kept",
+        description: "Kratos ContactStructuralMechanicsApplication 3D FEM, SmallDisplacementElement3D4N on the corners of fem-3d's gmsh mesh of the half body or SmallDisplacementElement3D8N on gmsh's bricks of it, both spheres meshed (the second mirrored), mortar contact (augmented Lagrangian with Coulomb friction, frictionless, or penalty), every step's convergence kept",
         tool: Tool::KratosContact,
         template: TEMPLATE,
         file_name: "kratos_3d.py",
@@ -127,11 +129,17 @@ impl KratosSolid {
         (h, plan)
     }
 
-    /// The first-order body of gmsh's `body.msh` in `dir`.
-    fn read_body(dir: &Path) -> Result<LinearBody, SolveError> {
+    /// The first-order body of gmsh's `body.msh` in `dir`, of the case's element.
+    fn read_body(&self, dir: &Path) -> Result<LinearBody, SolveError> {
         let failed = |e: String| SolveError::Failed(format!("reading gmsh's mesh: {e}"));
-        let mesh = solid::read(&dir.join("body.msh")).map_err(|e| failed(e.to_string()))?;
-        LinearBody::of(&mesh).map_err(failed)
+        let path = dir.join("body.msh");
+        match self.settings.element {
+            Element::Tet4 => {
+                let mesh = solid::read(&path).map_err(|e| failed(e.to_string()))?;
+                LinearBody::of(&mesh).map_err(failed)
+            }
+            Element::Hex8 => bricks8::read(&path).map_err(failed),
+        }
     }
 
     fn project(&self, scene: &Scene, plan: &Plan) -> ProjectSpec {
@@ -157,8 +165,12 @@ impl KratosSolid {
         let zones = Zones::new(scene.max_contact_radius(), h);
         let r = scene.pair.body1.radius;
         let geometry = solid_geo::geometry(r, scene.domain.height(r), h, zones);
-        let files = solid_geo::mesh(&geometry, dir, "body", &self.options.toolchain)?;
-        let body = Self::read_body(dir)?;
+        let toolchain = &self.options.toolchain;
+        let files = match self.settings.element {
+            Element::Tet4 => solid_geo::mesh(&geometry, dir, "body", toolchain)?,
+            Element::Hex8 => bricks8::mesh(&geometry, dir, "body", toolchain)?,
+        };
+        let body = self.read_body(dir)?;
         let project = self.project(scene, plan);
         let slave_faces = body.candidate_faces(plan.candidate_radius);
         if slave_faces.is_empty() {
@@ -169,7 +181,6 @@ impl KratosSolid {
         let mdpa = MdpaSpec {
             body: &body,
             slave_faces: &slave_faces,
-            element: self.settings.element,
             free_master_plane: project.frictional(),
         };
         let json = |value: serde_json::Value| serde_json::to_string_pretty(&value).unwrap_or_default();
@@ -213,7 +224,7 @@ impl KratosSolid {
         let faces = body.candidate_faces(plan.candidate_radius);
         let (slaves, triangles) = slave_nodes(body, &faces);
         let text = read_output(dir, "surface.csv", MAX_DECK_TABLE_BYTES).map_err(failed)?;
-        let surfaces = results::parse_surface(&text, &indices, &slaves)
+        let surfaces = results::parse_surface(&text, &steps, &slaves)
             .map_err(failed)?
             .into_iter()
             .zip(&indices)
@@ -224,7 +235,7 @@ impl KratosSolid {
             surfaces,
             triangles,
             nodes: body.nodes.len(),
-            elements: body.tetrahedra.len(),
+            elements: body.elements.len(),
             slave_faces: faces.len(),
             wall_s: [mesh_s, solve_s, start.elapsed().as_secs_f64()],
         })
@@ -246,7 +257,7 @@ impl KratosSolid {
         applicable(scene)?;
         let (h, plan) = self.plan(scene);
         readback::check_path_file(dir, &plan.steps, &scene.name)?;
-        let body = Self::read_body(dir)?;
+        let body = self.read_body(dir)?;
         let run = self.read(&plan, &body, dir, [0.0; 2])?;
         Ok(self.history(scene, split::RUN_ELSEWHERE, &plan, h, &run))
     }
@@ -289,11 +300,12 @@ impl KratosSolid {
             version: format!("Kratos {version}"),
             model: format!(
                 "3D, the halves (y ≥ 0) of both spheres ({}; the second mirrored through the contact \
-                 plane); {} on the corners of gmsh's quadratic tetrahedra (fem-3d's mesh); mortar \
-                 contact {} ({}, factor {:e} E/h), {friction}{}; P and Q from the far face's \
-                 reaction × 2, p and q Kratos' augmented nodal pressures at the slave nodes",
+                 plane); {} {}; mortar contact {} ({}, factor {:e} E/h), {friction}{}; P and Q \
+                 from the far face's reaction × 2, p and q Kratos' augmented nodal pressures at \
+                 the slave nodes",
                 scene.domain.describe(),
                 self.settings.element.keyword(),
+                self.settings.element.mesh(),
                 self.settings.formulation.name(),
                 self.settings.formulation.mortar_type(plan.tangential),
                 self.settings.stiffness_factor(),
@@ -304,11 +316,12 @@ impl KratosSolid {
                 },
             ),
             resolution: format!(
-                "pole element {:.3} µm (c_max/{:.1}), {} tetrahedra and {} nodes a sphere, {} slave \
-                 faces; every path step computed (Newton, at most {MAX_ITERATIONS} iterations)",
+                "pole element {:.3} µm (c_max/{:.1}), {} {} and {} nodes a sphere, {} slave faces; \
+                 every path step computed (Newton, at most {MAX_ITERATIONS} iterations)",
                 h * 1e6,
                 scene.max_contact_radius() / h,
                 run.elements,
+                self.settings.element.plural(),
                 run.nodes,
                 run.slave_faces
             ),
@@ -368,35 +381,6 @@ impl KratosSolid {
         );
         metadata
     }
-}
-
-/// The slave nodes of the candidate `faces` (MDPA ids, points, weights ∫ L dA = a third of each
-/// triangle's area at each corner) and the faces as indices of those nodes.
-fn slave_nodes(body: &LinearBody, faces: &[[usize; 3]]) -> (SlaveNodes, Vec<[usize; 3]>) {
-    let skin = LinearBody::nodes_of(faces);
-    let mut weights = vec![0.0; skin.len()];
-    let local = |n: usize| skin.binary_search(&n).unwrap_or(0);
-    let triangles: Vec<[usize; 3]> = faces.iter().map(|f| f.map(local)).collect();
-    for (face, triangle) in faces.iter().zip(&triangles) {
-        let [a, b, c] = face.map(|n| body.nodes[n]);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let area = 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        for &j in triangle {
-            weights[j] += area / 3.0;
-        }
-    }
-    let slaves = SlaveNodes {
-        ids: skin.iter().map(|n| n + 1).collect(),
-        points: skin.iter().map(|&n| body.nodes[n]).collect(),
-        weights,
-    };
-    (slaves, triangles)
 }
 
 /// Why the model does not apply to `scene`, if it does not: two identical finite spheres (one
