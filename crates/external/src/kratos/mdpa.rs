@@ -2,8 +2,9 @@
 //! elements ([`LinearBody`], tetrahedra or bricks; sphere 2 the mirror image of sphere 1 through
 //! the contact plane z = 0, numbered after it, its elements in [`mirror_order`] to stay right
 //! side out), the candidate contact faces as `SurfaceCondition3D3N` or `…3D4N` skins in the
-//! sub-model-parts `Slave` (sphere 1) and `Master` (sphere 2), and the node sets the driver holds:
-//! `Far1`, `Far2` (the far faces) and `Symmetry` (the plane y = 0).
+//! sub-model-parts `Slave` (sphere 1) and `Master` (sphere 2), the node sets the driver holds:
+//! `Far1`, `Far2` (the far faces) and `Symmetry` (the plane y = 0 of a half body, empty on the
+//! whole), and `Reported`, the slave nodes whose surface values the driver writes.
 //!
 //! Units: mm (the deck's units; the body is in m). Every number is written by Rust's formatting
 //! of an `f64` or a `usize`; the only names are this module's own.
@@ -22,20 +23,20 @@ pub const MASTER: &str = "Master";
 pub const FAR: [&str; 2] = ["Far1", "Far2"];
 /// The nodes held at u_y = 0 on the plane of symmetry.
 pub const SYMMETRY: &str = "Symmetry";
+/// The slave nodes whose surface values the driver writes (the half's, y ≥ 0).
+pub const REPORTED: &str = "Reported";
 
 /// The mesh's file stem (`spheres.mdpa`; ProjectParameters names it without the extension).
 pub const STEM: &str = "spheres";
 
 /// What the MDPA is written from.
 pub struct MdpaSpec<'a> {
-    /// The half body [m].
+    /// Sphere 1's body [m]: the half (its symmetry plane held on both spheres) or the whole.
     pub body: &'a LinearBody,
     /// Sphere 1's candidate faces (outward), from [`LinearBody::candidate_faces`].
     pub slave_faces: &'a [Vec<usize>],
-    /// Whether the master's candidate nodes on the symmetry plane are left free in y (frictional
-    /// contact: there the stick condition ties them to the slave's nodes, which are held; holding
-    /// both would repeat one constraint and make Kratos' system singular).
-    pub free_master_plane: bool,
+    /// The slave nodes reported (indices into `body.nodes`, sorted): the half's candidate nodes.
+    pub reported: &'a [usize],
 }
 
 impl MdpaSpec<'_> {
@@ -108,23 +109,15 @@ impl MdpaSpec<'_> {
             let far: Vec<usize> = self.body.far.iter().map(|v| v + offset + 1).collect();
             sub_model_part(&mut text, name, &far, &[], &[]);
         }
-        sub_model_part(&mut text, SYMMETRY, &self.held_on_plane(&skin), &[], &[]);
+        let plane = &self.body.symmetry;
+        let held: Vec<usize> = [0, n]
+            .into_iter()
+            .flat_map(|offset| plane.iter().map(move |v| v + offset + 1))
+            .collect();
+        sub_model_part(&mut text, SYMMETRY, &held, &[], &[]);
+        let reported: Vec<usize> = self.reported.iter().map(|v| v + 1).collect();
+        sub_model_part(&mut text, REPORTED, &reported, &[], &[]);
         text
-    }
-
-    /// The plane's nodes of both spheres held at u_y = 0 (1-based ids): all of them, but for the
-    /// master's candidate nodes when [`MdpaSpec::free_master_plane`].
-    fn held_on_plane(&self, skin: &[usize]) -> Vec<usize> {
-        let n = self.count();
-        let mut held: Vec<usize> = self.body.symmetry.iter().map(|v| v + 1).collect();
-        held.extend(
-            self.body
-                .symmetry
-                .iter()
-                .filter(|v| !(self.free_master_plane && skin.binary_search(v).is_ok()))
-                .map(|v| v + n + 1),
-        );
-        held
     }
 }
 
@@ -175,14 +168,15 @@ mod tests {
     }
 
     /// Requirement: both spheres, sphere 2 mirrored and right side out, the skins in their
-    /// sub-model-parts, the master's plane nodes free only under friction; exact text.
+    /// sub-model-parts, both spheres' plane nodes held on the half body and none on the whole,
+    /// the reported nodes those asked for; exact text.
     #[test]
     fn both_spheres_their_skins_and_the_held_nodes_are_written() {
         let body = body();
         let spec = MdpaSpec {
             body: &body,
             slave_faces: &body.contact,
-            free_master_plane: true,
+            reported: &[0, 2],
         };
         let text = spec.text();
         assert!(text.contains("8 0e0 0e0 -1e0\n"), "{text}");
@@ -202,15 +196,18 @@ mod tests {
         };
         assert!(part(SLAVE).starts_with("  Begin SubModelPartNodes\n    1\n    2\n    3\n"));
         assert!(part(MASTER).contains("Begin SubModelPartConditions\n    2\n"));
-        // The plane's nodes 1, 2, 4 of sphere 1 and of sphere 2 (5, 6, 8), less the master's
-        // candidate nodes 5 and 6 (node 4's image 8 is not a candidate).
-        assert!(part(SYMMETRY).starts_with("  Begin SubModelPartNodes\n    1\n    2\n    4\n    8\n  End"));
-        let held = MdpaSpec {
-            free_master_plane: false,
+        // The plane's nodes 1, 2, 4 of sphere 1 and their images 5, 6, 8 on sphere 2.
+        let held = "  Begin SubModelPartNodes\n    1\n    2\n    4\n    5\n    6\n    8\n  End";
+        assert!(part(SYMMETRY).starts_with(held), "{}", part(SYMMETRY));
+        assert!(part(REPORTED).starts_with("  Begin SubModelPartNodes\n    1\n    3\n  End"));
+        let whole = body.whole();
+        let text = MdpaSpec {
+            body: &whole,
             ..spec
         }
         .text();
-        assert!(held.contains("    4\n    5\n    6\n    8\n  End SubModelPartNodes"));
+        let symmetry = text.split("Begin SubModelPart Symmetry\n").nth(1).unwrap();
+        assert!(symmetry.starts_with("  Begin SubModelPartNodes\n  End"), "{symmetry}");
     }
 
     /// Two bricks of 1 mm side on the contact plane, side by side along x, their bottom faces the
@@ -258,7 +255,7 @@ mod tests {
         let spec = MdpaSpec {
             body: &body,
             slave_faces: &body.contact,
-            free_master_plane: false,
+            reported: &[],
         };
         let text = spec.text();
         let nodes: Vec<[f64; 3]> = block(&text, "Nodes").iter().map(|r| [r[1], r[2], r[3]]).collect();

@@ -121,8 +121,10 @@ pub struct SlaveNodes {
 }
 
 /// Reads `surface.csv` from `text`: for each computed step of `steps` (in order) one row per node
-/// of `slaves`, any order. A node is in contact where Kratos flags it ACTIVE; its pressure is the
-/// augmented one there (0 elsewhere), and it sticks where ACTIVE and not SLIP.
+/// of `slaves`, any order. A node is in contact where Kratos flags it ACTIVE; its pressure and
+/// traction are the augmented ones there and 0 elsewhere (the contact law's, whatever Kratos left
+/// in the columns of a node out of contact: it leaves `nan` tangential pressures there, seen with
+/// `ALMContactFrictional` at μ = 0 and on bricks), and it sticks where ACTIVE and not SLIP.
 ///
 /// At a step Kratos did not converge, whose surface the History never shows, a number that is not
 /// finite (Kratos leaves `nan` tractions in a diverged state) reads as 0, so that the run's
@@ -167,24 +169,34 @@ pub fn parse_surface(
     Ok(surfaces)
 }
 
-/// The contact state of slave node `j` from its row (`converged`: every number finite).
+/// The contact state of slave node `j` from its row: every cell a number, and finite where it is
+/// used at a `converged` step (the tractions of a node out of contact are the law's zero, unused).
 fn node(row: &Row, slaves: &SlaveNodes, j: usize, converged: bool) -> Result<Node3, String> {
-    let number = |i: usize| {
+    let lenient = |i: usize| {
         row.finite(i, 1.0)
-            .or_else(|e| match !converged && row.text(i).parse::<f64>().is_ok() {
+            .or_else(|e| match row.text(i).parse::<f64>().is_ok() {
                 true => Ok(0.0),
                 false => Err(e),
             })
     };
-    let [p, qx, qy, uz, sx, sy] = [2, 3, 4, 7, 8, 9].map(number);
+    let number = |i: usize| match converged {
+        true => row.finite(i, 1.0),
+        false => lenient(i),
+    };
     let flag = |i| row.choice(i, &[("0", false), ("1", true)]);
     let (active, slip) = (flag(5)?, flag(6)?);
+    let traction = |i: usize| match active {
+        true => number(i),
+        false => lenient(i).map(|_| 0.0),
+    };
+    let [p, qx, qy] = [2, 3, 4].map(traction);
+    let [uz, sx, sy] = [7, 8, 9].map(number);
     let [x, y, z] = slaves.points[j];
     Ok(Node3 {
         point: [x, y],
         weight: slaves.weights[j],
         gap: z + uz? * 1e-3,
-        pressure: if active { p?.max(0.0) * 1e6 } else { 0.0 },
+        pressure: p?.max(0.0) * 1e6,
         traction: [qx? * 1e6, qy? * 1e6],
         stick: active && !slip,
         slip: [sx? * 1e-3, sy? * 1e-3],
@@ -220,8 +232,9 @@ mod tests {
         assert!(parse_steps(&text, &[0]).unwrap_err().contains("2 rows for the 1"));
     }
 
-    /// Requirement: pressure only where ACTIVE, stick where ACTIVE and not SLIP, SI units; a node
-    /// not of the slave set fails; a `nan` is tolerated only at a step Kratos did not converge.
+    /// Requirement: pressure and traction only where ACTIVE, stick where ACTIVE and not SLIP, SI
+    /// units; a node not of the slave set fails; a `nan` is tolerated only at a step Kratos did not
+    /// converge or where the value is unused (a traction out of contact).
     #[test]
     fn the_surface_is_read_in_si_with_the_contact_flags() {
         let slaves = SlaveNodes {
@@ -250,15 +263,23 @@ mod tests {
             .unwrap_err()
             .contains("not a slave node"));
         // Kratos' nan at a step it did not converge reads as 0 (never shown); at a converged
-        // step, or a cell that is no number, it fails naming the column.
-        let diverged = text.replace("3,9,-0.5,0,", "3,9,-0.5,nan,");
+        // step it fails naming the column where it is used (the active node 4), and is the law's
+        // zero where it is not (the tractions of node 9, out of contact); a cell that is no
+        // number fails anywhere.
+        let diverged = text.replace("3,4,400,10,", "3,4,400,nan,");
         assert_eq!(
-            parse_surface(&diverged, &[step(false)], &slaves).unwrap()[0][1].traction,
+            parse_surface(&diverged, &[step(false)], &slaves).unwrap()[0][0].traction,
             [0.0; 2]
         );
         let e = parse_surface(&diverged, &[step(true)], &slaves).unwrap_err();
-        assert!(e.contains("surface.csv:2") && e.contains("qx_MPa"), "{e}");
+        assert!(e.contains("surface.csv:3") && e.contains("qx_MPa"), "{e}");
+        let inactive = text.replace("3,9,-0.5,0,", "3,9,-0.5,nan,");
+        assert_eq!(
+            parse_surface(&inactive, &[step(true)], &slaves).unwrap()[0][1].traction,
+            [0.0; 2]
+        );
         let garbage = text.replace("3,9,-0.5,0,", "3,9,-0.5,x,");
+        assert!(parse_surface(&garbage, &[step(true)], &slaves).is_err());
         assert!(parse_surface(&garbage, &[step(false)], &slaves).is_err());
     }
 }

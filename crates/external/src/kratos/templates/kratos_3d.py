@@ -7,18 +7,19 @@
 #   steps.csv   one row per computed step: whether Kratos' Newton iteration converged, its
 #               iterations, the norm of the residual left (Kratos' BuildRHS on the final state:
 #               forces [N] on the free degrees of freedom and weighted gaps [mm] of the contact),
-#               P and Q from the reactions of both far faces (the half model's, doubled), the
+#               P and Q from the reactions of both far faces (a half model's doubled), the
 #               step's wall time;
-#   surface.csv the slave nodes at every step: the augmented contact pressure and tangential
+#   surface.csv the slave nodes of Reported (those with y >= 0) at every step: the augmented contact pressure and tangential
 #               traction [MPa] (Kratos' AUGMENTED_*_CONTACT_PRESSURE), its ACTIVE and SLIP flags,
 #               the node's displacement u_z [mm] and its slip against its mirror image on sphere 2
 #               (the same node of the conforming mesh: u_x, u_y of sphere 1 less sphere 2's) [mm].
 # Kratos' AnalysisStage discards the converged flag that its solver returns (RunSolutionLoop calls
 # SolveSolutionStep and ignores the result): this driver keeps it, with the iterations, per step.
 #
-# Frame: contact plane z = 0, sphere 1 in z >= 0, sphere 2 its mirror image; the halves y >= 0.
-# At each step the far face of sphere 1 (sub-model-part Far1) is held at u = (t, 0, -d) and that of
-# sphere 2 (Far2) at (-t, 0, d); the nodes of Symmetry at u_y = 0. Nothing here comes from the
+# Frame: contact plane z = 0, sphere 1 in z >= 0, sphere 2 its mirror image; the bodies are the
+# halves y >= 0 (frictionless) or whole (under friction). At each step the far face of sphere 1
+# (sub-model-part Far1) is held at u = (t, 0, -d) and that of sphere 2 (Far2) at (-t, 0, d); the
+# nodes of Symmetry (the plane y = 0 of the halves, empty on whole bodies) at u_y = 0. Nothing here comes from the
 # case's text: every number is read from path.txt, the rest is fixed.
 import sys
 import time
@@ -72,6 +73,8 @@ class Path(StructuralMechanicsAnalysis):
         self.structure = self.model["Structure"]
         # Sphere 2's node i + half is the mirror image of sphere 1's node i (spheres.mdpa).
         self.half = self.structure.GetSubModelPart("Solid").NumberOfNodes() // 2
+        # The halves' forces are doubled for the whole spheres.
+        self.factor = 2.0 if self.structure.GetSubModelPart("Symmetry").NumberOfNodes() > 0 else 1.0
 
     def ApplyBoundaryConditions(self):
         super().ApplyBoundaryConditions()
@@ -106,13 +109,13 @@ class Path(StructuralMechanicsAnalysis):
         converged, iterations, residual, wall = self.outcome
         one = total_reaction(self.structure.GetSubModelPart("Far1"))
         two = total_reaction(self.structure.GetSubModelPart("Far2"))
-        # P pushes sphere 1 up (its far face's reaction along -z), Q drags it along x; the half
-        # model's forces are doubled for the whole spheres.
-        p1, q1, p2, q2 = -2.0 * one[2], 2.0 * one[0], 2.0 * two[2], -2.0 * two[0]
+        # P pushes sphere 1 up (its far face's reaction along -z), Q drags it along x.
+        f = self.factor
+        p1, q1, p2, q2 = -f * one[2], f * one[0], f * two[2], -f * two[0]
         self.steps.write("%d,%d,%d,%r,%r,%r,%r,%r,%r\n"
                          % (index, converged, iterations, residual, p1, q1, p2, q2, wall))
         self.steps.flush()
-        for node in self.structure.GetSubModelPart("Slave").Nodes:
+        for node in self.structure.GetSubModelPart("Reported").Nodes:
             p = -node.GetValue(CSMA.AUGMENTED_NORMAL_CONTACT_PRESSURE)
             q = [0.0, 0.0, 0.0]
             if node.Has(CSMA.AUGMENTED_TANGENT_CONTACT_PRESSURE):
