@@ -10,7 +10,6 @@ pub use spherecontact_case::registry;
 pub use spherecontact_check as check;
 pub use spherecontact_check::judged;
 pub use spherecontact_contact as contact;
-pub use spherecontact_contact::driver;
 pub use spherecontact_external as external;
 pub use spherecontact_external::{calculix, dem, exchange, kratos};
 pub use spherecontact_impact as impact;

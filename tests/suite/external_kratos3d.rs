@@ -205,7 +205,10 @@ fn sliding_case(dir: &Path) -> Case {
         .replace("delta_n = [0, 10, 10]", "delta_n = [0, 10, 10, 10]")
         .replace("delta_t = [0, 0, 1]", "delta_t = [0, 0, 1, 6]")
         .replace("substeps = [1, 1]", "substeps = [1, 1, 1]");
-    assert!(text.contains("delta_t = [0, 0, 1, 6]"), "cases/kratos-3d.toml's path changed");
+    assert!(
+        text.contains("delta_t = [0, 0, 1, 6]"),
+        "cases/kratos-3d.toml's path changed"
+    );
     let file = dir.join("kratos-3d-sliding.toml");
     std::fs::write(&file, text).unwrap();
     Case::load(&file).unwrap()
@@ -235,7 +238,10 @@ fn friction_leaves_p_as_the_frictionless_alms_and_slides_at_mu() {
     let normal = frictionless.at_position(1).unwrap().normal_force.unwrap();
     for position in 1..=3 {
         let p = frictional.at_position(position).unwrap().normal_force.unwrap();
-        assert!((p / normal - 1.0).abs() < 1e-4, "position {position}: P = {p} against {normal} N");
+        assert!(
+            (p / normal - 1.0).abs() < 1e-4,
+            "position {position}: P = {p} against {normal} N"
+        );
     }
     let sliding = frictional.at_position(3).unwrap();
     let ratio = sliding.tangential_force.unwrap() / sliding.normal_force.unwrap();

@@ -1,4 +1,4 @@
-//! The path walker's rules (crates/contact/src/driver.rs) hold for every incremental solver that walks with it:
+//! The path walker's rules (crates/model/src/driver.rs) hold for every incremental solver that walks with it:
 //! a path that never closes the gap is zeros with a note, not a failure; an open gap in the
 //! middle of a path is zero force (the history-clearing half is in tangential_laws.rs).
 

@@ -1,6 +1,6 @@
 //! # spherecontact-contact: the contact engine
 //!
-//! **Job.** The frictionless normal problem and the incremental Coulomb problem over any compliance operator, and the path walker every incremental model steps with ([`driver`]).
+//! **Job.** The frictionless normal problem and the incremental Coulomb problem over any compliance operator.
 //!
 //! **May depend on.** `spherecontact-model`.
 //!
@@ -76,8 +76,6 @@
 //!   points changed without a full product.
 //! - **Errors** are typed ([`ContactError`]): a problem that does not converge within the cap, a
 //!   block that is not positive definite, operators that do not fit together.
-
-pub mod driver;
 
 pub mod coulomb;
 pub mod dense;

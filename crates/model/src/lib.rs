@@ -5,7 +5,8 @@
 //! ([`scene`], with its finite [`domain`]), what a solver answers ([`history`]: forces, energies
 //! and surface fields at every step), Hertz's normal contact ([`hertz`]), and the one trait every
 //! model implements ([`solver::Solver`]), with the resolutions, costs, limits and progress a run
-//! is described by.
+//! is described by, and the one path walker every incremental model steps with ([`driver`]: an
+//! open gap forgets, a path that never closes is zeros).
 //!
 //! **May depend on.** No crate of the workspace; no I/O beyond a child's resource usage
 //! ([`memory`]).
@@ -25,6 +26,7 @@ pub mod choice;
 pub mod cores;
 pub mod cost;
 pub mod domain;
+pub mod driver;
 pub mod fixtures;
 pub mod hertz;
 pub mod history;

@@ -3,7 +3,7 @@
 //! Before a solver runs, [`run`] prints its estimated wall time ([`Solver::estimated_seconds`],
 //! a coarse cost model per solver: docs/security.md, "Memory and time bounds") when it is above
 //! [`ANNOUNCE_SECONDS`]. While it runs, the path walkers report each step done ([`tick`]: the one
-//! path walker `driver::walk` (spherecontact-contact) for bem, mdr, fem-3d and the DEM laws; fem-axisym's and
+//! path walker `driver::walk` (this crate) for bem, mdr, fem-3d and the DEM laws; fem-axisym's and
 //! mdr-domain's own loops), and a line `progress: CASE SOLVER: k/n steps (p %), t s, about
 //! r s left` is printed at most every [`INTERVAL_SECONDS`] (the first after that long, so a
 //! short run prints none). The lines only read the walkers' counters: results do not depend on

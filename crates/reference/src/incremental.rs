@@ -6,11 +6,11 @@
 //! that way for any [`TangentialLaw`], so every law sees exactly the same increments.
 //!
 //! Contact rules, the same for every law: while the gap is open the force is zero and the law's
-//! history is cleared (the path walker's rule, [`spherecontact_contact::driver`]); on the increment that closes
+//! history is cleared (the path walker's rule, [`spherecontact_model::driver`]); on the increment that closes
 //! the gap the contact starts with Q = 0 (the contact had zero radius, hence zero stiffness, at
 //! the increment's start).
 
-use spherecontact_contact::driver::{self, PathIncrement, PathModel};
+use spherecontact_model::driver::{self, PathIncrement, PathModel};
 use spherecontact_model::hertz::Hertz;
 use spherecontact_model::history::{History, Metadata, StepResult};
 use spherecontact_model::path::Step;

@@ -2,7 +2,7 @@
 //!
 //! **Job.** The answers the harness judges by: Hertz, Cattaneo–Mindlin, Mindlin–Deresiewicz along any path by MDR ([`mdr`]), its finite-body correction ([`mdr_series`]), the exact quasi-static reference of an impact ([`impact`]), and the incremental DEM laws whose distance from them is measured.
 //!
-//! **May depend on.** `spherecontact-model` and `spherecontact-contact` only: no plotting, no command line, no process, no file.
+//! **May depend on.** `spherecontact-model` and `spherecontact-system` (the impact table's files read by rule, a command's permission) only: no linear algebra, no plotting, no command line.
 //!
 //! **Offers.** Every model a `Solver` of its own (`solvers()`, `dem_laws()`), usable from any Rust test suite, as the example below does.
 //!

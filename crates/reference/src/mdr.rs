@@ -33,7 +33,7 @@
 //! problem is even in x, so one half is modelled and doubled). P then has a relative error of
 //! order (Δx/c)², from the one cell cut by the contact edge.
 
-use spherecontact_contact::driver::{self, PathIncrement, PathModel};
+use spherecontact_model::driver::{self, PathIncrement, PathModel};
 use spherecontact_model::hertz::Hertz;
 use spherecontact_model::history::{
     History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents,

@@ -181,9 +181,17 @@ impl LinearBody {
             .collect();
         let order = mirror_order(self.element);
         let mut elements = self.elements.clone();
-        elements.extend(self.elements.iter().map(|e| order.iter().map(|&k| image[e[k]]).collect()));
+        elements.extend(
+            self.elements
+                .iter()
+                .map(|e| order.iter().map(|&k| image[e[k]]).collect()),
+        );
         let mut contact = self.contact.clone();
-        contact.extend(self.contact.iter().map(|f| reversed(&f.iter().map(|&n| image[n]).collect::<Vec<_>>())));
+        contact.extend(
+            self.contact
+                .iter()
+                .map(|f| reversed(&f.iter().map(|&n| image[n]).collect::<Vec<_>>())),
+        );
         let mut far = self.far.clone();
         far.extend(self.far.iter().map(|&n| image[n]));
         far.sort_unstable();

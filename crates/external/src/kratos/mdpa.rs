@@ -201,13 +201,12 @@ mod tests {
         assert!(part(SYMMETRY).starts_with(held), "{}", part(SYMMETRY));
         assert!(part(REPORTED).starts_with("  Begin SubModelPartNodes\n    1\n    3\n  End"));
         let whole = body.whole();
-        let text = MdpaSpec {
-            body: &whole,
-            ..spec
-        }
-        .text();
+        let text = MdpaSpec { body: &whole, ..spec }.text();
         let symmetry = text.split("Begin SubModelPart Symmetry\n").nth(1).unwrap();
-        assert!(symmetry.starts_with("  Begin SubModelPartNodes\n  End"), "{symmetry}");
+        assert!(
+            symmetry.starts_with("  Begin SubModelPartNodes\n  End"),
+            "{symmetry}"
+        );
     }
 
     /// Two bricks of 1 mm side on the contact plane, side by side along x, their bottom faces the

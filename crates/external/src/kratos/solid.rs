@@ -305,7 +305,8 @@ impl KratosSolid {
                  {} ({}, factor {:e} E/h), {friction}; P and Q from the far face's reaction{}, p \
                  and q Kratos' augmented nodal pressures at the slave nodes (y ≥ 0)",
                 match frictional {
-                    true => "both spheres whole (the half mesh and its mirror image through y = 0: \
+                    true =>
+                        "both spheres whole (the half mesh and its mirror image through y = 0: \
                              a mortar half model under friction needs the multiplier held on the plane)",
                     false => "the halves (y ≥ 0) of both spheres",
                 },

@@ -8,7 +8,7 @@
 //! [`convolution`] applies them by zero-padded FFT, and [`operator`] makes them the compliances of
 //! the shared contact engine ([`spherecontact_contact`]: the normal problem with exact non-penetration,
 //! Kalker's incremental Coulomb problem with memory); [`state`] carries the fields from one
-//! increment to the next and [`solver`] runs the path with the shared walker ([`spherecontact_contact::driver`]).
+//! increment to the next and [`solver`] runs the path with the shared walker ([`spherecontact_model::driver`]).
 //!
 //! Outputs: per step the History quantities (P, Q, contact radius from the pressure edge, peak
 //! pressure, stick radius c √(N_stick / N_contact) by every solver's measure, [`crate::fit::stick`]); at every path

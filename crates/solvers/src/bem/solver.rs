@@ -3,7 +3,7 @@
 
 use serde_json::json;
 
-use spherecontact_contact::driver::{self, PathIncrement, PathModel};
+use spherecontact_model::driver::{self, PathIncrement, PathModel};
 use spherecontact_model::history::{
     History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents,
 };

@@ -23,7 +23,7 @@ use crate::fem::element::tri6::Integration;
 use crate::fem::factor::Ordering;
 use crate::fem::pole::{self, PoleSized};
 use crate::fit::stick;
-use spherecontact_contact::driver;
+use spherecontact_model::driver;
 use spherecontact_model::history::{
     History, Layout, Metadata, StepResult, SurfaceField, TangentialComponents,
 };
@@ -243,7 +243,7 @@ impl Run {
         self.previous_t = step.delta_t;
         let shift: &[f64] = if self.mode == Mode::Solved { &shift } else { &[] };
         if step.delta_n <= 0.0 {
-            // The walker's rule (spherecontact_contact::driver): an open gap forgets the contact's history.
+            // The walker's rule (spherecontact_model::driver): an open gap forgets the contact's history.
             self.contact.release();
         }
         let cost = self

@@ -5,7 +5,7 @@
 //! y = 0 (the plane that contains the paper's shift), the case's `[domain]` (hemisphere or cap,
 //! its grip) meshed by gmsh ([`super::meshing`]), factored and condensed once onto the contact
 //! candidates ([`super::model`]); the path is walked by the one path walker
-//! ([`spherecontact_contact::driver`]) over [`super::walk::Walker`], one engine increment a step. P and Q_x are
+//! ([`spherecontact_model::driver`]) over [`super::walk::Walker`], one engine increment a step. P and Q_x are
 //! the engine's resultants over the mirrored half (P checked against the far face's reaction);
 //! c and p0 come from [`super::measures`].
 //!
@@ -50,9 +50,9 @@ use super::system::Grip;
 use super::walk::{Record, Tangential, Walker};
 use crate::fem::element::tri6::Lame;
 use crate::fem::pole::{self, PoleSized};
-use spherecontact_contact::driver;
 use spherecontact_contact::{Method, Settings as ContactSettings};
 use spherecontact_model::domain::Grip as DomainGrip;
+use spherecontact_model::driver;
 use spherecontact_model::history::{History, Metadata, StepResult};
 use spherecontact_model::limits::SOLID_POLE;
 use spherecontact_model::memory::{self, Budget};

@@ -1,5 +1,5 @@
 //! fem-3d along a path: the condensed model advanced by the shared contact engine one increment
-//! a step, as the one path walker ([`spherecontact_contact::driver`]) drives it.
+//! a step, as the one path walker ([`spherecontact_model::driver`]) drives it.
 //!
 //! Identical spheres: this body is pushed by δn/2 towards the contact plane and shifted by δt/2
 //! along x (its mirror image does the same the other way), so the engine's approach and shift
@@ -20,7 +20,7 @@ use super::model::Model;
 use super::output::{self, Loads, SurfaceValues};
 use super::surface::Surface;
 use crate::fit::stick;
-use spherecontact_contact::driver::{PathIncrement, PathModel};
+use spherecontact_model::driver::{PathIncrement, PathModel};
 use spherecontact_model::history::{Layout, StepResult, SurfaceField, TangentialComponents};
 use spherecontact_model::mirror::Mirror;
 use spherecontact_model::path::Step;

@@ -14,11 +14,11 @@
 //! contact on the increment that closes the gap is its own (the DEM laws start at Q = 0; the
 //! surface models load the new contact with the increment's shift).
 
-use spherecontact_model::history::{History, Metadata, StepResult};
-use spherecontact_model::path::Step;
-use spherecontact_model::progress;
-use spherecontact_model::scene::Scene;
-use spherecontact_model::solver::SolveError;
+use crate::history::{History, Metadata, StepResult};
+use crate::path::Step;
+use crate::progress;
+use crate::scene::Scene;
+use crate::solver::SolveError;
 
 /// The note of a path that never closes the gap.
 pub const NEVER_CLOSES: &str = "the path never closes the gap: every force is zero (nothing to solve)";
@@ -71,7 +71,7 @@ pub fn open_row(step: &Step, peak_pressure: bool) -> StepResult {
 }
 
 /// Walks the path of `scene` with `model` (see the module doc); one row a step, each reported
-/// to the run's progress meter ([`spherecontact_model::progress::tick`]).
+/// to the run's progress meter ([`crate::progress::tick`]).
 pub fn walk(scene: &Scene, model: &mut dyn PathModel) -> Result<Vec<StepResult>, SolveError> {
     let steps = scene.steps();
     let mut rows = Vec::with_capacity(steps.len());
@@ -145,7 +145,7 @@ mod tests {
     fn scene(positions: &[(f64, f64)]) -> Scene {
         let (delta_n, delta_t): (Vec<f64>, Vec<f64>) =
             positions.iter().map(|&(n, t)| (n * 1e6, t * 1e6)).unzip();
-        spherecontact_model::fixtures::paper_scene(&delta_n, &delta_t, 1)
+        crate::fixtures::paper_scene(&delta_n, &delta_t, 1)
     }
 
     #[test]
