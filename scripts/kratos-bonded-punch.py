@@ -39,22 +39,33 @@ def reaction_z(part):
     return sum(node.GetSolutionStepValue(KM.REACTION)[2] for node in part.Nodes)
 
 
+def minus(a, b):
+    return [a[i] - b[i] for i in range(3)]
+
+
+def dot(a, b):
+    return sum(a[i] * b[i] for i in range(3))
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
 def face_shape(part):
-    """Smallest and largest corner angle [degrees], largest warp / mean edge of the faces."""
+    """Smallest and largest corner angle [degrees], largest warp / mean edge of the faces (the
+    distance between a quadrangle's two diagonals; 0 for a triangle)."""
     angles, warps = [], []
     for condition in part.Conditions:
         p = [(n.X0, n.Y0, n.Z0) for n in condition.GetNodes()]
         k = len(p)
-        d = lambda a, b: [a[i] - b[i] for i in range(3)]
-        dot = lambda a, b: sum(a[i] * b[i] for i in range(3))
-        cross = lambda a, b: [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+        edges = [minus(p[(i + 1) % k], p[i]) for i in range(k)]
         for i in range(k):
-            a, b = d(p[(i + 1) % k], p[i]), d(p[i - 1], p[i])
-            angles.append(math.degrees(math.acos(dot(a, b) / math.sqrt(dot(a, a) * dot(b, b)))))
+            a, b = edges[i], edges[i - 1]  # the corner p[i] between p[i + 1] and p[i - 1]
+            angles.append(math.degrees(math.acos(-dot(a, b) / math.sqrt(dot(a, a) * dot(b, b)))))
         if k == 4:
-            normal = cross(d(p[2], p[0]), d(p[3], p[1]))
-            edge = sum(math.sqrt(dot(d(p[(i + 1) % 4], p[i]), d(p[(i + 1) % 4], p[i]))) for i in range(4)) / 4
-            warps.append(abs(dot(d(p[1], p[0]), normal)) / math.sqrt(dot(normal, normal)) / edge)
+            normal = cross(minus(p[2], p[0]), minus(p[3], p[1]))
+            edge = sum(math.sqrt(dot(e, e)) for e in edges) / 4
+            warps.append(abs(dot(edges[0], normal)) / math.sqrt(dot(normal, normal)) / edge)
     return min(angles), max(angles), max(warps, default=0.0)
 
 

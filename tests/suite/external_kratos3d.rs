@@ -134,6 +134,7 @@ fn a_written_deck_run_by_hand_reads_back_as_the_solvers_own_run() {
         own.metadata.version
     );
     let read = run_by_hand(&case);
+    assert_eq!(own.steps.len(), read.steps.len());
     for (a, b) in own.steps.iter().zip(&read.steps) {
         assert_eq!(
             (a.normal_force, a.contact_radius),
